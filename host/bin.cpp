@@ -1,0 +1,42 @@
+// bin.cpp — host side of kernels/bin.cl: count tile overlaps, scan them into
+// per-tile offsets, size binEntries from the exact total, then fill.
+#include "pipeline.h"
+
+namespace clr {
+
+void Pipeline::bin()
+{
+  // Step 1: count the triangles touching each tile.
+  std::vector<cl::Event> fills;
+  tileCount_.zero(numTiles_ + 1, &fills);
+  cl::Event countEvent;
+  binCountKernel_.setArg(0, paramsBuf_.get());
+  binCountKernel_.setArg(1, setup_.get());
+  binCountKernel_.setArg(2, numSetup_);
+  binCountKernel_.setArg(3, tileCount_.get());
+  cl_.queue.enqueueNDRangeKernel(binCountKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64),
+                                 nullptr, &countEvent);
+  record("bin_count", countEvent);
+
+  // Step 2: offsets; the bins take exactly the memory the counts ask for.
+  numBinEntries_ = scan(tileCount_, numTiles_, "bin_scan");
+  if (numBinEntries_ > UINT32_MAX)
+    throw Error("the frame needs " + std::to_string(numBinEntries_) +
+                " bin entries, more than the 2^32 a 32-bit offset can address");
+  binEntries_.reserve(numBinEntries_);
+
+  // Step 3: fill.
+  tileCursor_.zero(numTiles_, &fills);
+  cl::Event fillEvent;
+  binFillKernel_.setArg(0, paramsBuf_.get());
+  binFillKernel_.setArg(1, setup_.get());
+  binFillKernel_.setArg(2, numSetup_);
+  binFillKernel_.setArg(3, tileCount_.get());
+  binFillKernel_.setArg(4, tileCursor_.get());
+  binFillKernel_.setArg(5, binEntries_.get());
+  cl_.queue.enqueueNDRangeKernel(binFillKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64),
+                                 nullptr, &fillEvent);
+  record("bin_fill", fillEvent);
+}
+
+}  // namespace clr

@@ -1,0 +1,92 @@
+// buffer.h — typed device buffers that grow to what the scene needs.
+//
+// DeviceBuffer<T> owns a cl::Buffer of `capacity` elements of T. reserve(n)
+// keeps the buffer when it is large enough and otherwise reallocates it to
+// n plus 1/8 slack (so a moving camera does not reallocate every frame). A
+// request larger than the device's maximum single allocation is a clr::Error
+// naming the buffer, never a crash. The shared byte counter is what
+// --stats reports as device_bytes.
+#pragma once
+
+#include "cl.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clr {
+
+struct DeviceMemory {
+  cl::Context context;
+  cl::CommandQueue queue;
+  size_t maxAllocBytes = 0;
+  size_t bytesAllocated = 0;  // sum of live buffer capacities
+};
+
+template <typename T>
+class DeviceBuffer {
+ public:
+  DeviceBuffer(DeviceMemory& memory, const char* name) : memory_(&memory), name_(name) {}
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+  ~DeviceBuffer() { memory_->bytesAllocated -= capacity_ * sizeof(T); }
+
+  // Ensures room for n elements (at least one, so kernels always get a buffer).
+  void reserve(uint64_t n)
+  {
+    n = n == 0 ? 1 : n;
+    if (n <= capacity_) return;
+    const uint64_t grown = n + n / 8;
+    const uint64_t bytes = grown * sizeof(T);
+    const uint64_t exact = n * sizeof(T);
+    if (exact > memory_->maxAllocBytes)
+      throw Error("the frame needs " + std::to_string(exact) + " bytes for " + name_ +
+                  ", more than the device's largest allocation (" +
+                  std::to_string(memory_->maxAllocBytes) + " bytes)");
+    const uint64_t chosen = bytes <= memory_->maxAllocBytes ? grown : n;
+    buffer_ = cl::Buffer();
+    memory_->bytesAllocated -= capacity_ * sizeof(T);
+    capacity_ = 0;
+    try {
+      buffer_ = cl::Buffer(memory_->context, CL_MEM_READ_WRITE, chosen * sizeof(T));
+    } catch (const cl::Error& e) {
+      throw Error("cannot allocate " + std::to_string(chosen * sizeof(T)) + " bytes for " + name_ +
+                  " (" + clErrorName(e.err()) + ")");
+    }
+    capacity_ = chosen;
+    memory_->bytesAllocated += capacity_ * sizeof(T);
+  }
+
+  void upload(const std::vector<T>& data)
+  {
+    reserve(data.size());
+    if (!data.empty())
+      memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  }
+
+  std::vector<T> download(uint64_t n, uint64_t first = 0) const
+  {
+    std::vector<T> out(n);
+    if (n) memory_->queue.enqueueReadBuffer(buffer_, CL_TRUE, first * sizeof(T), n * sizeof(T), out.data());
+    return out;
+  }
+
+  void zero(uint64_t n, std::vector<cl::Event>* events = nullptr)
+  {
+    reserve(n);
+    cl::Event event;
+    memory_->queue.enqueueFillBuffer(buffer_, T{}, 0, n * sizeof(T), nullptr, &event);
+    if (events) events->push_back(event);
+  }
+
+  const cl::Buffer& get() const { return buffer_; }
+  uint64_t capacity() const { return capacity_; }
+
+ private:
+  DeviceMemory* memory_;
+  std::string name_;
+  cl::Buffer buffer_;
+  uint64_t capacity_ = 0;
+};
+
+}  // namespace clr

@@ -1,0 +1,58 @@
+// camera.cpp — default framing and validation (see camera.h).
+#include "camera.h"
+
+#include "cl.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace clr {
+
+glm::mat4 Camera::viewProjection(uint32_t width, uint32_t height) const
+{
+  return glm::perspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar) *
+         glm::lookAt(eye, target, up);
+}
+
+glm::vec3 Camera::lightDirection() const
+{
+  const glm::vec3 back = glm::normalize(eye - target);
+  const glm::vec3 right = glm::normalize(glm::cross(up, back));
+  const glm::vec3 trueUp = glm::cross(back, right);
+  return glm::normalize(back + 0.6f * trueUp + 0.4f * right);
+}
+
+Camera frameCamera(const CameraArgs& args, const Bounds& bounds)
+{
+  // Step 1: the field of view comes first, everything else may depend on it.
+  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f))
+    throw Error("--fov must lie in (0, 180) degrees");
+  Camera cam;
+  cam.fovDegrees = args.fovDegrees;
+  const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
+  const float radius = bounds.empty ? 1.0f : std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);
+
+  // Step 2: eye on a diagonal above the scene, far enough to see the sphere.
+  cam.target = args.target.value_or(centre);
+  cam.up = args.up.value_or(glm::vec3(0.0f, 1.0f, 0.0f));
+  const float halfFov = glm::radians(cam.fovDegrees) * 0.5f;
+  const float distance = radius / std::tan(std::min(halfFov, 1.2f)) * 1.1f;
+  cam.eye = args.eye.value_or(cam.target + distance * glm::normalize(glm::vec3(0.55f, 0.45f, 1.0f)));
+
+  // Step 3: near and far enclose the bounding sphere.
+  const float eyeDistance = glm::length(centre - cam.eye);
+  cam.zFar = args.zFar.value_or(eyeDistance + 1.5f * radius);
+  cam.zNear = args.zNear.value_or(std::max(cam.zFar * 1e-4f, (eyeDistance - 1.5f * radius) * 0.9f));
+
+  // Step 4: validate.
+  if (!(cam.zNear > 0.0f) || !std::isfinite(cam.zNear)) throw Error("--near must be > 0");
+  if (!(cam.zFar > cam.zNear) || !std::isfinite(cam.zFar)) throw Error("--far must be greater than --near");
+  const glm::vec3 view = cam.target - cam.eye;
+  if (!(glm::length(view) > 0.0f)) throw Error("--eye and --target must differ");
+  if (!(glm::length(glm::cross(view, cam.up)) > 1e-6f * glm::length(view) * glm::length(cam.up)))
+    throw Error("--up must not be parallel to the view direction");
+  return cam;
+}
+
+}  // namespace clr

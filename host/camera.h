@@ -1,0 +1,35 @@
+// camera.h — the camera of the CLI, exactly as the brief states it:
+//   mvp = glm::perspective(glm::radians(fov), W / (float)H, near, far)
+//       * glm::lookAt(eye, target, up),
+// vertical fov, GL clip conventions, model matrix the identity. Missing
+// values are chosen to frame the scene's bounds. validate() rejects an
+// impossible camera with a clr::Error.
+#pragma once
+
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+#include <optional>
+
+namespace clr {
+
+struct CameraArgs {
+  std::optional<glm::vec3> eye, target, up;
+  float fovDegrees = 45.0f;
+  std::optional<float> zNear, zFar;
+};
+
+struct Camera {
+  glm::vec3 eye, target, up;
+  float fovDegrees, zNear, zFar;
+  glm::mat4 viewProjection(uint32_t width, uint32_t height) const;
+  // Towards the light: above, right of and behind the eye.
+  glm::vec3 lightDirection() const;
+};
+
+// Fills unset fields so the scene's bounding sphere is in view, then
+// validates the result.
+Camera frameCamera(const CameraArgs& args, const Bounds& bounds);
+
+}  // namespace clr

@@ -1,0 +1,130 @@
+// cli.cpp — strict parsing of the render command's flags (see cli.h).
+#include "cli.h"
+
+#include "cl.h"
+
+#include "../kernels/shared.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace clr {
+
+const char* usageText()
+{
+  return "usage:\n"
+         "  clraster render [SCENE] -o OUT.png [--size WxH] [--eye x,y,z] [--target x,y,z]\n"
+         "                  [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
+         "                  [--shade lambert|normal|depth|id] [--cull none|back]\n"
+         "                  [--device SEL] [--frames N] [--stats]\n"
+         "  clraster devices\n"
+         "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
+         "built-in scene is rendered. SEL is a device index or a name substring.\n";
+}
+
+namespace {
+
+float parseFloat(const std::string& flag, const std::string& text)
+{
+  errno = 0;
+  char* end = nullptr;
+  const float v = std::strtof(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    throw Error(flag + ": '" + text + "' is not a finite number");
+  return v;
+}
+
+uint32_t parseUint(const std::string& flag, const std::string& text, uint32_t lo, uint32_t hi)
+{
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return uint32_t(v);
+}
+
+glm::vec3 parseVec3(const std::string& flag, const std::string& text)
+{
+  glm::vec3 v;
+  size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const size_t comma = text.find(',', start);
+    if ((k < 2) != (comma != std::string::npos)) throw Error(flag + ": '" + text + "' is not x,y,z");
+    v[k] = parseFloat(flag, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    start = comma + 1;
+  }
+  return v;
+}
+
+}  // namespace
+
+RenderArgs parseRenderArgs(const std::vector<std::string>& args)
+{
+  RenderArgs r;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    // Step 1: flags that take a value.
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw Error(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "-o" || a == "--output") {
+      r.outPath = value();
+    } else if (a == "--size") {
+      const std::string& s = value();
+      const size_t x = s.find('x');
+      if (x == std::string::npos) throw Error("--size: '" + s + "' is not WxH");
+      r.width = parseUint("--size", s.substr(0, x), 1, CLR_MAX_VIEWPORT);
+      r.height = parseUint("--size", s.substr(x + 1), 1, CLR_MAX_VIEWPORT);
+    } else if (a == "--eye") {
+      r.camera.eye = parseVec3(a, value());
+    } else if (a == "--target") {
+      r.camera.target = parseVec3(a, value());
+    } else if (a == "--up") {
+      r.camera.up = parseVec3(a, value());
+    } else if (a == "--fov") {
+      r.camera.fovDegrees = parseFloat(a, value());
+    } else if (a == "--near") {
+      r.camera.zNear = parseFloat(a, value());
+    } else if (a == "--far") {
+      r.camera.zFar = parseFloat(a, value());
+    } else if (a == "--shade") {
+      const std::string& s = value();
+      if (s == "lambert") r.shadeMode = CLR_SHADE_LAMBERT;
+      else if (s == "normal") r.shadeMode = CLR_SHADE_NORMAL;
+      else if (s == "depth") r.shadeMode = CLR_SHADE_DEPTH;
+      else if (s == "id") r.shadeMode = CLR_SHADE_ID;
+      else throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, id)");
+    } else if (a == "--cull") {
+      const std::string& s = value();
+      if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");
+      r.cullBack = s == "back";
+    } else if (a == "--device") {
+      r.device = value();
+    } else if (a == "--frames") {
+      r.frames = parseUint(a, value(), 1, 100000);
+    // Step 2: switches and the scene path.
+    } else if (a == "--stats") {
+      r.stats = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw Error("unknown option '" + a + "'");
+    } else if (r.scenePath.empty()) {
+      r.scenePath = a;
+    } else {
+      throw Error("unexpected argument '" + a + "' (only one SCENE)");
+    }
+  }
+  if (r.outPath.empty()) throw Error("missing -o OUT.png");
+  // Check the camera now, before any file is read.
+  if (!(r.camera.fovDegrees > 0.0f && r.camera.fovDegrees < 180.0f))
+    throw Error("--fov must lie in (0, 180) degrees");
+  if (r.camera.zNear && !(*r.camera.zNear > 0.0f)) throw Error("--near must be > 0");
+  if (r.camera.zFar && r.camera.zNear && !(*r.camera.zFar > *r.camera.zNear))
+    throw Error("--far must be greater than --near");
+  if (r.camera.zFar && !(*r.camera.zFar > 0.0f)) throw Error("--far must be > 0");
+  return r;
+}
+
+}  // namespace clr

@@ -1,0 +1,29 @@
+// cli.h — command-line parsing for `clraster`. Every malformed or unknown
+// argument is a clr::Error with a one-line message naming it.
+#pragma once
+
+#include "camera.h"
+
+#include <string>
+#include <vector>
+
+namespace clr {
+
+struct RenderArgs {
+  std::string scenePath;  // empty: the built-in default scene
+  std::string outPath;
+  uint32_t width = 1280, height = 720;
+  CameraArgs camera;
+  uint32_t shadeMode = 0;  // CLR_SHADE_*
+  bool cullBack = false;
+  std::string device;
+  uint32_t frames = 1;
+  bool stats = false;
+};
+
+// args: everything after "render".
+RenderArgs parseRenderArgs(const std::vector<std::string>& args);
+
+const char* usageText();
+
+}  // namespace clr

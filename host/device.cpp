@@ -1,0 +1,138 @@
+// device.cpp — enumerates OpenCL devices, creates the context and queue, and
+// builds the embedded kernels (see device.h for the contract).
+#include "device.h"
+
+#include "embedded_kernels.h"
+#include "../kernels/fixed.h"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+namespace clr {
+
+const char* clErrorName(cl_int code)
+{
+  switch (code) {
+  case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+  case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+  case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+  case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+  case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+  case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+  case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+  case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+  case CL_PLATFORM_NOT_FOUND_KHR: return "CL_PLATFORM_NOT_FOUND_KHR (no OpenCL platform installed)";
+  default: return "OpenCL error";
+  }
+}
+
+static std::string typeName(cl_device_type type)
+{
+  if (type & CL_DEVICE_TYPE_GPU) return "GPU";
+  if (type & CL_DEVICE_TYPE_CPU) return "CPU";
+  if (type & CL_DEVICE_TYPE_ACCELERATOR) return "ACCELERATOR";
+  return "OTHER";
+}
+
+std::vector<DeviceInfo> listDevices()
+{
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error&) {
+    return {};
+  }
+  std::vector<DeviceInfo> out;
+  for (const cl::Platform& platform : platforms) {
+    std::vector<cl::Device> devices;
+    try {
+      platform.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;
+    }
+    for (const cl::Device& device : devices) {
+      DeviceInfo info;
+      info.index = out.size();
+      info.platform = platform;
+      info.device = device;
+      info.platformName = platform.getInfo<CL_PLATFORM_NAME>();
+      info.name = device.getInfo<CL_DEVICE_NAME>();
+      info.type = typeName(device.getInfo<CL_DEVICE_TYPE>());
+      out.push_back(info);
+    }
+  }
+  return out;
+}
+
+static std::string lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+DeviceInfo selectDevice(const std::string& selector)
+{
+  const std::vector<DeviceInfo> devices = listDevices();
+  if (devices.empty()) throw Error("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
+  // Step 1: the default, first GPU, else first CPU, else the first device.
+  if (selector.empty()) {
+    for (const char* wanted : {"GPU", "CPU"})
+      for (const DeviceInfo& d : devices)
+        if (d.type == wanted) return d;
+    return devices.front();
+  }
+  // Step 2: an index.
+  if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    const size_t index = std::stoul(selector);
+    if (index >= devices.size())
+      throw Error("--device " + selector + ": no such device index (there are " +
+                  std::to_string(devices.size()) + "; see 'clraster devices')");
+    return devices[index];
+  }
+  // Step 3: a name substring.
+  for (const DeviceInfo& d : devices)
+    if (lower(d.name + " " + d.platformName).find(lower(selector)) != std::string::npos) return d;
+  throw Error("--device " + selector + ": no device name matches (see 'clraster devices')");
+}
+
+std::string kernelBuildOptions()
+{
+  std::ostringstream options;
+  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE;
+  return options.str();
+}
+
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device,
+                         const std::string& options)
+{
+  // Step 1: the embedded sources, in dependency order.
+  cl::Program::Sources sources;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) sources.push_back(kEmbeddedKernels[i].text);
+  cl::Program program(context, sources);
+  // Step 2: build; on failure report the device's log.
+  try {
+    program.build({device}, options.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    throw Error("kernel build failed on " + device.getInfo<CL_DEVICE_NAME>() + " (" +
+                clErrorName(e.err()) + "):\n" + log);
+  }
+  return program;
+}
+
+ClContext::ClContext(const std::string& selector) : info(selectDevice(selector))
+{
+  context = cl::Context(info.device);
+  queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
+  program = buildProgram(context, info.device, kernelBuildOptions());
+  maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+}
+
+}  // namespace clr

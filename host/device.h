@@ -1,0 +1,49 @@
+// device.h — OpenCL device selection and the embedded kernel program.
+//
+// listDevices() enumerates every platform and device; selectDevice() picks
+// one by index or name substring, defaulting to the first GPU and otherwise
+// the first CPU. buildProgram() compiles the kernels embedded in the binary
+// at build time (never read from disk), specialised only through -D options,
+// and throws clr::Error carrying the device's build log on failure.
+#pragma once
+
+#include "cl.h"
+
+#include <string>
+#include <vector>
+
+namespace clr {
+
+struct DeviceInfo {
+  size_t index;  // position in the flattened platform-major list
+  cl::Platform platform;
+  cl::Device device;
+  std::string platformName;
+  std::string name;
+  std::string type;  // "GPU", "CPU", "ACCELERATOR", "OTHER"
+};
+
+std::vector<DeviceInfo> listDevices();
+
+// selector: "" (default), a decimal index, or a substring of the device or
+// platform name (case-insensitive).
+DeviceInfo selectDevice(const std::string& selector);
+
+// The OpenCL context every stage shares.
+struct ClContext {
+  explicit ClContext(const std::string& selector);
+  DeviceInfo info;
+  cl::Context context;
+  cl::CommandQueue queue;  // in order, profiling enabled
+  cl::Program program;
+  size_t maxAllocBytes = 0;
+  size_t globalMemBytes = 0;
+};
+
+// The compile options every build uses (also the key of PoCL's cache).
+std::string kernelBuildOptions();
+
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device,
+                         const std::string& options);
+
+}  // namespace clr

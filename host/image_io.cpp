@@ -1,0 +1,89 @@
+// image_io.cpp — atomic PNG writing through stb_image_write (image_io.h).
+#include "image_io.h"
+
+#include "cl.h"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace clr {
+
+namespace {
+
+std::string failure(const std::string& path, int err)
+{
+  return path + ": cannot write (" + std::strerror(err) + ")";
+}
+
+// Creates an empty temporary file next to path; returns its fd and name.
+int makeTemp(const std::string& path, std::string& tempName)
+{
+  std::vector<char> name(path.begin(), path.end());
+  const char suffix[] = ".tmp-XXXXXX";
+  name.insert(name.end(), suffix, suffix + sizeof suffix);
+  const int fd = mkstemp(name.data());
+  if (fd < 0) throw Error(failure(path, errno));
+  tempName = name.data();
+  return fd;
+}
+
+}  // namespace
+
+void checkWritable(const std::string& path)
+{
+  if (path.empty()) throw Error("output path is empty");
+  std::string temp;
+  const int fd = makeTemp(path, temp);
+  close(fd);
+  unlink(temp.c_str());
+}
+
+void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba)
+{
+  // Step 1: encode in memory.
+  std::vector<unsigned char> rgb(size_t(width) * height * 3);
+  for (size_t i = 0; i < size_t(width) * height; ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;
+  std::vector<unsigned char> png;
+  auto append = [](void* ctx, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 3, rgb.data(), int(width) * 3))
+    throw Error(path + ": PNG encoding failed");
+  // Step 2: write a temporary file, flush it, rename it into place.
+  std::string temp;
+  const int fd = makeTemp(path, temp);
+  size_t done = 0;
+  while (done < png.size()) {
+    const ssize_t n = write(fd, png.data() + done, png.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = errno;
+      close(fd);
+      unlink(temp.c_str());
+      throw Error(failure(path, err));
+    }
+    done += size_t(n);
+  }
+  if (fsync(fd) != 0 || close(fd) != 0) {
+    const int err = errno;
+    unlink(temp.c_str());
+    throw Error(failure(path, err));
+  }
+  if (chmod(temp.c_str(), 0644) != 0 || rename(temp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    unlink(temp.c_str());
+    throw Error(failure(path, err));
+  }
+}
+
+}  // namespace clr

@@ -1,0 +1,132 @@
+// main.cpp — the clraster command line: `render` and `devices`.
+//
+// Every failure, from a bad flag to a device that cannot hold the frame,
+// ends as one line on stderr and exit status 1; no output file is left
+// half-written (image_io.h).
+#include "cli.h"
+#include "device.h"
+#include "image_io.h"
+#include "pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+using namespace clr;
+
+namespace {
+
+int listDevicesCommand()
+{
+  const std::vector<DeviceInfo> devices = listDevices();
+  if (devices.empty()) throw Error("no OpenCL platform or device found");
+  for (const DeviceInfo& d : devices)
+    std::printf("%zu: [%s] %s (platform: %s)\n", d.index, d.type.c_str(), d.name.c_str(), d.platformName.c_str());
+  return 0;
+}
+
+double median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string jsonEscape(const std::string& s)
+{
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) >= 0x20) out += c;
+  }
+  return out;
+}
+
+void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline,
+                const std::vector<double>& frameMs, const std::vector<FrameStats>& frames)
+{
+  std::printf("{\"device\":\"%s\",\"width\":%u,\"height\":%u,\"frames\":%zu,\"frame_ms\":%.3f,"
+              "\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"stage_ms\":{",
+              jsonEscape(cl.info.name).c_str(), args.width, args.height, frameMs.size(), median(frameMs),
+              *std::min_element(frameMs.begin(), frameMs.end()), *std::max_element(frameMs.begin(), frameMs.end()));
+  bool first = true;
+  for (const auto& [stage, ms] : frames.front().stageMs) {
+    std::vector<double> perFrame;
+    for (const FrameStats& f : frames) perFrame.push_back(f.stageMs.at(stage));
+    std::printf("%s\"%s\":%.3f", first ? "" : ",", stage.c_str(), median(perFrame));
+    first = false;
+  }
+  const FrameStats& s = frames.back();
+  std::printf("},\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
+              "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu}\n",
+              (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped,
+              (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles,
+              (unsigned long long)s.binEntries, pipeline.deviceBytes());
+}
+
+int renderCommand(const std::vector<std::string>& argList)
+{
+  // Step 1: arguments, output path, scene and camera, before any device work.
+  const RenderArgs args = parseRenderArgs(argList);
+  checkWritable(args.outPath);
+  const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  const Camera camera = frameCamera(args.camera, meshBounds(mesh));
+  if (args.shadeMode == CLR_SHADE_ID && mesh.numTris() >= (1u << 24) - 1)
+    std::fprintf(stderr, "clraster: warning: %zu triangles; --shade id encodes only 24 bits, ids wrap\n",
+                 mesh.numTris());
+
+  // Step 2: device, program, scene upload (not part of the frame time).
+  ClContext cl(args.device);
+  Pipeline pipeline(cl);
+  pipeline.uploadScene(mesh);
+  FrameSettings settings;
+  settings.width = args.width;
+  settings.height = args.height;
+  settings.shadeMode = args.shadeMode;
+  settings.cullBack = args.cullBack;
+  settings.mvp = camera.viewProjection(args.width, args.height);
+  settings.lightDir = camera.lightDirection();
+  settings.zNear = camera.zNear;
+  settings.zFar = camera.zFar;
+
+  // Step 3: frames, timed from parameter upload to the image in host memory.
+  std::vector<uint32_t> image;
+  std::vector<double> frameMs;
+  std::vector<FrameStats> frames;
+  for (uint32_t f = 0; f < args.frames; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    frames.push_back(pipeline.render(settings, image));
+    frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+
+  // Step 4: output.
+  writePng(args.outPath, args.width, args.height, image);
+  if (args.stats) printStats(args, cl, pipeline, frameMs, frames);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      std::fputs(usageText(), args.empty() ? stderr : stdout);
+      return args.empty() ? 1 : 0;
+    }
+    if (args[0] == "devices") return listDevicesCommand();
+    if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
+    throw Error("unknown command '" + args[0] + "' (render, devices)");
+  } catch (const Error& e) {
+    std::fprintf(stderr, "clraster: %s\n", e.what());
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "clraster: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()), e.err());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "clraster: out of host memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "clraster: %s\n", e.what());
+  }
+  return 1;
+}

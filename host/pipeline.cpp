@@ -1,0 +1,146 @@
+// pipeline.cpp — frame orchestration: constants, the scene upload, the
+// whole-frame driver, profiling and read-backs. The stages themselves live
+// in transform.cpp, setup.cpp, scan.cpp, bin.cpp, raster.cpp, resolve.cpp.
+#include "pipeline.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cstring>
+
+namespace clr {
+
+FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numTris)
+{
+  if (s.width == 0 || s.height == 0 || s.width > CLR_MAX_VIEWPORT || s.height > CLR_MAX_VIEWPORT)
+    throw Error("viewport " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                " outside 1.." + std::to_string(CLR_MAX_VIEWPORT));
+  FrameParams p{};
+  std::memcpy(p.mvp, glm::value_ptr(s.mvp), sizeof p.mvp);
+  const glm::vec3 light = glm::normalize(s.lightDir);
+  p.lightDir[0] = light.x;
+  p.lightDir[1] = light.y;
+  p.lightDir[2] = light.z;
+  // Guard band: |x_s| <= CLR_GUARD_BAND_PIXELS (derivation in fixed.h).
+  p.guardX = 2.0f * CLR_GUARD_BAND_PIXELS / float(s.width) - 1.0f;
+  p.guardY = 2.0f * CLR_GUARD_BAND_PIXELS / float(s.height) - 1.0f;
+  p.halfWidth = 0.5f * float(s.width);
+  p.halfHeight = 0.5f * float(s.height);
+  p.zNear = s.zNear;
+  p.zFar = s.zFar;
+  p.width = s.width;
+  p.height = s.height;
+  p.tilesX = (s.width + CLR_TILE_SIZE - 1) / CLR_TILE_SIZE;
+  p.tilesY = (s.height + CLR_TILE_SIZE - 1) / CLR_TILE_SIZE;
+  p.numVerts = uint32_t(numVerts);
+  p.numTris = uint32_t(numTris);
+  p.cullBack = s.cullBack ? 1u : 0u;
+  p.shadeMode = s.shadeMode;
+  return p;
+}
+
+Pipeline::Pipeline(ClContext& cl)
+    : cl_(cl),
+      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0},
+      paramsBuf_(memory_, "frame parameters"),
+      positions_(memory_, "vertex positions"),
+      normals_(memory_, "vertex normals"),
+      indices_(memory_, "triangle indices"),
+      clipPos_(memory_, "clip-space positions"),
+      triCount_(memory_, "setup counts"),
+      counters_(memory_, "counters"),
+      setup_(memory_, "setup triangles"),
+      clipBary_(memory_, "clipped-triangle barycentrics"),
+      tileCount_(memory_, "tile counts"),
+      tileCursor_(memory_, "tile cursors"),
+      binEntries_(memory_, "bin entries"),
+      scanPartials_(memory_, "scan partial sums"),
+      vis_(memory_, "visibility buffer"),
+      image_(memory_, "image")
+{
+  transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
+  setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
+  setupEmitKernel_ = cl::Kernel(cl.program, "setup_emit");
+  scanReduceKernel_ = cl::Kernel(cl.program, "scan_reduce");
+  scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
+  scanApplyKernel_ = cl::Kernel(cl.program, "scan_apply");
+  binCountKernel_ = cl::Kernel(cl.program, "bin_count");
+  binFillKernel_ = cl::Kernel(cl.program, "bin_fill");
+  rasterKernel_ = cl::Kernel(cl.program, "raster");
+  resolveKernel_ = cl::Kernel(cl.program, "resolve");
+  paramsBuf_.reserve(1);
+  counters_.reserve(CLR_NUM_COUNTERS);
+}
+
+void Pipeline::uploadScene(const Mesh& mesh)
+{
+  if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
+  positions_.upload(mesh.positions);
+  normals_.upload(mesh.normals);
+  indices_.upload(mesh.indices);
+  clipPos_.reserve(mesh.numVerts());
+  triCount_.reserve(mesh.numTris() + 1);
+  params_.numVerts = uint32_t(mesh.numVerts());
+  params_.numTris = uint32_t(mesh.numTris());
+}
+
+cl::NDRange Pipeline::linear(uint64_t n) const
+{
+  const uint64_t group = 64;
+  return cl::NDRange(size_t((n + group - 1) / group * group));
+}
+
+void Pipeline::beginFrame(const FrameSettings& settings)
+{
+  params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
+  events_.clear();
+  numTiles_ = params_.tilesX * params_.tilesY;
+  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, 0, sizeof params_, &params_);
+  std::vector<cl::Event> fills;
+  counters_.zero(CLR_NUM_COUNTERS, &fills);
+}
+
+FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
+{
+  beginFrame(settings);
+  transform();
+  setup();
+  bin();
+  raster();
+  resolve();
+  rgba = readImage();
+  return finishFrame();
+}
+
+FrameStats Pipeline::finishFrame()
+{
+  cl_.queue.finish();
+  FrameStats stats;
+  for (const auto& [stage, event] : events_) {
+    const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    stats.stageMs[stage] += double(end - start) * 1e-6;
+  }
+  const std::vector<uint32_t> counters = counters_.download(CLR_NUM_COUNTERS);
+  stats.trianglesIn = params_.numTris;
+  stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
+  stats.trianglesCulled = counters[CLR_COUNTER_CULLED_TRIS];
+  stats.setupTriangles = numSetup_;
+  stats.binEntries = numBinEntries_;
+  return stats;
+}
+
+std::vector<cl_float4> Pipeline::readClipPositions() const { return clipPos_.download(params_.numVerts); }
+std::vector<TriSetup> Pipeline::readSetup() const { return setup_.download(numSetup_); }
+std::vector<ClipBary> Pipeline::readClipBary() const { return clipBary_.download(numClipSlots_); }
+std::vector<uint32_t> Pipeline::readTileOffsets() const { return tileCount_.download(numTiles_ + 1); }
+std::vector<uint32_t> Pipeline::readBinEntries() const { return binEntries_.download(numBinEntries_); }
+std::vector<VisSample> Pipeline::readVis() const
+{
+  return vis_.download(uint64_t(params_.width) * params_.height);
+}
+std::vector<uint32_t> Pipeline::readImage() const
+{
+  return image_.download(uint64_t(params_.width) * params_.height);
+}
+
+}  // namespace clr

@@ -1,0 +1,113 @@
+// pipeline.h — the frame pipeline: buffers, stages and per-frame statistics.
+//
+// A Pipeline owns every device buffer of a scene and runs the stages in
+// order: transform -> setup -> bin -> raster -> resolve. Each stage is a
+// member function defined in the host file named after its kernel file
+// (host/transform.cpp runs kernels/transform.cl, and so on), so tests can
+// run and inspect one stage at a time. Buffers grow to the counts of the
+// current frame (see buffer.h); nothing is dropped, and a size the device
+// cannot hold is a clr::Error.
+#pragma once
+
+#include "buffer.h"
+#include "device.h"
+#include "scene.h"
+
+#include "../kernels/shared.h"
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clr {
+
+// What one frame renders: viewport, shading and culling.
+struct FrameSettings {
+  uint32_t width = 0, height = 0;
+  uint32_t shadeMode = CLR_SHADE_LAMBERT;
+  bool cullBack = false;
+  glm::mat4 mvp{1.0f};
+  glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
+  float zNear = 0.1f, zFar = 100.0f;     // for depth shading only
+};
+
+// Fills the per-frame constant block (guard band, tiles, viewport matrix).
+FrameParams makeFrameParams(const FrameSettings& settings, size_t numVerts, size_t numTris);
+
+struct FrameStats {
+  std::map<std::string, double> stageMs;  // from OpenCL profiling events
+  uint64_t trianglesIn = 0;
+  uint64_t trianglesClipped = 0;  // input triangles that needed clipping
+  uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
+  uint64_t setupTriangles = 0;    // screen triangles after clipping
+  uint64_t binEntries = 0;
+};
+
+class Pipeline {
+ public:
+  explicit Pipeline(ClContext& cl);
+
+  // Uploads positions, normals and indices once per scene.
+  void uploadScene(const Mesh& mesh);
+
+  // Runs a whole frame and reads the RGBA8 image (top row first) back.
+  FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
+
+  // The stages, in order (each defined in its own host file).
+  void beginFrame(const FrameSettings& settings);
+  void transform();
+  void setup();
+  void bin();
+  void raster();
+  void resolve();
+  FrameStats finishFrame();  // waits, gathers profiling times and counters
+
+  // Read-backs for tests and tools.
+  std::vector<cl_float4> readClipPositions() const;
+  std::vector<TriSetup> readSetup() const;
+  std::vector<ClipBary> readClipBary() const;
+  std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
+  std::vector<uint32_t> readBinEntries() const;
+  std::vector<VisSample> readVis() const;
+  std::vector<uint32_t> readImage() const;
+
+  const FrameParams& params() const { return params_; }
+  size_t deviceBytes() const { return memory_.bytesAllocated; }
+  const ClContext& cl() const { return cl_; }
+
+ private:
+  // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
+  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage);
+  void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
+  cl::NDRange linear(uint64_t n) const;
+
+  ClContext& cl_;
+  DeviceMemory memory_;
+  FrameParams params_{};
+  uint32_t numTiles_ = 0;
+  uint32_t numSetup_ = 0;
+  uint32_t numClipSlots_ = 0;
+  uint64_t numBinEntries_ = 0;
+  std::vector<std::pair<const char*, cl::Event>> events_;
+
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, scanReduceKernel_,
+      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_,
+      resolveKernel_;
+
+  DeviceBuffer<FrameParams> paramsBuf_;
+  DeviceBuffer<float> positions_, normals_;
+  DeviceBuffer<uint32_t> indices_;
+  DeviceBuffer<cl_float4> clipPos_;
+  DeviceBuffer<uint32_t> triCount_;
+  DeviceBuffer<uint32_t> counters_;
+  DeviceBuffer<TriSetup> setup_;
+  DeviceBuffer<ClipBary> clipBary_;
+  DeviceBuffer<uint32_t> tileCount_, tileCursor_, binEntries_;
+  DeviceBuffer<cl_ulong> scanPartials_;
+  DeviceBuffer<VisSample> vis_;
+  DeviceBuffer<uint32_t> image_;
+};
+
+}  // namespace clr

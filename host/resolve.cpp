@@ -1,0 +1,24 @@
+// resolve.cpp — host side of kernels/resolve.cl: perspective-correct
+// attribute resolve and shading of the visibility buffer into RGBA8.
+#include "pipeline.h"
+
+namespace clr {
+
+void Pipeline::resolve()
+{
+  image_.reserve(uint64_t(params_.width) * params_.height);
+  cl::Event event;
+  resolveKernel_.setArg(0, paramsBuf_.get());
+  resolveKernel_.setArg(1, vis_.get());
+  resolveKernel_.setArg(2, setup_.get());
+  resolveKernel_.setArg(3, clipBary_.get());
+  resolveKernel_.setArg(4, indices_.get());
+  resolveKernel_.setArg(5, normals_.get());
+  resolveKernel_.setArg(6, image_.get());
+  cl_.queue.enqueueNDRangeKernel(resolveKernel_, cl::NullRange,
+                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
+                                 cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);
+  record("resolve", event);
+}
+
+}  // namespace clr

@@ -1,0 +1,44 @@
+// scan.cpp — host side of kernels/scan.cl: an exclusive in-place prefix sum
+// over n counts (data has n + 1 slots; data[n] receives the total). The
+// 64-bit total is read back, so callers size buffers exactly and detect
+// totals that do not fit in 32 bits.
+#include "pipeline.h"
+
+namespace clr {
+
+uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage)
+{
+  // Step 1: at most 4096 chunks of at least 64 counts each.
+  const uint32_t chunk = std::max<uint32_t>(64, (n + 4095) / 4096);
+  const uint32_t numChunks = std::max<uint32_t>(1, (n + chunk - 1) / chunk);
+  scanPartials_.reserve(numChunks + 1);
+
+  // Step 2: chunk sums, their scan, and the rescan of every chunk.
+  cl::Event reduceEvent, partialsEvent, applyEvent;
+  scanReduceKernel_.setArg(0, data.get());
+  scanReduceKernel_.setArg(1, n);
+  scanReduceKernel_.setArg(2, chunk);
+  scanReduceKernel_.setArg(3, numChunks);
+  scanReduceKernel_.setArg(4, scanPartials_.get());
+  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64),
+                                 nullptr, &reduceEvent);
+  scanPartialsKernel_.setArg(0, scanPartials_.get());
+  scanPartialsKernel_.setArg(1, numChunks);
+  cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, cl::NDRange(64), cl::NDRange(64),
+                                 nullptr, &partialsEvent);
+  scanApplyKernel_.setArg(0, data.get());
+  scanApplyKernel_.setArg(1, n);
+  scanApplyKernel_.setArg(2, chunk);
+  scanApplyKernel_.setArg(3, numChunks);
+  scanApplyKernel_.setArg(4, scanPartials_.get());
+  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64),
+                                 nullptr, &applyEvent);
+  record(stage, reduceEvent);
+  record(stage, partialsEvent);
+  record(stage, applyEvent);
+
+  // Step 3: the 64-bit total.
+  return scanPartials_.download(1, numChunks)[0];
+}
+
+}  // namespace clr

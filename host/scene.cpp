@@ -1,0 +1,160 @@
+// scene.cpp — mesh import through assimp (see scene.h for the contract).
+//
+// No assimp post-processing step runs that could reorder, merge or drop
+// faces: polygons are fan-triangulated here, (0, k, k + 1), in file order.
+#include "scene.h"
+
+#include "cl.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <unordered_map>
+
+namespace clr {
+
+namespace {
+
+struct ImportState {
+  const std::string& path;
+  const aiScene* scene;
+  Mesh mesh;
+  bool allHaveNormals = true;
+};
+
+void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transform, unsigned meshIndex)
+{
+  Mesh& dst = state.mesh;
+  const uint64_t base = dst.numVerts();
+  if (base + src->mNumVertices > UINT32_MAX)
+    throw Error(state.path + ": more than 2^32 vertices");
+  // Step 1: vertices, with the node transform applied.
+  aiMatrix3x3 normalMatrix(transform);
+  normalMatrix.Inverse().Transpose();
+  if (!src->mNormals) state.allHaveNormals = false;
+  for (unsigned v = 0; v < src->mNumVertices; ++v) {
+    const aiVector3D p = transform * src->mVertices[v];
+    dst.positions.insert(dst.positions.end(), {p.x, p.y, p.z});
+    aiVector3D n = src->mNormals ? normalMatrix * src->mNormals[v] : aiVector3D(0, 0, 0);
+    dst.normals.insert(dst.normals.end(), {n.x, n.y, n.z});
+  }
+  // Step 2: faces, validated and fan-triangulated in file order.
+  for (unsigned f = 0; f < src->mNumFaces; ++f) {
+    const aiFace& face = src->mFaces[f];
+    for (unsigned k = 0; k < face.mNumIndices; ++k)
+      if (face.mIndices[k] >= src->mNumVertices)
+        throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " face " + std::to_string(f) +
+                    " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                    std::to_string(src->mNumVertices) + " vertices)");
+    for (unsigned k = 1; k + 1 < face.mNumIndices; ++k)
+      dst.indices.insert(dst.indices.end(),
+                         {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[k]),
+                          uint32_t(base + face.mIndices[k + 1])});
+  }
+}
+
+void visitNode(ImportState& state, const aiNode* node, const aiMatrix4x4& parent, int depth)
+{
+  if (depth > 256) throw Error(state.path + ": node hierarchy deeper than 256 levels");
+  const aiMatrix4x4 transform = parent * node->mTransformation;
+  for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+    const unsigned m = node->mMeshes[i];
+    if (m >= state.scene->mNumMeshes || !state.scene->mMeshes[m])
+      throw Error(state.path + ": node refers to missing mesh " + std::to_string(m));
+    appendMesh(state, state.scene->mMeshes[m], transform, m);
+  }
+  for (unsigned c = 0; c < node->mNumChildren; ++c) visitNode(state, node->mChildren[c], transform, depth + 1);
+}
+
+}  // namespace
+
+Mesh loadScene(const std::string& path)
+{
+  // Step 1: the file must exist, be readable and be non-empty.
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+    probe.seekg(0, std::ios::end);
+    if (probe.tellg() <= 0) throw Error(path + ": file is empty or unreadable");
+  }
+  // Step 2: import without reordering post-processing.
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot import (" + e.what() + ")");
+  }
+  if (!scene) throw Error(path + ": cannot import (" + importer.GetErrorString() + ")");
+  if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
+  // Step 3: walk the nodes, concatenating meshes.
+  ImportState state{path, scene, {}};
+  visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
+  if (state.mesh.indices.empty()) throw Error(path + ": no triangles in file");
+  if (meshBounds(state.mesh).empty) throw Error(path + ": no vertex has finite coordinates");
+  if (!state.allHaveNormals) computeSmoothNormals(state.mesh);
+  return std::move(state.mesh);
+}
+
+void computeSmoothNormals(Mesh& mesh)
+{
+  // Step 1: weld vertices by exact position.
+  struct Key {
+    float x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const
+    {
+      uint32_t b[3];
+      std::memcpy(b, &k, sizeof b);
+      return (size_t(b[0]) * 73856093u) ^ (size_t(b[1]) * 19349663u) ^ (size_t(b[2]) * 83492791u);
+    }
+  };
+  const size_t n = mesh.numVerts();
+  std::unordered_map<Key, uint32_t, Hash> weldIndex;
+  std::vector<uint32_t> weld(n);
+  for (size_t v = 0; v < n; ++v) {
+    const Key key{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
+    weld[v] = weldIndex.emplace(key, uint32_t(weldIndex.size())).first->second;
+  }
+  // Step 2: accumulate area-weighted face normals per welded vertex.
+  std::vector<glm::dvec3> sum(weldIndex.size(), glm::dvec3(0.0));
+  auto pos = [&](uint32_t v) {
+    return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+  };
+  for (size_t t = 0; t < mesh.numTris(); ++t) {
+    const uint32_t* tri = &mesh.indices[3 * t];
+    const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
+    if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
+    for (int k = 0; k < 3; ++k) sum[weld[tri[k]]] += faceNormal;
+  }
+  // Step 3: normalise.
+  mesh.normals.assign(3 * n, 0.0f);
+  for (size_t v = 0; v < n; ++v) {
+    const glm::dvec3 s = sum[weld[v]];
+    const double len = glm::length(s);
+    if (!(len > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = float(s[k] / len);
+  }
+}
+
+Bounds meshBounds(const Mesh& mesh)
+{
+  Bounds b;
+  for (size_t v = 0; v < mesh.numVerts(); ++v) {
+    const glm::vec3 p(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    b.min = b.empty ? p : glm::min(b.min, p);
+    b.max = b.empty ? p : glm::max(b.max, p);
+    b.empty = false;
+  }
+  return b;
+}
+
+}  // namespace clr

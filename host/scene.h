@@ -1,0 +1,44 @@
+// scene.h — triangle meshes as the pipeline consumes them.
+//
+// A Mesh is flat arrays: positions and normals (3 floats per vertex) and
+// indices (3 per triangle). loadScene() reads any file assimp reads,
+// fan-triangulates polygons in the file's own face order, concatenates
+// meshes in node order with node transforms applied, validates every index,
+// and throws clr::Error naming the file and the problem. Normals come from
+// the file when it has them, otherwise they are smoothed over vertices that
+// share a position.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace clr {
+
+struct Mesh {
+  std::vector<float> positions;   // 3 per vertex
+  std::vector<float> normals;     // 3 per vertex, unit or zero
+  std::vector<uint32_t> indices;  // 3 per triangle
+  size_t numVerts() const { return positions.size() / 3; }
+  size_t numTris() const { return indices.size() / 3; }
+};
+
+struct Bounds {
+  glm::vec3 min{0.0f}, max{0.0f};
+  bool empty = true;
+};
+
+Mesh loadScene(const std::string& path);
+
+// The built-in scene shipped in the binary (procedural, no file).
+Mesh defaultScene();
+
+// Area-weighted vertex normals, smoothed across vertices at equal positions.
+void computeSmoothNormals(Mesh& mesh);
+
+// Bounds of the finite vertex positions.
+Bounds meshBounds(const Mesh& mesh);
+
+}  // namespace clr

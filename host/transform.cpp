@@ -1,0 +1,18 @@
+// transform.cpp — host side of kernels/transform.cl: one work-item per
+// vertex writes clipPos = mvp · position.
+#include "pipeline.h"
+
+namespace clr {
+
+void Pipeline::transform()
+{
+  cl::Event event;
+  transformKernel_.setArg(0, positions_.get());
+  transformKernel_.setArg(1, paramsBuf_.get());
+  transformKernel_.setArg(2, clipPos_.get());
+  cl_.queue.enqueueNDRangeKernel(transformKernel_, cl::NullRange, linear(params_.numVerts),
+                                 cl::NDRange(64), nullptr, &event);
+  record("transform", event);
+}
+
+}  // namespace clr

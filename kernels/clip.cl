@@ -1,0 +1,91 @@
+/* clip.cl — stage 2: homogeneous clipping (helpers used by setup.cl).
+ *
+ * Contract: a triangle with a non-finite clip coordinate, or with all three
+ * vertices outside one viewport plane (or behind the near plane), is culled.
+ * A triangle with a vertex behind the near plane (z < −w) or outside the
+ * guard band (|x| > g_x·w, |y| > g_y·w, see fixed.h) is clipped in
+ * homogeneous space by Sutherland–Hodgman, never divided by w <= 0. The far
+ * plane is not clipped: fragments beyond it fail the depth test (GL LESS
+ * against a buffer cleared to 1). Intersections are always computed from the
+ * inside vertex towards the outside one, so an edge shared by two triangles
+ * is cut at the same point from both sides (no seams).
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+/* A polygon vertex during clipping: its clip position and its barycentric
+ * weights with respect to the input triangle. */
+typedef struct ClipVertex {
+  float4 pos;
+  float3 bary;
+} ClipVertex;
+
+/* Signed distance to clip plane `plane` (>= 0 is inside). Planes: 0 near,
+ * 1 left, 2 right, 3 bottom, 4 top (the last four are the guard band). */
+inline float clip_distance(float4 c, int plane, float gx, float gy)
+{
+  switch (plane) {
+  case 0: return c.z + c.w;
+  case 1: return c.x + gx * c.w;
+  case 2: return gx * c.w - c.x;
+  case 3: return c.y + gy * c.w;
+  default: return gy * c.w - c.y;
+  }
+}
+
+inline bool clip_is_finite(float4 c)
+{
+  return isfinite(c.x) && isfinite(c.y) && isfinite(c.z) && isfinite(c.w);
+}
+
+/* Outcode bits of one vertex: 0-4 as clip_distance planes < 0, 5-8 outside
+ * the viewport planes x < −w, x > w, y < −w, y > w, 9 beyond far (z > w). */
+inline uint clip_outcode(float4 c, float gx, float gy)
+{
+  uint code = 0;
+  for (int plane = 0; plane < 5; ++plane)
+    if (clip_distance(c, plane, gx, gy) < 0.0f) code |= 1u << plane;
+  if (c.x < -c.w) code |= 1u << 5;
+  if (c.x > c.w) code |= 1u << 6;
+  if (c.y < -c.w) code |= 1u << 7;
+  if (c.y > c.w) code |= 1u << 8;
+  if (c.z > c.w) code |= 1u << 9;
+  return code;
+}
+
+/* The point where edge a→b crosses `plane`, computed from the inside end. */
+inline ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx,
+                                 float gy)
+{
+  const float dIn = clip_distance(inside.pos, plane, gx, gy);
+  const float dOut = clip_distance(outside.pos, plane, gx, gy);
+  const float t = dIn / (dIn - dOut);
+  ClipVertex r;
+  r.pos = inside.pos + t * (outside.pos - inside.pos);
+  r.bary = inside.bary + t * (outside.bary - inside.bary);
+  return r;
+}
+
+/* Clips the polygon poly[0..n) against the planes in `planeMask`, in place.
+ * Returns the new vertex count (0 when nothing is left). */
+inline int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, float gy)
+{
+  ClipVertex scratch[CLR_MAX_CLIP_VERTS];
+  for (int plane = 0; plane < 5; ++plane) {
+    if (!(planeMask & (1u << plane)) || n == 0) continue;
+    // Step 1: walk the edges, keeping inside vertices and crossings.
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const ClipVertex a = poly[i];
+      const ClipVertex b = poly[(i + 1) % n];
+      const bool aIn = clip_distance(a.pos, plane, gx, gy) >= 0.0f;
+      const bool bIn = clip_distance(b.pos, plane, gx, gy) >= 0.0f;
+      if (aIn) scratch[m++] = a;
+      if (aIn != bIn) scratch[m++] = aIn ? clip_intersect(a, b, plane, gx, gy)
+                                         : clip_intersect(b, a, plane, gx, gy);
+    }
+    // Step 2: copy back for the next plane.
+    for (int i = 0; i < m; ++i) poly[i] = scratch[i];
+    n = m;
+  }
+  return n;
+}

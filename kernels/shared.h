@@ -1,0 +1,119 @@
+/* shared.h — the plain structs and buffer contract shared by host and kernels.
+ *
+ * Compiled twice: as C++ by the host (with static_asserts on every size) and
+ * as OpenCL C, where it follows fixed.h in the program sources. Every device
+ * buffer of a frame is listed below with its writer, its readers and its
+ * size, so a reader can follow data through the pipeline
+ *   transform -> setup (count, scan, emit) -> bin (count, scan, fill)
+ *   -> raster -> resolve.
+ */
+#ifndef CLR_SHARED_H
+#define CLR_SHARED_H
+
+#ifndef __OPENCL_VERSION__
+#include <cstdint>
+#include "fixed.h"
+typedef uint32_t uint;
+#endif
+
+/* Marks "no triangle" in a visibility sample. */
+#define CLR_NONE 0xFFFFFFFFu
+
+/* TriSetup.flags bits. */
+#define CLR_FLAG_BACKFACING 1u /* wound clockwise on screen (vertices swapped) */
+
+/* TriSetup.clipSlot when the triangle was not clipped. */
+#define CLR_NOT_CLIPPED 0xFFFFFFFFu
+
+/* Shading modes (FrameParams.shadeMode). */
+#define CLR_SHADE_LAMBERT 0u
+#define CLR_SHADE_NORMAL 1u
+#define CLR_SHADE_DEPTH 2u
+#define CLR_SHADE_ID 3u
+
+/* Indices into the stats counter buffer. */
+#define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping */
+#define CLR_COUNTER_CULLED_TRIS 1  /* input triangles that produced nothing */
+#define CLR_COUNTER_CLIP_SLOTS 2   /* clipped sub-triangles (ClipBary records) */
+#define CLR_COUNTER_CLIP_CURSOR 3  /* next free ClipBary slot, during emit */
+#define CLR_NUM_COUNTERS 4
+
+/* Per-frame constants. Written by the host once per frame; read by every
+ * kernel. One struct, 144 bytes. */
+typedef struct FrameParams {
+  float mvp[16];      /* column-major, clip = mvp · (x, y, z, 1) */
+  float lightDir[4];  /* world space, unit, towards the light */
+  float guardX;       /* guard-band clip factor g_x (see fixed.h) */
+  float guardY;
+  float halfWidth;    /* viewport matrix: x_s = x_ndc·W/2 + W/2 */
+  float halfHeight;
+  float zNear;
+  float zFar;
+  uint width;
+  uint height;
+  uint tilesX;
+  uint tilesY;
+  uint numVerts;
+  uint numTris;
+  uint cullBack;      /* 1: cull clockwise (back-facing) triangles */
+  uint shadeMode;     /* CLR_SHADE_* */
+  uint pad0;
+  uint pad1;
+} FrameParams;
+
+/* One screen-space triangle after clipping, snapping and orientation to
+ * counter-clockwise (y up). Written by setup_emit, read by bin_count,
+ * bin_fill, raster and resolve. Array size: the scanned setup count. */
+typedef struct TriSetup {
+  int x[3];        /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
+  int y[3];        /* snapped fixed-point screen y */
+  float z[3];      /* window depth in [0, 1] */
+  float invW[3];   /* 1 / w_clip, for the perspective correction */
+  float invArea2;  /* 1 / (2·signed area) in fixed units², area > 0 */
+  uint triId;      /* index of the input triangle it came from */
+  uint clipSlot;   /* index into the ClipBary buffer, or CLR_NOT_CLIPPED */
+  uint flags;      /* CLR_FLAG_* */
+} TriSetup;
+
+/* Barycentrics of a clipped sub-triangle's vertices with respect to its
+ * input triangle: w[i][j] is the weight of input vertex j in sub-vertex i.
+ * Written by setup_emit, read by resolve. Array size: the clipped
+ * sub-triangle count of the frame. */
+typedef struct ClipBary {
+  float w[3][3];
+} ClipBary;
+
+/* The visibility buffer: the nearest fragment of one pixel sample.
+ * Written by raster, read by resolve. Array size: width · height. */
+typedef struct VisSample {
+  uint setupIndex; /* index into TriSetup, or CLR_NONE */
+  float depth;     /* window depth of the fragment */
+  float b1;        /* screen-space barycentric of vertex 1 */
+  float b2;        /* screen-space barycentric of vertex 2 */
+} VisSample;
+
+/* The remaining buffers of a frame, all typed:
+ *  positions  float[3·numVerts]   host upload;  read by transform
+ *  normals    float[3·numVerts]   host upload;  read by resolve
+ *  indices    uint[3·numTris]     host upload;  read by setup, resolve
+ *  clipPos    float4[numVerts]    transform;    read by setup, resolve
+ *  triCount   uint[numTris + 1]   setup_count writes counts, the scan turns
+ *                                 them into offsets (last = total); read by
+ *                                 setup_emit
+ *  tileCount  uint[tiles + 1]     bin_count, then scanned to offsets; read
+ *                                 by bin_fill and raster
+ *  tileCursor uint[tiles]         bin_fill (atomic cursors)
+ *  binEntries uint[total]         bin_fill writes setup indices; raster reads
+ *  scanPartials ulong[...]        scan internals
+ *  counters   uint[CLR_NUM_COUNTERS] setup kernels; host reads for stats
+ *  image      uint[width·height]  resolve writes RGBA8, top row first
+ */
+
+#ifndef __OPENCL_VERSION__
+static_assert(sizeof(FrameParams) == 144, "FrameParams layout must match the kernels");
+static_assert(sizeof(TriSetup) == 64, "TriSetup layout must match the kernels");
+static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
+static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
+#endif
+
+#endif /* CLR_SHARED_H */
