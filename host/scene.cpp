@@ -6,14 +6,19 @@
 
 #include "cl.h"
 
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <unordered_map>
 
 namespace clr {
@@ -71,6 +76,94 @@ void visitNode(ImportState& state, const aiNode* node, const aiMatrix4x4& parent
   for (unsigned c = 0; c < node->mNumChildren; ++c) visitNode(state, node->mChildren[c], transform, depth + 1);
 }
 
+// Assimp 5.2's PLY reader loops forever on some malformed headers (an
+// unknown property type, a missing end_header). PLY headers are short and
+// fully specified, so they are checked here before assimp sees the file.
+void checkPlyHeader(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;  // not PLY: assimp decides
+  static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+                                       "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+  auto known = [](const std::string& t) {
+    return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
+  };
+  bool haveFormat = false, haveElement = false;
+  for (int lineNo = 2; std::getline(in, line) && lineNo < 10000; ++lineNo) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string key, a, b, c;
+    words >> key;
+    const std::string where = path + ": PLY header line " + std::to_string(lineNo) + ": ";
+    if (key == "end_header") {
+      if (!haveFormat || !haveElement) throw Error(where + "end_header before format and element lines");
+      return;
+    }
+    if (key == "comment" || key == "obj_info" || key.empty()) continue;
+    if (key == "format") {
+      words >> a >> b;
+      if ((a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian") || b != "1.0")
+        throw Error(where + "unknown format '" + a + " " + b + "'");
+      haveFormat = true;
+    } else if (key == "element") {
+      long long count = -1;
+      words >> a >> count;
+      if (a.empty() || count < 0) throw Error(where + "malformed element line");
+      haveElement = true;
+    } else if (key == "property") {
+      if (!haveElement) throw Error(where + "property before any element");
+      words >> a;
+      if (a == "list") {
+        words >> b >> c;
+        if (!known(b) || !known(c)) throw Error(where + "unknown list property type in '" + line + "'");
+      } else if (!known(a)) {
+        throw Error(where + "unknown property type '" + a + "'");
+      }
+    } else {
+      throw Error(where + "unknown keyword '" + key + "'");
+    }
+  }
+  throw Error(path + ": PLY header has no end_header");
+}
+
+// Some assimp importers repair bad input instead of failing: the OFF reader
+// clamps an out-of-range vertex index, the glTF reader drops the face. Both
+// say so only through the logger, so import runs with a log stream that
+// records warnings and errors, and index problems among them become errors.
+class ImportLog : public Assimp::LogStream {
+ public:
+  void write(const char* message) override
+  {
+    std::string m(message);
+    while (!m.empty() && (m.back() == '\n' || m.back() == '\r')) m.pop_back();
+    if (m.rfind("Warn", 0) == 0 || m.rfind("Error", 0) == 0) m = m.substr(std::min(m.size(), m.find(": ") + 2));
+    const std::string lowered = [&] {
+      std::string l = m;
+      std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return c == '-' ? ' ' : std::tolower(c); });
+      return l;
+    }();
+    if (firstIndexProblem.empty() && (lowered.find("index") != std::string::npos || lowered.find("indices") != std::string::npos) &&
+        (lowered.find("out of range") != std::string::npos || lowered.find("invalid") != std::string::npos))
+      firstIndexProblem = m;
+  }
+  std::string firstIndexProblem;
+};
+
+struct ScopedImportLog {
+  ScopedImportLog()
+  {
+    Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
+    Assimp::DefaultLogger::get()->attachStream(&log, Assimp::Logger::Warn | Assimp::Logger::Err);
+  }
+  ~ScopedImportLog()
+  {
+    Assimp::DefaultLogger::get()->detachStream(&log, Assimp::Logger::Warn | Assimp::Logger::Err);
+    Assimp::DefaultLogger::kill();
+  }
+  ImportLog log;
+};
+
 }  // namespace
 
 Mesh loadScene(const std::string& path)
@@ -82,14 +175,18 @@ Mesh loadScene(const std::string& path)
     probe.seekg(0, std::ios::end);
     if (probe.tellg() <= 0) throw Error(path + ": file is empty or unreadable");
   }
+  checkPlyHeader(path);
   // Step 2: import without reordering post-processing.
   Assimp::Importer importer;
+  ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   } catch (const std::exception& e) {
     throw Error(path + ": cannot import (" + e.what() + ")");
   }
+  if (!importLog.log.firstIndexProblem.empty())
+    throw Error(path + ": " + importLog.log.firstIndexProblem);
   if (!scene) throw Error(path + ": cannot import (" + importer.GetErrorString() + ")");
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
   // Step 3: walk the nodes, concatenating meshes.

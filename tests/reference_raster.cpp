@@ -1,0 +1,189 @@
+// reference_raster.cpp — see reference_raster.h. Scalar, one triangle at a
+// time, one pixel at a time; clarity over speed.
+#include "reference_raster.h"
+
+#include "fixed.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ref {
+
+namespace {
+
+struct Vertex {
+  glm::vec4 clip;
+};
+
+// Plane distances: 0 near, 1..4 guard band (left, right, bottom, top).
+float distance(const glm::vec4& c, int plane, float gx, float gy)
+{
+  switch (plane) {
+  case 0: return c.z + c.w;
+  case 1: return c.x + gx * c.w;
+  case 2: return gx * c.w - c.x;
+  case 3: return c.y + gy * c.w;
+  default: return gy * c.w - c.y;
+  }
+}
+
+glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float gx, float gy)
+{
+  const float dIn = distance(in, plane, gx, gy), dOut = distance(out, plane, gx, gy);
+  const float t = dIn / (dIn - dOut);
+  glm::vec4 r;
+  for (int k = 0; k < 4; ++k) r[k] = in[k] + t * (out[k] - in[k]);
+  return r;
+}
+
+bool outsideViewport(const glm::vec4& c, int plane)
+{
+  switch (plane) {
+  case 0: return c.z + c.w < 0.0f;
+  case 1: return c.x < -c.w;
+  case 2: return c.x > c.w;
+  case 3: return c.y < -c.w;
+  case 4: return c.y > c.w;
+  default: return c.z > c.w;
+  }
+}
+
+int64_t edge(int ax, int ay, int bx, int by, int px, int py)
+{
+  return int64_t(bx - ax) * int64_t(py - ay) - int64_t(by - ay) * int64_t(px - ax);
+}
+
+bool topLeftInclusive(int ax, int ay, int bx, int by)
+{
+  const int dx = bx - ax, dy = by - ay;
+  return dy < 0 || (dy == 0 && dx > 0);
+}
+
+int floorDiv(int a) { return a >> CLR_SUBPIXEL_BITS; }
+int ceilDiv(int a) { return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS; }
+
+// Rasterizes one clip-space triangle into the z-buffer; returns whether it
+// survived setup.
+bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result& r)
+{
+  // Step 1: viewport transform of the notes and snapping.
+  const float halfW = 0.5f * float(o.width), halfH = 0.5f * float(o.height);
+  int X[3], Y[3];
+  float Z[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!(c[i].w > 0.0f)) return false;
+    const float invW = 1.0f / c[i].w;
+    const float xs = c[i].x * invW * halfW + halfW;
+    const float ys = c[i].y * invW * halfH + halfH;
+    Z[i] = c[i].z * invW * 0.5f + 0.5f;
+    X[i] = int(std::nearbyint(xs * float(CLR_FIXED_ONE)));
+    Y[i] = int(std::nearbyint(ys * float(CLR_FIXED_ONE)));
+  }
+  // Step 2: orientation and culling.
+  int64_t area2 = int64_t(X[1] - X[0]) * int64_t(Y[2] - Y[0]) - int64_t(X[2] - X[0]) * int64_t(Y[1] - Y[0]);
+  if (area2 == 0) return false;
+  if (area2 < 0) {
+    if (o.cullBack) return false;
+    std::swap(X[1], X[2]);
+    std::swap(Y[1], Y[2]);
+    std::swap(Z[1], Z[2]);
+    area2 = -area2;
+  }
+  const int x0 = std::max(0, ceilDiv(std::min({X[0], X[1], X[2]}) - CLR_FIXED_HALF));
+  const int x1 = std::min(int(o.width) - 1, floorDiv(std::max({X[0], X[1], X[2]}) - CLR_FIXED_HALF));
+  const int y0 = std::max(0, ceilDiv(std::min({Y[0], Y[1], Y[2]}) - CLR_FIXED_HALF));
+  const int y1 = std::min(int(o.height) - 1, floorDiv(std::max({Y[0], Y[1], Y[2]}) - CLR_FIXED_HALF));
+  if (x0 > x1 || y0 > y1) return false;
+  // Step 3: every pixel centre of the bounding box, z-buffered.
+  const float invArea2 = 1.0f / float(area2);
+  for (int py = y0; py <= y1; ++py)
+    for (int px = x0; px <= x1; ++px) {
+      const int sx = px * CLR_FIXED_ONE + CLR_FIXED_HALF, sy = py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+      const int64_t e[3] = {edge(X[1], Y[1], X[2], Y[2], sx, sy), edge(X[2], Y[2], X[0], Y[0], sx, sy),
+                            edge(X[0], Y[0], X[1], Y[1], sx, sy)};
+      bool inside = true;
+      for (int i = 0; i < 3; ++i) {
+        const int a = (i + 1) % 3, b = (i + 2) % 3;
+        inside = inside && (e[i] > 0 || (e[i] == 0 && topLeftInclusive(X[a], Y[a], X[b], Y[b])));
+      }
+      if (!inside) continue;
+      const float b1 = float(e[1]) * invArea2, b2 = float(e[2]) * invArea2;
+      const float z = Z[0] + b1 * (Z[1] - Z[0]) + b2 * (Z[2] - Z[0]);
+      const size_t p = size_t(py) * o.width + px;
+      if (!(z < r.depth[p])) continue;
+      r.depth[p] = z;
+      r.triId[p] = triId;
+      r.bary[p] = glm::dvec3(double(e[0]), double(e[1]), double(e[2])) / double(area2);
+    }
+  return true;
+}
+
+}  // namespace
+
+glm::vec4 transformVertex(const glm::mat4& m, const float* p)
+{
+  glm::vec4 c;
+  for (int row = 0; row < 4; ++row)
+    c[row] = m[0][row] * p[0] + m[1][row] * p[1] + m[2][row] * p[2] + m[3][row];
+  return c;
+}
+
+Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t>& indices, const glm::mat4& mvp,
+                 const Options& o)
+{
+  Result r;
+  r.width = o.width;
+  r.height = o.height;
+  r.triId.assign(size_t(o.width) * o.height, kNone);
+  r.depth.assign(size_t(o.width) * o.height, 1.0f);
+  r.bary.assign(size_t(o.width) * o.height, glm::dvec3(0.0));
+  const float gx = 2.0f * CLR_GUARD_BAND_PIXELS / float(o.width) - 1.0f;
+  const float gy = 2.0f * CLR_GUARD_BAND_PIXELS / float(o.height) - 1.0f;
+
+  for (size_t t = 0; t < indices.size() / 3; ++t) {
+    // Step 1: transform; cull non-finite and trivially outside triangles.
+    glm::vec4 c[3];
+    bool finite = true;
+    for (int i = 0; i < 3; ++i) {
+      c[i] = transformVertex(mvp, &positions[3 * indices[3 * t + i]]);
+      for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(c[i][k]);
+    }
+    bool rejected = !finite;
+    for (int plane = 0; plane < 6 && !rejected; ++plane)
+      rejected = outsideViewport(c[0], plane) && outsideViewport(c[1], plane) && outsideViewport(c[2], plane);
+    if (rejected) {
+      ++r.culledTriangles;
+      continue;
+    }
+    // Step 2: Sutherland–Hodgman against the near plane and the guard band.
+    std::vector<glm::vec4> poly(c, c + 3);
+    bool clipped = false;
+    // Planes are chosen from the input vertices, as the kernel does.
+    for (int plane = 0; plane < 5; ++plane) {
+      bool anyOut = false;
+      for (int i = 0; i < 3; ++i) anyOut = anyOut || distance(c[i], plane, gx, gy) < 0.0f;
+      if (!anyOut) continue;
+      clipped = true;
+      std::vector<glm::vec4> next;
+      for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::vec4 &a = poly[i], &b = poly[(i + 1) % poly.size()];
+        const bool aIn = distance(a, plane, gx, gy) >= 0.0f, bIn = distance(b, plane, gx, gy) >= 0.0f;
+        if (aIn) next.push_back(a);
+        if (aIn != bIn) next.push_back(aIn ? intersect(a, b, plane, gx, gy) : intersect(b, a, plane, gx, gy));
+      }
+      poly.swap(next);
+    }
+    r.clippedTriangles += clipped;
+    // Step 3: fan and draw.
+    int drawn = 0;
+    for (size_t k = 1; k + 1 < poly.size(); ++k) {
+      const glm::vec4 sub[3] = {poly[0], poly[k], poly[k + 1]};
+      drawn += drawTriangle(sub, uint32_t(t), o, r);
+    }
+    r.setupTriangles += drawn;
+    r.culledTriangles += drawn == 0;
+  }
+  return r;
+}
+
+}  // namespace ref

@@ -1,0 +1,90 @@
+// test_differential.cpp — thousands of random triangles, slivers and
+// shared-edge meshes through the kernels and through the scalar oracle:
+// the triangle-ID images must be identical.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <random>
+
+namespace {
+
+const uint32_t kWidth = 200, kHeight = 150;  // not a multiple of the tile size
+
+glm::mat4 camera()
+{
+  return glm::perspective(glm::radians(50.0f), float(kWidth) / kHeight, 0.25f, 40.0f) *
+         glm::lookAt(glm::vec3(0.3f, 0.8f, 6.0f), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+}
+
+void compare(const test::Geometry& g, bool cullBack = false)
+{
+  const glm::mat4 mvp = camera();
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  std::vector<uint32_t> rgba;
+  const clr::FrameStats stats = pipeline.render(test::idSettings(kWidth, kHeight, mvp, cullBack), rgba);
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(kWidth, kHeight, mvp, cullBack));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, mvp, {kWidth, kHeight, cullBack});
+  size_t covered = 0;
+  for (uint32_t id : expected.triId) covered += id != ref::kNone;
+  INFO("triangles " << g.numTris() << ", covered pixels " << covered);
+  CHECK(stats.setupTriangles == expected.setupTriangles);
+  CHECK(stats.trianglesClipped == expected.clippedTriangles);
+  CHECK(stats.trianglesCulled == expected.culledTriangles);
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+  CHECK(covered > 0);
+}
+
+}  // namespace
+
+TEST_CASE("differential: random overlapping triangles, some through the near plane", "[differential]")
+{
+  const unsigned seed = GENERATE(1u, 2u, 3u);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> centre(-4.0f, 4.0f), depth(-8.0f, 7.0f), size(0.02f, 3.0f), unit(-1, 1);
+  test::Geometry g;
+  for (int t = 0; t < 3000; ++t) {
+    const glm::vec3 c(centre(rng), centre(rng), depth(rng));
+    const float s = size(rng) * (t % 10 == 0 ? 4.0f : 1.0f);
+    g.addTriangle(c + s * glm::vec3(unit(rng), unit(rng), unit(rng)), c + s * glm::vec3(unit(rng), unit(rng), unit(rng)),
+                  c + s * glm::vec3(unit(rng), unit(rng), unit(rng)));
+  }
+  compare(g);
+  compare(g, true);
+}
+
+TEST_CASE("differential: slivers thinner than a subpixel", "[differential]")
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-3.0f, 3.0f), depth(-3.0f, 3.0f), tiny(-2e-4f, 2e-4f);
+  test::Geometry g;
+  for (int t = 0; t < 3000; ++t) {
+    const glm::vec3 a(coord(rng), coord(rng), depth(rng)), b(coord(rng), coord(rng), depth(rng));
+    const glm::vec3 mid = 0.5f * (a + b) + glm::vec3(tiny(rng), tiny(rng), tiny(rng));
+    g.addTriangle(a, b, mid);
+  }
+  compare(g);
+}
+
+TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)", "[differential]")
+{
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> jitter(-0.3f, 0.3f);
+  test::Geometry g;
+  for (int layer = 0; layer < 4; ++layer) {
+    const int n = 24;
+    std::vector<uint32_t> ids;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+        ids.push_back(g.addVertex({-5 + 10.0f * i / n + jitter(rng) * 0.4f, -4 + 8.0f * j / n + jitter(rng) * 0.4f,
+                                   -2.0f * layer + jitter(rng)}));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const uint32_t v = ids[j * (n + 1) + i], r = v + 1, u = v + n + 1, ur = u + 1;
+        g.indices.insert(g.indices.end(), {v, r, ur, v, ur, u});
+      }
+  }
+  compare(g);
+}

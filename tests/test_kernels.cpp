@@ -1,0 +1,313 @@
+// test_kernels.cpp — each pipeline stage launched on the OpenCL device with
+// small crafted inputs, checked against exact expectations or the oracle.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+using test::Geometry;
+using test::screen;
+
+namespace {
+
+glm::mat4 perspectiveCamera(glm::vec3 eye, glm::vec3 target, float aspect, float zNear = 0.5f, float zFar = 100.0f)
+{
+  return glm::perspective(glm::radians(60.0f), aspect, zNear, zFar) * glm::lookAt(eye, target, {0, 1, 0});
+}
+
+size_t pixel(uint32_t width, uint32_t x, uint32_t y) { return size_t(y) * width + x; }
+
+}  // namespace
+
+TEST_CASE("transform matches the oracle bit for bit", "[transform]")
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coord(-20.0f, 20.0f);
+  Geometry g;
+  for (int i = 0; i < 999; ++i) g.addVertex({coord(rng), coord(rng), coord(rng)});
+  g.indices = {0, 1, 2};
+  const glm::mat4 mvp = perspectiveCamera({3, 4, 30}, {0, 0, 0}, 1.5f);
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  pipeline.beginFrame(test::idSettings(64, 64, mvp));
+  pipeline.transform();
+  const std::vector<cl_float4> clip = pipeline.readClipPositions();
+  REQUIRE(clip.size() == 999);
+  for (size_t v = 0; v < clip.size(); ++v) {
+    const glm::vec4 expected = ref::transformVertex(mvp, &g.positions[3 * v]);
+    REQUIRE(std::memcmp(&clip[v], &expected, sizeof expected) == 0);
+  }
+}
+
+TEST_CASE("setup snaps to 1/256 pixel and orients triangles counter-clockwise", "[setup]")
+{
+  // Vertices on the subpixel grid map exactly through an identity MVP.
+  Geometry g;
+  g.addTriangle(screen(1.25f, 2.5f, 0.1f, 32, 32), screen(5.5f, 25.75f, 0.2f, 32, 32),
+                screen(20.0f, 3.0f, 0.3f, 32, 32));  // clockwise on screen
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  std::vector<uint32_t> rgba;
+  const clr::FrameStats stats = pipeline.render(test::idSettings(32, 32), rgba);
+  const std::vector<TriSetup> setup = pipeline.readSetup();
+  REQUIRE(stats.setupTriangles == 1);
+  REQUIRE(setup.size() == 1);
+  const TriSetup& t = setup[0];
+  CHECK(t.flags == CLR_FLAG_BACKFACING);
+  // Vertices 1 and 2 were swapped to make the triangle counter-clockwise.
+  CHECK(t.x[0] == 320);
+  CHECK(t.y[0] == 640);
+  CHECK(t.x[1] == 5120);
+  CHECK(t.y[1] == 768);
+  CHECK(t.x[2] == 1408);
+  CHECK(t.y[2] == 6592);
+  CHECK(t.z[1] == Approx(0.5f * 0.3f + 0.5f));
+  const double area2 = double(t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - double(t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+  CHECK(area2 > 0);
+  CHECK(t.invArea2 == 1.0f / float(area2));
+  CHECK(t.triId == 0);
+  CHECK(t.clipSlot == CLR_NOT_CLIPPED);
+}
+
+TEST_CASE("setup culls degenerate, non-finite, outside and back-facing triangles", "[setup]")
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  Geometry g;
+  g.addTriangle(screen(2, 2, 0, 32, 32), screen(10, 10, 0, 32, 32), screen(20, 20, 0, 32, 32));  // collinear
+  g.addTriangle(screen(2, 2, 0, 32, 32), screen(2, 2, 0, 32, 32), screen(20, 3, 0, 32, 32));     // repeated vertex
+  g.addTriangle({nan, 0, 0}, {0.5f, 0, 0}, {0, 0.5f, 0});                                        // NaN
+  g.addTriangle({-0.5f, -0.5f, 0}, {inf, 0, 0}, {0, 0.5f, 0});                                   // Inf
+  g.addTriangle({2, 2, 0}, {3, 2, 0}, {2, 3, 0});                                                // outside
+  g.addTriangle(screen(4.6f, 4.6f, 0, 32, 32), screen(5.4f, 4.6f, 0, 32, 32),
+                screen(4.6f, 5.4f, 0, 32, 32));  // covers no pixel centre
+  g.addTriangle(screen(1, 1, 0, 32, 32), screen(31, 1, 0, 32, 32), screen(1, 31, 0, 32, 32));  // valid, CCW
+  g.addTriangle(screen(31, 31, 0, 32, 32), screen(31, 2, 0, 32, 32), screen(2, 31, 0, 32, 32)); // valid, CW
+
+  SECTION("without back-face culling the two valid triangles survive")
+  {
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    const clr::FrameStats stats = pipeline.render(test::idSettings(32, 32), rgba);
+    CHECK(stats.trianglesIn == 8);
+    CHECK(stats.setupTriangles == 2);
+    CHECK(stats.trianglesCulled == 6);
+    const std::vector<TriSetup> setup = pipeline.readSetup();
+    REQUIRE(setup.size() == 2);
+    CHECK(setup[0].triId == 6);
+    CHECK(setup[1].triId == 7);
+    // The NaN and Inf triangles leave the rest of the scene intact.
+    const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(32, 32));
+    const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {32, 32, false});
+    CHECK(test::countDifferences(ids, expected.triId) == 0);
+  }
+  SECTION("with --cull back the clockwise one goes too")
+  {
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    const clr::FrameStats stats = pipeline.render(test::idSettings(32, 32, glm::mat4(1.0f), true), rgba);
+    CHECK(stats.setupTriangles == 1);
+    CHECK(pipeline.readSetup().at(0).triId == 6);
+  }
+}
+
+TEST_CASE("fill rule: left and bottom edges are inside, right and top edges outside", "[raster]")
+{
+  const uint32_t W = 16, H = 16;
+  auto covered = [&](glm::vec2 a, glm::vec2 b, glm::vec2 c, uint32_t x, uint32_t y) {
+    Geometry g;
+    g.addTriangle(screen(a.x, a.y, 0, W, H), screen(b.x, b.y, 0, W, H), screen(c.x, c.y, 0, W, H));
+    const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(W, H));
+    const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
+    REQUIRE(test::countDifferences(ids, expected.triId) == 0);
+    return ids[pixel(W, x, y)] == 0;
+  };
+  // Pixel centres of column 2 lie on x = 2.5, of row 2 on y = 2.5.
+  SECTION("left edge (vertical, going down on a CCW triangle)")
+  {
+    CHECK(covered({2.5f, 1}, {10, 1}, {2.5f, 12}, 2, 5));
+  }
+  SECTION("right edge (vertical, going up)")
+  {
+    CHECK_FALSE(covered({3, 1}, {10.5f, 1}, {10.5f, 12}, 10, 5));
+    CHECK(covered({3, 1}, {10.5f, 1}, {10.5f, 12}, 9, 5));
+  }
+  SECTION("bottom edge (horizontal, left to right)")
+  {
+    CHECK(covered({1, 2.5f}, {12, 2.5f}, {6, 12}, 6, 2));
+  }
+  SECTION("top edge (horizontal, right to left)")
+  {
+    CHECK_FALSE(covered({6, 1}, {12, 9.5f}, {1, 9.5f}, 6, 9));
+    CHECK(covered({6, 1}, {12, 9.5f}, {1, 9.5f}, 6, 8));
+  }
+  SECTION("the same edges with the vertex order reversed (clockwise input)")
+  {
+    CHECK(covered({2.5f, 12}, {10, 1}, {2.5f, 1}, 2, 5));
+    CHECK_FALSE(covered({10.5f, 12}, {10.5f, 1}, {3, 1}, 10, 5));
+    CHECK(covered({6, 12}, {12, 2.5f}, {1, 2.5f}, 6, 2));
+    CHECK_FALSE(covered({1, 9.5f}, {12, 9.5f}, {6, 1}, 6, 9));
+  }
+  SECTION("a vertex on a pixel centre is owned by exactly one triangle of a fan")
+  {
+    // Eight triangles fan around the centre of pixel (8, 8).
+    Geometry g;
+    const glm::vec2 c(8.5f, 8.5f);
+    const glm::vec2 ring[8] = {{14, 8.5f}, {14, 14}, {8.5f, 14}, {3, 14}, {3, 8.5f}, {3, 3}, {8.5f, 3}, {14, 3}};
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec2 a = ring[k], b = ring[(k + 1) % 8];
+      g.addTriangle(screen(c.x, c.y, 0, W, H), screen(a.x, a.y, 0, W, H), screen(b.x, b.y, 0, W, H));
+    }
+    int owners = 0;
+    for (size_t t = 0; t < g.numTris(); ++t) {
+      Geometry one;
+      one.positions.assign(g.positions.begin() + 9 * t, g.positions.begin() + 9 * t + 9);
+      one.indices = {0, 1, 2};
+      owners += test::renderTriIds(one, test::idSettings(W, H))[pixel(W, 8, 8)] == 0;
+    }
+    CHECK(owners == 1);
+  }
+}
+
+TEST_CASE("barycentrics match the exact edge-function ratios and sum to 1", "[raster]")
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
+  Geometry g;
+  for (int t = 0; t < 200; ++t)
+    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
+                  {coord(rng), coord(rng), depth(rng)});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(96, 80));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {96, 80, false});
+  REQUIRE(test::countDifferences(ids, expected.triId) == 0);
+  const std::vector<VisSample> vis = pipeline.readVis();
+  size_t checked = 0;
+  for (size_t p = 0; p < vis.size(); ++p) {
+    if (vis[p].setupIndex == CLR_NONE) continue;
+    // Tolerance: b = float(E) · float(1/area): two roundings of 2^-24
+    // relative each, on values <= 1, so 2.5e-7 absolute bounds the error.
+    const glm::dvec3 exact = expected.bary[p];
+    const double b0 = 1.0 - double(vis[p].b1) - double(vis[p].b2);
+    REQUIRE(std::abs(vis[p].b1 - exact.y) <= 2.5e-7);
+    REQUIRE(std::abs(vis[p].b2 - exact.z) <= 2.5e-7);
+    REQUIRE(std::abs(b0 - exact.x) <= 5e-7);
+    REQUIRE(std::abs(exact.x + exact.y + exact.z - 1.0) <= 1e-12);
+    REQUIRE(vis[p].depth == expected.depth[p]);
+    ++checked;
+  }
+  CHECK(checked > 1000);
+}
+
+TEST_CASE("z-test keeps the nearest fragment, ties go to the earlier triangle", "[raster]")
+{
+  const uint32_t W = 32, H = 32;
+  auto quadPair = [&](float zFirst, float zSecond, float shift) {
+    Geometry g;
+    g.addTriangle(screen(1, 1, zFirst, W, H), screen(30, 1, zFirst, W, H), screen(1, 30, zFirst, W, H));
+    g.addTriangle(screen(1 + shift, 1, zSecond, W, H), screen(30 + shift, 1, zSecond, W, H),
+                  screen(1 + shift, 30, zSecond, W, H));
+    return test::renderTriIds(g, test::idSettings(W, H));
+  };
+  SECTION("nearer wins in either input order")
+  {
+    CHECK(quadPair(0.5f, -0.2f, 0)[pixel(W, 5, 5)] == 1);
+    CHECK(quadPair(-0.2f, 0.5f, 0)[pixel(W, 5, 5)] == 0);
+  }
+  SECTION("equal depth: the earlier triangle wins everywhere, every run")
+  {
+    Geometry g;
+    for (int copy = 0; copy < 64; ++copy)
+      g.addTriangle(screen(1, 1, 0.25f, W, H), screen(30, 1, 0.25f, W, H), screen(1, 30, 0.25f, W, H));
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    const std::vector<uint32_t> first = test::renderTriIds(pipeline, test::idSettings(W, H));
+    size_t covered = 0;
+    for (uint32_t id : first) {
+      REQUIRE((id == 0 || id == ref::kNone));
+      covered += id == 0;
+    }
+    CHECK(covered > 300);
+    for (int run = 0; run < 3; ++run) CHECK(test::renderTriIds(pipeline, test::idSettings(W, H)) == first);
+  }
+  SECTION("a fragment exactly at the far value fails GL LESS")
+  {
+    Geometry g;
+    g.addTriangle(screen(1, 1, 1.0f, W, H), screen(30, 1, 1.0f, W, H), screen(1, 30, 1.0f, W, H));
+    const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(W, H));
+    CHECK(std::count(ids.begin(), ids.end(), ref::kNone) == long(ids.size()));
+  }
+}
+
+TEST_CASE("binning keeps every triangle, however many share a tile", "[bin]")
+{
+  const uint32_t W = 64, H = 48;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> cell(0, CLR_TILE_SIZE - 1);
+  Geometry g;
+  // Step 1: 20000 small triangles inside tile 0, each over a pixel centre.
+  const int many = 20000;
+  for (int t = 0; t < many; ++t) {
+    const float x = cell(rng) + 0.5f, y = cell(rng) + 0.5f;
+    g.addTriangle(screen(x - 0.25f, y - 0.25f, 0, W, H), screen(x + 0.5f, y - 0.25f, 0, W, H),
+                  screen(x - 0.25f, y + 0.5f, 0, W, H));
+  }
+  // Step 2: one triangle over the whole viewport.
+  g.addTriangle({-3, -3, 0.5f}, {5, -3, 0.5f}, {-3, 5, 0.5f});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H));
+  const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
+  const std::vector<uint32_t> entries = pipeline.readBinEntries();
+  const uint32_t tiles = pipeline.params().tilesX * pipeline.params().tilesY;
+  REQUIRE(offsets.size() == tiles + 1);
+  CHECK(offsets[1] - offsets[0] == uint32_t(many + 1));
+  for (uint32_t t = 1; t < tiles; ++t) CHECK(offsets[t + 1] - offsets[t] == 1);
+  CHECK(entries.size() == size_t(many) + tiles);
+  std::vector<uint32_t> tile0(entries.begin(), entries.begin() + offsets[1]);
+  std::sort(tile0.begin(), tile0.end());
+  for (int t = 0; t <= many; ++t) REQUIRE(tile0[t] == uint32_t(t));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+}
+
+TEST_CASE("near-plane clipping: no projection through w <= 0, same pixels as the oracle", "[clip]")
+{
+  const uint32_t W = 80, H = 60;
+  const glm::mat4 mvp = perspectiveCamera({0, 1, 0}, {0, 1, -1}, float(W) / H, 0.5f, 50.0f);
+  Geometry g;
+  g.addTriangle({-2, 0, 3}, {2, 0, -10}, {-2, 0.5f, -10});  // one vertex behind the eye
+  g.addTriangle({1, 2, 2}, {3, 2, 4}, {2, 1.5f, -8});       // two vertices behind
+  g.addTriangle({-1, 0, 1}, {1, 0, 1}, {0, 1, 2});          // wholly behind: culled
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  std::vector<uint32_t> rgba;
+  const clr::FrameStats stats = pipeline.render(test::idSettings(W, H, mvp), rgba);
+  CHECK(stats.trianglesClipped == 2);
+  CHECK(stats.trianglesCulled == 1);
+  CHECK(stats.setupTriangles == 3);
+  // ClipBary rows are convex weights of the input vertices.
+  for (const ClipBary& cb : pipeline.readClipBary())
+    for (int i = 0; i < 3; ++i) {
+      const float sum = cb.w[i][0] + cb.w[i][1] + cb.w[i][2];
+      CHECK(std::abs(sum - 1.0f) < 1e-6f);  // three float lerps of weights summing to 1
+      for (int j = 0; j < 3; ++j) CHECK((cb.w[i][j] >= -1e-6f && cb.w[i][j] <= 1.0f + 1e-6f));
+    }
+  for (const VisSample& v : pipeline.readVis())
+    REQUIRE((std::isfinite(v.depth) && std::isfinite(v.b1) && std::isfinite(v.b2)));
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H, mvp));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, mvp, {W, H, false});
+  CHECK(expected.clippedTriangles == 2);
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+  CHECK(std::count(ids.begin(), ids.end(), 0u) > 200);
+  CHECK(std::count(ids.begin(), ids.end(), 1u) > 50);
+}

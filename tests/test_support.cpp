@@ -1,0 +1,81 @@
+// test_support.cpp — see test_support.h.
+#include "test_support.h"
+
+#include <cstdlib>
+
+namespace test {
+
+clr::ClContext& context()
+{
+  static clr::ClContext ctx([] {
+    const char* selector = std::getenv("CLRASTER_TEST_DEVICE");
+    return std::string(selector ? selector : "");
+  }());
+  return ctx;
+}
+
+uint32_t Geometry::addVertex(glm::vec3 p)
+{
+  positions.insert(positions.end(), {p.x, p.y, p.z});
+  return uint32_t(positions.size() / 3 - 1);
+}
+
+void Geometry::addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c)
+{
+  const uint32_t ia = addVertex(a), ib = addVertex(b), ic = addVertex(c);
+  indices.insert(indices.end(), {ia, ib, ic});
+}
+
+clr::Mesh Geometry::mesh() const
+{
+  clr::Mesh m;
+  m.positions = positions;
+  m.indices = indices;
+  clr::computeSmoothNormals(m);
+  return m;
+}
+
+glm::vec3 screen(float sx, float sy, float z, uint32_t width, uint32_t height)
+{
+  const float hw = 0.5f * float(width), hh = 0.5f * float(height);
+  return {(sx - hw) / hw, (sy - hh) / hh, z};
+}
+
+clr::FrameSettings idSettings(uint32_t width, uint32_t height, const glm::mat4& mvp, bool cullBack)
+{
+  clr::FrameSettings s;
+  s.width = width;
+  s.height = height;
+  s.mvp = mvp;
+  s.cullBack = cullBack;
+  s.shadeMode = CLR_SHADE_ID;
+  return s;
+}
+
+std::vector<uint32_t> renderTriIds(clr::Pipeline& pipeline, const clr::FrameSettings& settings)
+{
+  std::vector<uint32_t> rgba;
+  pipeline.render(settings, rgba);
+  const std::vector<VisSample> vis = pipeline.readVis();
+  const std::vector<TriSetup> setup = pipeline.readSetup();
+  std::vector<uint32_t> ids(vis.size(), ref::kNone);
+  for (size_t i = 0; i < vis.size(); ++i)
+    if (vis[i].setupIndex != CLR_NONE) ids[i] = setup.at(vis[i].setupIndex).triId;
+  return ids;
+}
+
+std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSettings& settings)
+{
+  clr::Pipeline pipeline(context());
+  pipeline.uploadScene(geometry.mesh());
+  return renderTriIds(pipeline, settings);
+}
+
+size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b)
+{
+  size_t n = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) n += a[i] != b[i];
+  return n + (a.size() > b.size() ? a.size() - b.size() : b.size() - a.size());
+}
+
+}  // namespace test

@@ -1,0 +1,47 @@
+// test_support.h — shared fixtures for the kernel tests: one OpenCL context
+// per test process, meshes built from screen-space or clip-space vertices,
+// and per-pixel triangle IDs read from the visibility buffer.
+#pragma once
+
+#include "pipeline.h"
+#include "reference_raster.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace test {
+
+// The context every test shares (device from CLRASTER_TEST_DEVICE, else default).
+clr::ClContext& context();
+
+// A mesh builder. With an identity MVP, a position (x, y, z) is already in
+// clip space with w = 1; screen() maps a screen-space point of a W×H
+// viewport back to that NDC position, exactly when W and H are powers of 2
+// and the point lies on the subpixel grid.
+struct Geometry {
+  std::vector<float> positions;
+  std::vector<uint32_t> indices;
+  uint32_t addVertex(glm::vec3 p);
+  void addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c);
+  clr::Mesh mesh() const;  // with smooth normals
+  size_t numTris() const { return indices.size() / 3; }
+};
+glm::vec3 screen(float sx, float sy, float z, uint32_t width, uint32_t height);
+
+// Settings for an ID render of a width×height viewport.
+clr::FrameSettings idSettings(uint32_t width, uint32_t height, const glm::mat4& mvp = glm::mat4(1.0f),
+                              bool cullBack = false);
+
+// Runs the whole pipeline and returns, per pixel (bottom row first), the
+// input triangle index of the visible fragment or ref::kNone.
+std::vector<uint32_t> renderTriIds(clr::Pipeline& pipeline, const clr::FrameSettings& settings);
+
+// Same, for a fresh pipeline on the shared context.
+std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSettings& settings);
+
+// Number of pixels where two ID images differ.
+size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b);
+
+}  // namespace test
