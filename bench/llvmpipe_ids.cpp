@@ -270,14 +270,15 @@ int run(const Args& args)
   const Comparison c = compare(ours, theirs, args.width, args.height);
   if (!args.diffPath.empty()) writePng(args.diffPath, args.width, args.height, c.diffImage);
   const char* threads = std::getenv("LP_NUM_THREADS");
-  std::printf("{\"scene\":\"%s\",\"width\":%u,\"height\":%u,\"triangles\":%zu,"
-              "\"covered_pixels_clraster\":%llu,\"covered_pixels_llvmpipe\":%llu,"
-              "\"differing_pixels\":%llu,\"differing_fraction\":%.8f,\"differing_not_near_edge\":%llu,"
-              "\"clraster_ms\":%.3f,\"llvmpipe_ms\":%.3f,\"llvmpipe_threads\":\"%s\"}\n",
-              args.scenePath.empty() ? "default" : jsonEscape(args.scenePath).c_str(), args.width, args.height,
-              mesh.numTris(), (unsigned long long)c.coveredClraster, (unsigned long long)c.coveredLlvmpipe,
-              (unsigned long long)c.differing, c.differingFraction(), (unsigned long long)c.differingNotNearEdge,
-              median(clrasterMs), median(llvmpipeMs), threads ? jsonEscape(threads).c_str() : "default");
+  std::printf(
+      "{\"scene\":\"%s\",\"width\":%u,\"height\":%u,\"triangles\":%zu,"
+      "\"covered_pixels_clraster\":%llu,\"covered_pixels_llvmpipe\":%llu,"
+      "\"differing_pixels\":%llu,\"differing_fraction\":%.8f,\"differing_not_near_edge\":%llu,"
+      "\"clraster_ms\":%.3f,\"llvmpipe_ms\":%.3f,\"llvmpipe_threads\":\"%s\"}\n",
+      args.scenePath.empty() ? "default" : jsonEscape(args.scenePath).c_str(), args.width, args.height, mesh.numTris(),
+      (unsigned long long)c.coveredClraster, (unsigned long long)c.coveredLlvmpipe, (unsigned long long)c.differing,
+      c.differingFraction(), (unsigned long long)c.differingNotNearEdge, median(clrasterMs), median(llvmpipeMs),
+      threads ? jsonEscape(threads).c_str() : "default");
   std::fflush(stdout);
 
   // Step 4: the optional bound, every failed condition on one stderr line.

@@ -14,8 +14,8 @@ void Pipeline::bin()
   binCountKernel_.setArg(1, setup_.get());
   binCountKernel_.setArg(2, numSetup_);
   binCountKernel_.setArg(3, tileCount_.get());
-  cl_.queue.enqueueNDRangeKernel(binCountKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64),
-                                 nullptr, &countEvent);
+  cl_.queue.enqueueNDRangeKernel(binCountKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
+                                 &countEvent);
   record("bin_count", countEvent);
 
   // Step 2: offsets; the bins take exactly the memory the counts ask for.
@@ -34,8 +34,8 @@ void Pipeline::bin()
   binFillKernel_.setArg(3, tileCount_.get());
   binFillKernel_.setArg(4, tileCursor_.get());
   binFillKernel_.setArg(5, binEntries_.get());
-  cl_.queue.enqueueNDRangeKernel(binFillKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64),
-                                 nullptr, &fillEvent);
+  cl_.queue.enqueueNDRangeKernel(binFillKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
+                                 &fillEvent);
   record("bin_fill", fillEvent);
 }
 

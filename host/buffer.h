@@ -41,8 +41,7 @@ class DeviceBuffer {
     const uint64_t exact = n * sizeof(T);
     if (exact > memory_->maxAllocBytes)
       throw Error("the frame needs " + std::to_string(exact) + " bytes for " + name_ +
-                  ", more than the device's largest allocation (" +
-                  std::to_string(memory_->maxAllocBytes) + " bytes)");
+                  ", more than the device's largest allocation (" + std::to_string(memory_->maxAllocBytes) + " bytes)");
     const uint64_t chosen = bytes <= memory_->maxAllocBytes ? grown : n;
     buffer_ = cl::Buffer();
     memory_->bytesAllocated -= capacity_ * sizeof(T);
@@ -50,8 +49,8 @@ class DeviceBuffer {
     try {
       buffer_ = cl::Buffer(memory_->context, CL_MEM_READ_WRITE, chosen * sizeof(T));
     } catch (const cl::Error& e) {
-      throw Error("cannot allocate " + std::to_string(chosen * sizeof(T)) + " bytes for " + name_ +
-                  " (" + clErrorName(e.err()) + ")");
+      throw Error("cannot allocate " + std::to_string(chosen * sizeof(T)) + " bytes for " + name_ + " (" +
+                  clErrorName(e.err()) + ")");
     }
     capacity_ = chosen;
     memory_->bytesAllocated += capacity_ * sizeof(T);
@@ -60,8 +59,7 @@ class DeviceBuffer {
   void upload(const std::vector<T>& data)
   {
     reserve(data.size());
-    if (!data.empty())
-      memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+    if (!data.empty()) memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
   }
 
   std::vector<T> download(uint64_t n, uint64_t first = 0) const

@@ -11,8 +11,7 @@ namespace clr {
 
 glm::mat4 Camera::viewProjection(uint32_t width, uint32_t height) const
 {
-  return glm::perspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar) *
-         glm::lookAt(eye, target, up);
+  return glm::perspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar) * glm::lookAt(eye, target, up);
 }
 
 glm::vec3 Camera::lightDirection() const
@@ -26,8 +25,7 @@ glm::vec3 Camera::lightDirection() const
 Camera frameCamera(const CameraArgs& args, const Bounds& bounds)
 {
   // Step 1: the field of view comes first, everything else may depend on it.
-  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f))
-    throw Error("--fov must lie in (0, 180) degrees");
+  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f)) throw Error("--fov must lie in (0, 180) degrees");
   Camera cam;
   cam.fovDegrees = args.fovDegrees;
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);

@@ -92,11 +92,16 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       r.camera.zFar = parseFloat(a, value());
     } else if (a == "--shade") {
       const std::string& s = value();
-      if (s == "lambert") r.shadeMode = CLR_SHADE_LAMBERT;
-      else if (s == "normal") r.shadeMode = CLR_SHADE_NORMAL;
-      else if (s == "depth") r.shadeMode = CLR_SHADE_DEPTH;
-      else if (s == "id") r.shadeMode = CLR_SHADE_ID;
-      else throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, id)");
+      if (s == "lambert")
+        r.shadeMode = CLR_SHADE_LAMBERT;
+      else if (s == "normal")
+        r.shadeMode = CLR_SHADE_NORMAL;
+      else if (s == "depth")
+        r.shadeMode = CLR_SHADE_DEPTH;
+      else if (s == "id")
+        r.shadeMode = CLR_SHADE_ID;
+      else
+        throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, id)");
     } else if (a == "--cull") {
       const std::string& s = value();
       if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");
@@ -105,7 +110,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       r.device = value();
     } else if (a == "--frames") {
       r.frames = parseUint(a, value(), 1, 100000);
-    // Step 2: switches and the scene path.
+      // Step 2: switches and the scene path.
     } else if (a == "--stats") {
       r.stats = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -118,8 +123,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
   }
   if (r.outPath.empty()) throw Error("missing -o OUT.png");
   // Check the camera now, before any file is read.
-  if (!(r.camera.fovDegrees > 0.0f && r.camera.fovDegrees < 180.0f))
-    throw Error("--fov must lie in (0, 180) degrees");
+  if (!(r.camera.fovDegrees > 0.0f && r.camera.fovDegrees < 180.0f)) throw Error("--fov must lie in (0, 180) degrees");
   if (r.camera.zNear && !(*r.camera.zNear > 0.0f)) throw Error("--near must be > 0");
   if (r.camera.zFar && r.camera.zNear && !(*r.camera.zFar > *r.camera.zNear))
     throw Error("--far must be greater than --near");

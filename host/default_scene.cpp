@@ -18,14 +18,16 @@ uint32_t addVertex(Mesh& m, glm::vec3 p)
   return uint32_t(m.numVerts() - 1);
 }
 
-void addTri(Mesh& m, uint32_t a, uint32_t b, uint32_t c) { m.indices.insert(m.indices.end(), {a, b, c}); }
+void addTri(Mesh& m, uint32_t a, uint32_t b, uint32_t c)
+{
+  m.indices.insert(m.indices.end(), {a, b, c});
+}
 
 void addGround(Mesh& m, float y, float half, int cells)
 {
   const uint32_t base = uint32_t(m.numVerts());
   for (int j = 0; j <= cells; ++j)
-    for (int i = 0; i <= cells; ++i)
-      addVertex(m, {-half + 2 * half * i / cells, y, -half + 2 * half * j / cells});
+    for (int i = 0; i <= cells; ++i) addVertex(m, {-half + 2 * half * i / cells, y, -half + 2 * half * j / cells});
   for (int j = 0; j < cells; ++j)
     for (int i = 0; i < cells; ++i) {
       const uint32_t v = base + j * (cells + 1) + i;
@@ -65,11 +67,11 @@ void addTorusKnot(Mesh& m, glm::vec3 centre, float scale, int segments, int side
 void addIcosphere(Mesh& m, glm::vec3 centre, float radius, int levels)
 {
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<glm::vec3> verts = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  std::vector<uint32_t> faces = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                                 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
-                                 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  std::vector<glm::vec3> verts = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<uint32_t> faces = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                                 6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
   for (glm::vec3& v : verts) v = glm::normalize(v);
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;

@@ -14,16 +14,16 @@ namespace clr {
 const char* clErrorName(cl_int code)
 {
   switch (code) {
-  case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
-  case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
-  case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
-  case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
-  case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
-  case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
-  case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
-  case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
-  case CL_PLATFORM_NOT_FOUND_KHR: return "CL_PLATFORM_NOT_FOUND_KHR (no OpenCL platform installed)";
-  default: return "OpenCL error";
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_PLATFORM_NOT_FOUND_KHR: return "CL_PLATFORM_NOT_FOUND_KHR (no OpenCL platform installed)";
+    default: return "OpenCL error";
   }
 }
 
@@ -86,8 +86,8 @@ DeviceInfo selectDevice(const std::string& selector)
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     const size_t index = std::stoul(selector);
     if (index >= devices.size())
-      throw Error("--device " + selector + ": no such device index (there are " +
-                  std::to_string(devices.size()) + "; see 'clraster devices')");
+      throw Error("--device " + selector + ": no such device index (there are " + std::to_string(devices.size()) +
+                  "; see 'clraster devices')");
     return devices[index];
   }
   // Step 3: a name substring.
@@ -103,8 +103,7 @@ std::string kernelBuildOptions()
   return options.str();
 }
 
-cl::Program buildProgram(const cl::Context& context, const cl::Device& device,
-                         const std::string& options)
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options)
 {
   // Step 1: the embedded sources, in dependency order.
   cl::Program::Sources sources;
@@ -120,8 +119,8 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device,
     } catch (const cl::Error&) {
       log = "(no build log)";
     }
-    throw Error("kernel build failed on " + device.getInfo<CL_DEVICE_NAME>() + " (" +
-                clErrorName(e.err()) + "):\n" + log);
+    throw Error("kernel build failed on " + device.getInfo<CL_DEVICE_NAME>() + " (" + clErrorName(e.err()) + "):\n" +
+                log);
   }
   return program;
 }

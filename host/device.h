@@ -43,7 +43,6 @@ struct ClContext {
 // The compile options every build uses (also the key of PoCL's cache).
 std::string kernelBuildOptions();
 
-cl::Program buildProgram(const cl::Context& context, const cl::Device& device,
-                         const std::string& options);
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
 
 }  // namespace clr

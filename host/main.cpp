@@ -46,10 +46,11 @@ std::string jsonEscape(const std::string& s)
 void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline,
                 const std::vector<double>& frameMs, const std::vector<FrameStats>& frames)
 {
-  std::printf("{\"device\":\"%s\",\"width\":%u,\"height\":%u,\"frames\":%zu,\"frame_ms\":%.3f,"
-              "\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"stage_ms\":{",
-              jsonEscape(cl.info.name).c_str(), args.width, args.height, frameMs.size(), median(frameMs),
-              *std::min_element(frameMs.begin(), frameMs.end()), *std::max_element(frameMs.begin(), frameMs.end()));
+  std::printf(
+      "{\"device\":\"%s\",\"width\":%u,\"height\":%u,\"frames\":%zu,\"frame_ms\":%.3f,"
+      "\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"stage_ms\":{",
+      jsonEscape(cl.info.name).c_str(), args.width, args.height, frameMs.size(), median(frameMs),
+      *std::min_element(frameMs.begin(), frameMs.end()), *std::max_element(frameMs.begin(), frameMs.end()));
   bool first = true;
   for (const auto& [stage, ms] : frames.front().stageMs) {
     std::vector<double> perFrame;
@@ -58,11 +59,11 @@ void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pip
     first = false;
   }
   const FrameStats& s = frames.back();
-  std::printf("},\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
-              "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu}\n",
-              (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped,
-              (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles,
-              (unsigned long long)s.binEntries, pipeline.deviceBytes());
+  std::printf(
+      "},\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
+      "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu}\n",
+      (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped, (unsigned long long)s.trianglesCulled,
+      (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries, pipeline.deviceBytes());
 }
 
 int renderCommand(const std::vector<std::string>& argList)

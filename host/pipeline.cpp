@@ -12,8 +12,8 @@ namespace clr {
 FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numTris)
 {
   if (s.width == 0 || s.height == 0 || s.width > CLR_MAX_VIEWPORT || s.height > CLR_MAX_VIEWPORT)
-    throw Error("viewport " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                " outside 1.." + std::to_string(CLR_MAX_VIEWPORT));
+    throw Error("viewport " + std::to_string(s.width) + "x" + std::to_string(s.height) + " outside 1.." +
+                std::to_string(CLR_MAX_VIEWPORT));
   FrameParams p{};
   std::memcpy(p.mvp, glm::value_ptr(s.mvp), sizeof p.mvp);
   const glm::vec3 light = glm::normalize(s.lightDir);
@@ -129,11 +129,26 @@ FrameStats Pipeline::finishFrame()
   return stats;
 }
 
-std::vector<cl_float4> Pipeline::readClipPositions() const { return clipPos_.download(params_.numVerts); }
-std::vector<TriSetup> Pipeline::readSetup() const { return setup_.download(numSetup_); }
-std::vector<ClipBary> Pipeline::readClipBary() const { return clipBary_.download(numClipSlots_); }
-std::vector<uint32_t> Pipeline::readTileOffsets() const { return tileCount_.download(numTiles_ + 1); }
-std::vector<uint32_t> Pipeline::readBinEntries() const { return binEntries_.download(numBinEntries_); }
+std::vector<cl_float4> Pipeline::readClipPositions() const
+{
+  return clipPos_.download(params_.numVerts);
+}
+std::vector<TriSetup> Pipeline::readSetup() const
+{
+  return setup_.download(numSetup_);
+}
+std::vector<ClipBary> Pipeline::readClipBary() const
+{
+  return clipBary_.download(numClipSlots_);
+}
+std::vector<uint32_t> Pipeline::readTileOffsets() const
+{
+  return tileCount_.download(numTiles_ + 1);
+}
+std::vector<uint32_t> Pipeline::readBinEntries() const
+{
+  return binEntries_.download(numBinEntries_);
+}
 std::vector<VisSample> Pipeline::readVis() const
 {
   return vis_.download(uint64_t(params_.width) * params_.height);

@@ -92,9 +92,8 @@ class Pipeline {
   uint64_t numBinEntries_ = 0;
   std::vector<std::pair<const char*, cl::Event>> events_;
 
-  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_,
-      resolveKernel_;
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, scanReduceKernel_, scanPartialsKernel_,
+      scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, resolveKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_;

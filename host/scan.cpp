@@ -20,19 +20,19 @@ uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* st
   scanReduceKernel_.setArg(2, chunk);
   scanReduceKernel_.setArg(3, numChunks);
   scanReduceKernel_.setArg(4, scanPartials_.get());
-  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64),
-                                 nullptr, &reduceEvent);
+  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
+                                 &reduceEvent);
   scanPartialsKernel_.setArg(0, scanPartials_.get());
   scanPartialsKernel_.setArg(1, numChunks);
-  cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, cl::NDRange(64), cl::NDRange(64),
-                                 nullptr, &partialsEvent);
+  cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, cl::NDRange(64), cl::NDRange(64), nullptr,
+                                 &partialsEvent);
   scanApplyKernel_.setArg(0, data.get());
   scanApplyKernel_.setArg(1, n);
   scanApplyKernel_.setArg(2, chunk);
   scanApplyKernel_.setArg(3, numChunks);
   scanApplyKernel_.setArg(4, scanPartials_.get());
-  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64),
-                                 nullptr, &applyEvent);
+  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
+                                 &applyEvent);
   record(stage, reduceEvent);
   record(stage, partialsEvent);
   record(stage, applyEvent);

@@ -36,8 +36,7 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
 {
   Mesh& dst = state.mesh;
   const uint64_t base = dst.numVerts();
-  if (base + src->mNumVertices > UINT32_MAX)
-    throw Error(state.path + ": more than 2^32 vertices");
+  if (base + src->mNumVertices > UINT32_MAX) throw Error(state.path + ": more than 2^32 vertices");
   // Step 1: vertices, with the node transform applied.
   aiMatrix3x3 normalMatrix(transform);
   normalMatrix.Inverse().Transpose();
@@ -57,9 +56,8 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
                     " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
                     std::to_string(src->mNumVertices) + " vertices)");
     for (unsigned k = 1; k + 1 < face.mNumIndices; ++k)
-      dst.indices.insert(dst.indices.end(),
-                         {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[k]),
-                          uint32_t(base + face.mIndices[k + 1])});
+      dst.indices.insert(dst.indices.end(), {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[k]),
+                                             uint32_t(base + face.mIndices[k + 1])});
   }
 }
 
@@ -84,7 +82,7 @@ void checkPlyHeader(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   std::string line;
   if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;  // not PLY: assimp decides
-  static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+  static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
                                        "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   auto known = [](const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
@@ -143,7 +141,8 @@ class ImportLog : public Assimp::LogStream {
       std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return c == '-' ? ' ' : std::tolower(c); });
       return l;
     }();
-    if (firstIndexProblem.empty() && (lowered.find("index") != std::string::npos || lowered.find("indices") != std::string::npos) &&
+    if (firstIndexProblem.empty() &&
+        (lowered.find("index") != std::string::npos || lowered.find("indices") != std::string::npos) &&
         (lowered.find("out of range") != std::string::npos || lowered.find("invalid") != std::string::npos))
       firstIndexProblem = m;
   }
@@ -185,8 +184,7 @@ Mesh loadScene(const std::string& path)
   } catch (const std::exception& e) {
     throw Error(path + ": cannot import (" + e.what() + ")");
   }
-  if (!importLog.log.firstIndexProblem.empty())
-    throw Error(path + ": " + importLog.log.firstIndexProblem);
+  if (!importLog.log.firstIndexProblem.empty()) throw Error(path + ": " + importLog.log.firstIndexProblem);
   if (!scene) throw Error(path + ": cannot import (" + importer.GetErrorString() + ")");
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
   // Step 3: walk the nodes, concatenating meshes.

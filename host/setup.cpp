@@ -15,8 +15,8 @@ void Pipeline::setup()
   setupCountKernel_.setArg(2, indices_.get());
   setupCountKernel_.setArg(3, triCount_.get());
   setupCountKernel_.setArg(4, counters_.get());
-  cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(numTris), cl::NDRange(64),
-                                 nullptr, &countEvent);
+  cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+                                 &countEvent);
   record("setup_count", countEvent);
 
   // Step 2: offsets, and the exact sizes of this frame's outputs.
@@ -36,8 +36,8 @@ void Pipeline::setup()
   setupEmitKernel_.setArg(4, setup_.get());
   setupEmitKernel_.setArg(5, clipBary_.get());
   setupEmitKernel_.setArg(6, counters_.get());
-  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(numTris), cl::NDRange(64),
-                                 nullptr, &emitEvent);
+  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+                                 &emitEvent);
   record("setup_emit", emitEvent);
 }
 

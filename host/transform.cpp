@@ -10,8 +10,8 @@ void Pipeline::transform()
   transformKernel_.setArg(0, positions_.get());
   transformKernel_.setArg(1, paramsBuf_.get());
   transformKernel_.setArg(2, clipPos_.get());
-  cl_.queue.enqueueNDRangeKernel(transformKernel_, cl::NullRange, linear(params_.numVerts),
-                                 cl::NDRange(64), nullptr, &event);
+  cl_.queue.enqueueNDRangeKernel(transformKernel_, cl::NullRange, linear(params_.numVerts), cl::NDRange(64), nullptr,
+                                 &event);
   record("transform", event);
 }
 

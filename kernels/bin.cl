@@ -14,9 +14,8 @@ inline int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
   return px / CLR_TILE_SIZE;
 }
 
-__kernel void bin_count(__constant FrameParams* params,
-                        __global const TriSetup* setup, uint numSetup,
-                        __global uint* tileCount) /* tiles + 1 */
+__kernel void bin_count(__constant FrameParams* params, __global const TriSetup* setup, uint numSetup,
+                        __global uint* tileCount)  // tiles + 1
 {
   const uint s = get_global_id(0);
   if (s >= numSetup) return;
@@ -26,11 +25,10 @@ __kernel void bin_count(__constant FrameParams* params,
     for (int tx = r.x; tx <= r.z; ++tx) atomic_inc(&tileCount[ty * params->tilesX + tx]);
 }
 
-__kernel void bin_fill(__constant FrameParams* params,
-                       __global const TriSetup* setup, uint numSetup,
-                       __global const uint* tileOffset, /* tiles + 1, scanned */
-                       __global uint* tileCursor,       /* tiles, zeroed */
-                       __global uint* binEntries)       /* tileOffset[tiles] */
+__kernel void bin_fill(__constant FrameParams* params, __global const TriSetup* setup, uint numSetup,
+                       __global const uint* tileOffset,  // tiles + 1, scanned
+                       __global uint* tileCursor,        // tiles, zeroed
+                       __global uint* binEntries)        // tileOffset[tiles]
 {
   const uint s = get_global_id(0);
   if (s >= numSetup) return;

@@ -24,11 +24,11 @@ typedef struct ClipVertex {
 inline float clip_distance(float4 c, int plane, float gx, float gy)
 {
   switch (plane) {
-  case 0: return c.z + c.w;
-  case 1: return c.x + gx * c.w;
-  case 2: return gx * c.w - c.x;
-  case 3: return c.y + gy * c.w;
-  default: return gy * c.w - c.y;
+    case 0: return c.z + c.w;
+    case 1: return c.x + gx * c.w;
+    case 2: return gx * c.w - c.x;
+    case 3: return c.y + gy * c.w;
+    default: return gy * c.w - c.y;
   }
 }
 
@@ -53,8 +53,7 @@ inline uint clip_outcode(float4 c, float gx, float gy)
 }
 
 /* The point where edge a→b crosses `plane`, computed from the inside end. */
-inline ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx,
-                                 float gy)
+inline ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx, float gy)
 {
   const float dIn = clip_distance(inside.pos, plane, gx, gy);
   const float dOut = clip_distance(outside.pos, plane, gx, gy);
@@ -80,8 +79,7 @@ inline int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, float
       const bool aIn = clip_distance(a.pos, plane, gx, gy) >= 0.0f;
       const bool bIn = clip_distance(b.pos, plane, gx, gy) >= 0.0f;
       if (aIn) scratch[m++] = a;
-      if (aIn != bIn) scratch[m++] = aIn ? clip_intersect(a, b, plane, gx, gy)
-                                         : clip_intersect(b, a, plane, gx, gy);
+      if (aIn != bIn) scratch[m++] = aIn ? clip_intersect(a, b, plane, gx, gy) : clip_intersect(b, a, plane, gx, gy);
     }
     // Step 2: copy back for the next plane.
     for (int i = 0; i < m; ++i) poly[i] = scratch[i];

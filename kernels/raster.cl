@@ -27,12 +27,11 @@ inline long edge_bias(int ax, int ay, int bx, int by)
   return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void
-raster(__constant FrameParams* params,
-       __global const TriSetup* setup,
-       __global const uint* tileOffset, /* tiles + 1 */
-       __global const uint* binEntries,
-       __global VisSample* vis)         /* width · height */
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(
+    __constant FrameParams* params, __global const TriSetup* setup,
+    __global const uint* tileOffset,  // tiles + 1
+    __global const uint* binEntries,
+    __global VisSample* vis)  // width · height
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);

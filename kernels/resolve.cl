@@ -21,12 +21,11 @@ inline uint pack_rgba(float3 c)
 }
 
 __kernel void resolve(__constant FrameParams* params,
-                      __global const VisSample* vis,     /* width · height */
-                      __global const TriSetup* setup,
-                      __global const ClipBary* clipBary,
-                      __global const uint* indices,      /* 3·numTris */
-                      __global const float* normals,     /* 3·numVerts */
-                      __global uint* image)              /* width · height */
+                      __global const VisSample* vis,  // width · height
+                      __global const TriSetup* setup, __global const ClipBary* clipBary,
+                      __global const uint* indices,   // 3·numTris
+                      __global const float* normals,  // 3·numVerts
+                      __global uint* image)           // width · height
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   if (px >= params->width || py >= params->height) return;
@@ -65,10 +64,8 @@ __kernel void resolve(__constant FrameParams* params,
     return;
   }
   // Step 3: interpolate and shade the normal.
-  const uint i0 = indices[3 * t.triId], i1 = indices[3 * t.triId + 1],
-             i2 = indices[3 * t.triId + 2];
-  float3 n = lambda.x * vload3(i0, normals) + lambda.y * vload3(i1, normals) +
-             lambda.z * vload3(i2, normals);
+  const uint i0 = indices[3 * t.triId], i1 = indices[3 * t.triId + 1], i2 = indices[3 * t.triId + 2];
+  float3 n = lambda.x * vload3(i0, normals) + lambda.y * vload3(i1, normals) + lambda.z * vload3(i2, normals);
   const float len = length(n);
   n = len > 0.0f ? n / len : (float3)(0.0f, 0.0f, 1.0f);
   if (t.flags & CLR_FLAG_BACKFACING) n = -n;

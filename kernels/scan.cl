@@ -10,7 +10,7 @@
  */
 
 __kernel void scan_reduce(__global const uint* data, uint n, uint chunk, uint numChunks,
-                          __global ulong* partials) /* numChunks + 1 */
+                          __global ulong* partials)  // numChunks + 1
 {
   const uint g = get_global_id(0);
   if (g >= numChunks) return;
@@ -23,8 +23,8 @@ __kernel void scan_reduce(__global const uint* data, uint n, uint chunk, uint nu
 
 #define CLR_SCAN_GROUP 64
 
-__kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void
-scan_partials(__global ulong* partials, uint numChunks)
+__kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_partials(__global ulong* partials,
+                                                                                        uint numChunks)
 {
   __local ulong groupSums[CLR_SCAN_GROUP];
   const uint lid = get_local_id(0);
@@ -56,8 +56,7 @@ scan_partials(__global ulong* partials, uint numChunks)
   }
 }
 
-__kernel void scan_apply(__global uint* data, uint n, uint chunk, uint numChunks,
-                         __global const ulong* partials)
+__kernel void scan_apply(__global uint* data, uint n, uint chunk, uint numChunks, __global const ulong* partials)
 {
   const uint g = get_global_id(0);
   if (g >= numChunks) return;

@@ -13,8 +13,14 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 /* Floor and ceiling of a / CLR_FIXED_ONE for signed a. */
-inline int fixed_floor(int a) { return a >> CLR_SUBPIXEL_BITS; }
-inline int fixed_ceil(int a) { return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS; }
+inline int fixed_floor(int a)
+{
+  return a >> CLR_SUBPIXEL_BITS;
+}
+inline int fixed_ceil(int a)
+{
+  return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
+}
 
 /* Inclusive pixel range whose centres (i + 0.5) can lie in the triangle,
  * clamped to the viewport. Empty when x0 > x1 or y0 > y1. */
@@ -35,8 +41,7 @@ inline int4 setup_pixel_bounds(const TriSetup* t, uint width, uint height)
 /* Builds one screen triangle from three clip-space vertices. Returns false
  * when it is culled. bary (may be null) holds the sub-vertices' input
  * barycentrics and is swapped along with the vertices. */
-inline bool setup_make(const float4* c, __constant FrameParams* params, uint triId,
-                       TriSetup* out, float3* bary)
+inline bool setup_make(const float4* c, __constant FrameParams* params, uint triId, TriSetup* out, float3* bary)
 {
   // Step 1: viewport transform and snapping.
   for (int i = 0; i < 3; ++i) {
@@ -57,11 +62,23 @@ inline bool setup_make(const float4* c, __constant FrameParams* params, uint tri
   out->flags = 0;
   if (area2 < 0) {
     if (params->cullBack) return false;
-    int ti = out->x[1]; out->x[1] = out->x[2]; out->x[2] = ti;
-    ti = out->y[1]; out->y[1] = out->y[2]; out->y[2] = ti;
-    float tf = out->z[1]; out->z[1] = out->z[2]; out->z[2] = tf;
-    tf = out->invW[1]; out->invW[1] = out->invW[2]; out->invW[2] = tf;
-    if (bary) { float3 tb = bary[1]; bary[1] = bary[2]; bary[2] = tb; }
+    int ti = out->x[1];
+    out->x[1] = out->x[2];
+    out->x[2] = ti;
+    ti = out->y[1];
+    out->y[1] = out->y[2];
+    out->y[2] = ti;
+    float tf = out->z[1];
+    out->z[1] = out->z[2];
+    out->z[2] = tf;
+    tf = out->invW[1];
+    out->invW[1] = out->invW[2];
+    out->invW[2] = tf;
+    if (bary) {
+      float3 tb = bary[1];
+      bary[1] = bary[2];
+      bary[2] = tb;
+    }
     area2 = -area2;
     out->flags = CLR_FLAG_BACKFACING;
   }
@@ -77,9 +94,8 @@ inline bool setup_make(const float4* c, __constant FrameParams* params, uint tri
 /* Runs the whole per-triangle procedure. Writes up to CLR_MAX_SUBTRIS
  * triangles (and, when clipped, their ClipBary records) and returns their
  * count; *clipped tells whether clipping was needed. */
-inline int setup_triangle(uint tri, __constant FrameParams* params,
-                          __global const float4* clipPos, __global const uint* indices,
-                          TriSetup* subs, ClipBary* subBary, bool* clipped)
+inline int setup_triangle(uint tri, __constant FrameParams* params, __global const float4* clipPos,
+                          __global const uint* indices, TriSetup* subs, ClipBary* subBary, bool* clipped)
 {
   *clipped = false;
   // Step 1: fetch, reject non-finite and trivially outside triangles.
@@ -122,10 +138,10 @@ inline int setup_triangle(uint tri, __constant FrameParams* params,
 
 /* Pass 1: how many screen triangles each input triangle yields. */
 __kernel void setup_count(__constant FrameParams* params,
-                          __global const float4* clipPos, /* numVerts */
-                          __global const uint* indices,   /* 3·numTris */
-                          __global uint* triCount,        /* numTris + 1 */
-                          __global uint* counters)        /* CLR_NUM_COUNTERS */
+                          __global const float4* clipPos,  // numVerts
+                          __global const uint* indices,    // 3·numTris
+                          __global uint* triCount,         // numTris + 1
+                          __global uint* counters)         // CLR_NUM_COUNTERS
 {
   const uint tri = get_global_id(0);
   if (tri >= params->numTris) return;
@@ -143,11 +159,11 @@ __kernel void setup_count(__constant FrameParams* params,
 
 /* Pass 2: writes the screen triangles at their scanned offsets. */
 __kernel void setup_emit(__constant FrameParams* params,
-                         __global const float4* clipPos,  /* numVerts */
-                         __global const uint* indices,    /* 3·numTris */
-                         __global const uint* triOffset,  /* numTris + 1, scanned */
-                         __global TriSetup* setup,        /* triOffset[numTris] */
-                         __global ClipBary* clipBary,     /* CLIP_SLOTS counter */
+                         __global const float4* clipPos,  // numVerts
+                         __global const uint* indices,    // 3·numTris
+                         __global const uint* triOffset,  // numTris + 1, scanned
+                         __global TriSetup* setup,        // triOffset[numTris]
+                         __global ClipBary* clipBary,     // CLIP_SLOTS counter
                          __global uint* counters)
 {
   const uint tri = get_global_id(0);

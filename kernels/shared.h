@@ -41,11 +41,11 @@ typedef uint32_t uint;
 /* Per-frame constants. Written by the host once per frame; read by every
  * kernel. One struct, 144 bytes. */
 typedef struct FrameParams {
-  float mvp[16];      /* column-major, clip = mvp · (x, y, z, 1) */
-  float lightDir[4];  /* world space, unit, towards the light */
-  float guardX;       /* guard-band clip factor g_x (see fixed.h) */
+  float mvp[16];     /* column-major, clip = mvp · (x, y, z, 1) */
+  float lightDir[4]; /* world space, unit, towards the light */
+  float guardX;      /* guard-band clip factor g_x (see fixed.h) */
   float guardY;
-  float halfWidth;    /* viewport matrix: x_s = x_ndc·W/2 + W/2 */
+  float halfWidth; /* viewport matrix: x_s = x_ndc·W/2 + W/2 */
   float halfHeight;
   float zNear;
   float zFar;
@@ -55,8 +55,8 @@ typedef struct FrameParams {
   uint tilesY;
   uint numVerts;
   uint numTris;
-  uint cullBack;      /* 1: cull clockwise (back-facing) triangles */
-  uint shadeMode;     /* CLR_SHADE_* */
+  uint cullBack;  /* 1: cull clockwise (back-facing) triangles */
+  uint shadeMode; /* CLR_SHADE_* */
   uint pad0;
   uint pad1;
 } FrameParams;
@@ -65,14 +65,14 @@ typedef struct FrameParams {
  * counter-clockwise (y up). Written by setup_emit, read by bin_count,
  * bin_fill, raster and resolve. Array size: the scanned setup count. */
 typedef struct TriSetup {
-  int x[3];        /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
-  int y[3];        /* snapped fixed-point screen y */
-  float z[3];      /* window depth in [0, 1] */
-  float invW[3];   /* 1 / w_clip, for the perspective correction */
-  float invArea2;  /* 1 / (2·signed area) in fixed units², area > 0 */
-  uint triId;      /* index of the input triangle it came from */
-  uint clipSlot;   /* index into the ClipBary buffer, or CLR_NOT_CLIPPED */
-  uint flags;      /* CLR_FLAG_* */
+  int x[3];       /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
+  int y[3];       /* snapped fixed-point screen y */
+  float z[3];     /* window depth in [0, 1] */
+  float invW[3];  /* 1 / w_clip, for the perspective correction */
+  float invArea2; /* 1 / (2·signed area) in fixed units², area > 0 */
+  uint triId;     /* index of the input triangle it came from */
+  uint clipSlot;  /* index into the ClipBary buffer, or CLR_NOT_CLIPPED */
+  uint flags;     /* CLR_FLAG_* */
 } TriSetup;
 
 /* Barycentrics of a clipped sub-triangle's vertices with respect to its

@@ -6,9 +6,9 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-__kernel void transform_vertices(__global const float* positions, /* 3·numVerts */
+__kernel void transform_vertices(__global const float* positions,  // 3·numVerts
                                  __constant FrameParams* params,
-                                 __global float4* clipPos) /* numVerts */
+                                 __global float4* clipPos)  // numVerts
 {
   const uint v = get_global_id(0);
   if (v >= params->numVerts) return;

@@ -19,11 +19,11 @@ struct Vertex {
 float distance(const glm::vec4& c, int plane, float gx, float gy)
 {
   switch (plane) {
-  case 0: return c.z + c.w;
-  case 1: return c.x + gx * c.w;
-  case 2: return gx * c.w - c.x;
-  case 3: return c.y + gy * c.w;
-  default: return gy * c.w - c.y;
+    case 0: return c.z + c.w;
+    case 1: return c.x + gx * c.w;
+    case 2: return gx * c.w - c.x;
+    case 3: return c.y + gy * c.w;
+    default: return gy * c.w - c.y;
   }
 }
 
@@ -39,12 +39,12 @@ glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float 
 bool outsideViewport(const glm::vec4& c, int plane)
 {
   switch (plane) {
-  case 0: return c.z + c.w < 0.0f;
-  case 1: return c.x < -c.w;
-  case 2: return c.x > c.w;
-  case 3: return c.y < -c.w;
-  case 4: return c.y > c.w;
-  default: return c.z > c.w;
+    case 0: return c.z + c.w < 0.0f;
+    case 1: return c.x < -c.w;
+    case 2: return c.x > c.w;
+    case 3: return c.y < -c.w;
+    case 4: return c.y > c.w;
+    default: return c.z > c.w;
   }
 }
 
@@ -59,8 +59,14 @@ bool topLeftInclusive(int ax, int ay, int bx, int by)
   return dy < 0 || (dy == 0 && dx > 0);
 }
 
-int floorDiv(int a) { return a >> CLR_SUBPIXEL_BITS; }
-int ceilDiv(int a) { return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS; }
+int floorDiv(int a)
+{
+  return a >> CLR_SUBPIXEL_BITS;
+}
+int ceilDiv(int a)
+{
+  return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
+}
 
 // Rasterizes one clip-space triangle into the z-buffer; returns whether it
 // survived setup.
@@ -123,8 +129,7 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
 glm::vec4 transformVertex(const glm::mat4& m, const float* p)
 {
   glm::vec4 c;
-  for (int row = 0; row < 4; ++row)
-    c[row] = m[0][row] * p[0] + m[1][row] * p[1] + m[2][row] * p[2] + m[3][row];
+  for (int row = 0; row < 4; ++row) c[row] = m[0][row] * p[0] + m[1][row] * p[1] + m[2][row] * p[2] + m[3][row];
   return c;
 }
 

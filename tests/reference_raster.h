@@ -27,17 +27,17 @@ struct Options {
 
 struct Result {
   uint32_t width = 0, height = 0;
-  std::vector<uint32_t> triId;  // per pixel, bottom row first; kNone = empty
-  std::vector<float> depth;     // window depth of the visible fragment (1 = far)
-  std::vector<glm::dvec3> bary; // screen barycentrics of the visible (sub-)triangle, exact (double)
-  uint64_t setupTriangles = 0;  // screen triangles after clipping and culling
+  std::vector<uint32_t> triId;   // per pixel, bottom row first; kNone = empty
+  std::vector<float> depth;      // window depth of the visible fragment (1 = far)
+  std::vector<glm::dvec3> bary;  // screen barycentrics of the visible (sub-)triangle, exact (double)
+  uint64_t setupTriangles = 0;   // screen triangles after clipping and culling
   uint64_t clippedTriangles = 0;
   uint64_t culledTriangles = 0;
 };
 
 // positions: 3 floats per vertex; indices: 3 per triangle; mvp column-major.
-Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t>& indices,
-                 const glm::mat4& mvp, const Options& options);
+Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t>& indices, const glm::mat4& mvp,
+                 const Options& options);
 
 // clip = mvp · (p, 1), with the kernels' order of operations.
 glm::vec4 transformVertex(const glm::mat4& mvp, const float* p);

@@ -83,7 +83,16 @@ size_t leftoverTemps(const std::string& target)
 const std::string kSmallObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
 
 // Two triangles; the second indexes vertex 9 of 4.
-const char* const kGltfBadIndex = "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1}]}], \"buffers\": [{\"byteLength\": 60, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAgD8AAAAAAAABAAIAAQADAAkA\"}], \"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 12}], \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}, {\"bufferView\": 1, \"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}]}";
+const char* const kGltfBadIndex =
+    "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], "
+    "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1}]}], \"buffers\": "
+    "[{\"byteLength\": 60, \"uri\": "
+    "\"data:application/"
+    "octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAgD8AAAAAAAABAAIAAQADAAkA\"}], "
+    "\"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}, {\"buffer\": 0, \"byteOffset\": 48, "
+    "\"byteLength\": 12}], \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": "
+    "\"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}, {\"bufferView\": 1, \"componentType\": 5123, \"count\": 6, "
+    "\"type\": \"SCALAR\"}]}";
 
 }  // namespace
 
@@ -127,15 +136,16 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
   const std::string dir = tmpDir();
   expectError("render '" + dir + "/missing.obj'" + out, "missing.obj: cannot open");
   expectError("render '" + writeFile("empty.obj", "") + "'" + out, "empty.obj: file is empty");
-  expectError("render '" + writeFile("garbage.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty banana x\n") +
-                  "'" + out,
-              "garbage.ply: PLY header line 4: unknown property type 'banana'");
+  expectError(
+      "render '" + writeFile("garbage.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty banana x\n") + "'" + out,
+      "garbage.ply: PLY header line 4: unknown property type 'banana'");
   expectError("render '" + writeFile("noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n") + "'" + out,
               "noend.ply: PLY header has no end_header");
-  expectError("render '" + writeFile("truncated.ply",
-                                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                     "end_header\n0 0 0\n1 0") +
+  expectError("render '" +
+                  writeFile("truncated.ply",
+                            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                            "end_header\n0 0 0\n1 0") +
                   "'" + out,
               "truncated.ply");
   expectError("render '" + writeFile("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\n") + "'" + out, "points.obj");
@@ -146,7 +156,8 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
               "range.obj: OBJ: vertex index out of range");
   // Assimp's glTF reader would drop the bad face with only a log warning.
   expectError("render '" + writeFile("range.gltf", kGltfBadIndex) + "'" + out, "range.gltf: Some faces had out");
-  expectError("render '" + writeFile("nobuffer.gltf", "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":60}]}") +
+  expectError("render '" +
+                  writeFile("nobuffer.gltf", "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":60}]}") +
                   "'" + out,
               "nobuffer.gltf");
   expectError("render '" + writeFile("notamesh.stl", std::string(200, '\x01')) + "'" + out, "notamesh.stl");

@@ -48,7 +48,8 @@ TEST_CASE("differential: random overlapping triangles, some through the near pla
   for (int t = 0; t < 3000; ++t) {
     const glm::vec3 c(centre(rng), centre(rng), depth(rng));
     const float s = size(rng) * (t % 10 == 0 ? 4.0f : 1.0f);
-    g.addTriangle(c + s * glm::vec3(unit(rng), unit(rng), unit(rng)), c + s * glm::vec3(unit(rng), unit(rng), unit(rng)),
+    g.addTriangle(c + s * glm::vec3(unit(rng), unit(rng), unit(rng)),
+                  c + s * glm::vec3(unit(rng), unit(rng), unit(rng)),
                   c + s * glm::vec3(unit(rng), unit(rng), unit(rng)));
   }
   compare(g);

@@ -21,7 +21,10 @@ glm::mat4 perspectiveCamera(glm::vec3 eye, glm::vec3 target, float aspect, float
   return glm::perspective(glm::radians(60.0f), aspect, zNear, zFar) * glm::lookAt(eye, target, {0, 1, 0});
 }
 
-size_t pixel(uint32_t width, uint32_t x, uint32_t y) { return size_t(y) * width + x; }
+size_t pixel(uint32_t width, uint32_t x, uint32_t y)
+{
+  return size_t(y) * width + x;
+}
 
 }  // namespace
 
@@ -86,9 +89,9 @@ TEST_CASE("setup culls degenerate, non-finite, outside and back-facing triangles
   g.addTriangle({-0.5f, -0.5f, 0}, {inf, 0, 0}, {0, 0.5f, 0});                                   // Inf
   g.addTriangle({2, 2, 0}, {3, 2, 0}, {2, 3, 0});                                                // outside
   g.addTriangle(screen(4.6f, 4.6f, 0, 32, 32), screen(5.4f, 4.6f, 0, 32, 32),
-                screen(4.6f, 5.4f, 0, 32, 32));  // covers no pixel centre
+                screen(4.6f, 5.4f, 0, 32, 32));                                                // covers no pixel centre
   g.addTriangle(screen(1, 1, 0, 32, 32), screen(31, 1, 0, 32, 32), screen(1, 31, 0, 32, 32));  // valid, CCW
-  g.addTriangle(screen(31, 31, 0, 32, 32), screen(31, 2, 0, 32, 32), screen(2, 31, 0, 32, 32)); // valid, CW
+  g.addTriangle(screen(31, 31, 0, 32, 32), screen(31, 2, 0, 32, 32), screen(2, 31, 0, 32, 32));  // valid, CW
 
   SECTION("without back-face culling the two valid triangles survive")
   {

@@ -16,7 +16,10 @@
 namespace {
 
 // The colour --shade normal gives a unit vector, per channel.
-glm::dvec3 normalColour(glm::dvec3 n) { return glm::clamp((glm::normalize(n) * 0.5 + 0.5) * 255.0, 0.0, 255.0); }
+glm::dvec3 normalColour(glm::dvec3 n)
+{
+  return glm::clamp((glm::normalize(n) * 0.5 + 0.5) * 255.0, 0.0, 255.0);
+}
 
 // World barycentrics of p in triangle (a, b, c), all on one plane.
 glm::dvec3 worldBarycentrics(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c)
@@ -116,8 +119,8 @@ TEST_CASE("screen space is y-up and the PNG is written top row first", "[resolve
     const unsigned char* p = png + 3 * (size_t(H - 1 - yUp) * W + x);
     return p[0] | (p[1] << 8) | (p[2] << 16);
   };
-  CHECK(idAt(1, 1) == 1);            // triangle index 0 is written as 1
-  CHECK(idAt(1, int(H) - 2) == 0);   // top-left: background
-  CHECK(idAt(int(W) - 2, 1) == 0);   // bottom-right: background
+  CHECK(idAt(1, 1) == 1);           // triangle index 0 is written as 1
+  CHECK(idAt(1, int(H) - 2) == 0);  // top-left: background
+  CHECK(idAt(int(W) - 2, 1) == 0);  // bottom-right: background
   stbi_image_free(png);
 }

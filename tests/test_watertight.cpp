@@ -23,8 +23,10 @@ std::vector<int> coverageCounts(const std::vector<glm::vec3>& grid, int n, const
         if ((i % 3) * 6 + (j % 3) * 2 + 0 != cls && (i % 3) * 6 + (j % 3) * 2 + 1 != cls) continue;
         const glm::vec3 v = grid[j * (n + 1) + i], r = grid[j * (n + 1) + i + 1];
         const glm::vec3 u = grid[(j + 1) * (n + 1) + i], ur = grid[(j + 1) * (n + 1) + i + 1];
-        if (cls % 2 == 0) g.addTriangle(v, r, ur);
-        else g.addTriangle(v, ur, u);
+        if (cls % 2 == 0)
+          g.addTriangle(v, r, ur);
+        else
+          g.addTriangle(v, ur, u);
       }
     if (g.numTris() == 0) continue;
     const std::vector<uint32_t> ids = test::renderTriIds(g, settings);

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# bootstrap.sh — the README's two commands, on a Debian 12 machine, as root.
+#
+#   bash scripts/bootstrap.sh render   install what is missing, build, and
+#                                      render the built-in scene to out/default.png
+#   bash scripts/bootstrap.sh test     install what is missing, build, and run
+#                                      every test (what .ci/run calls)
+#
+# Packages are checked with dpkg and only the missing ones are installed, so a
+# second run installs nothing. PoCL caches compiled kernels in
+# build/pocl-cache, so repeated runs compile the kernels once.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+mode="${1:-}"
+case "$mode" in
+  render | test) ;;
+  *) echo "usage: bash scripts/bootstrap.sh render|test" >&2; exit 2 ;;
+esac
+
+# Step 1: packages.
+packages=(cmake g++ make pkg-config
+  ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
+  libglm-dev catch2 libassimp-dev libstb-dev libosmesa6-dev
+  assimp-testmodels clang-format)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Step 2: build.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+export POCL_CACHE_DIR="$PWD/build/pocl-cache"
+
+# Step 3: render or test.
+if [[ "$mode" == render ]]; then
+  mkdir -p out
+  ./build/clraster devices
+  ./build/clraster render -o out/default.png --size 1280x720 --stats
+  echo "bootstrap: wrote out/default.png"
+else
+  ctest --test-dir build --output-on-failure -j "$(nproc)"
+fi
