@@ -1,6 +1,8 @@
 // test_cli.cpp — the command line's error paths and its output guarantees:
 // every bad input gets a one-line message naming the problem and a non-zero
 // exit, and no failure leaves a half-written or clobbered output file.
+#include "test_support.h"
+
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
@@ -23,8 +25,7 @@ struct Run {
 
 std::string tmpDir()
 {
-  mkdir(CLRASTER_TEST_TMP, 0755);
-  return CLRASTER_TEST_TMP;
+  return test::tempDir();
 }
 
 std::string slurp(const std::string& path)

@@ -109,7 +109,7 @@ TEST_CASE("screen space is y-up and the PNG is written top row first", "[resolve
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
   pipeline.render(test::idSettings(W, H), rgba);
-  const std::string path = std::string(CLRASTER_TEST_TMP) + "/orientation.png";
+  const std::string path = test::tempDir() + "/orientation.png";
   clr::writePng(path, W, H, rgba);
   int w = 0, h = 0, channels = 0;
   unsigned char* png = stbi_load(path.c_str(), &w, &h, &channels, 3);

@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 
+#include <sys/stat.h>
+
 namespace test {
 
 clr::ClContext& context()
@@ -69,6 +71,12 @@ std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSet
   clr::Pipeline pipeline(context());
   pipeline.uploadScene(geometry.mesh());
   return renderTriIds(pipeline, settings);
+}
+
+std::string tempDir()
+{
+  mkdir(CLRASTER_TEST_TMP, 0755);
+  return CLRASTER_TEST_TMP;
 }
 
 size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b)

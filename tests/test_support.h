@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace test {
@@ -40,6 +41,9 @@ std::vector<uint32_t> renderTriIds(clr::Pipeline& pipeline, const clr::FrameSett
 
 // Same, for a fresh pipeline on the shared context.
 std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSettings& settings);
+
+// The tests' scratch directory (created on first use).
+std::string tempDir();
 
 // Number of pixels where two ID images differ.
 size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b);
