@@ -314,3 +314,17 @@ TEST_CASE("near-plane clipping: no projection through w <= 0, same pixels as the
   CHECK(std::count(ids.begin(), ids.end(), 0u) > 200);
   CHECK(std::count(ids.begin(), ids.end(), 1u) > 50);
 }
+
+TEST_CASE("a kernel build failure reports the device's build log", "[device]")
+{
+  const clr::ClContext& ctx = test::context();
+  try {
+    // CLR_TILE_SIZE is spliced into array sizes and attributes: a non-number breaks the build.
+    clr::buildProgram(ctx.context, ctx.info.device, "-cl-std=CL1.2 -D CLR_TILE_SIZE=not_a_number");
+    FAIL("the build should have failed");
+  } catch (const clr::Error& e) {
+    const std::string message = e.what();
+    CHECK(message.find("kernel build failed on " + ctx.info.name) != std::string::npos);
+    CHECK(message.find("not_a_number") != std::string::npos);  // quoted by the compiler's log
+  }
+}
