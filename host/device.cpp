@@ -96,10 +96,15 @@ DeviceInfo selectDevice(const std::string& selector)
   throw Error("--device " + selector + ": no device name matches (see 'clraster devices')");
 }
 
-std::string kernelBuildOptions()
+int defaultRasterRow(const cl::Device& device)
+{
+  return (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) ? 16 : 1;
+}
+
+std::string kernelBuildOptions(int rasterRow)
 {
   std::ostringstream options;
-  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE;
+  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_RASTER_ROW=" << rasterRow;
   return options.str();
 }
 
@@ -125,11 +130,12 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
-ClContext::ClContext(const std::string& selector) : info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int rasterRowOverride) : info(selectDevice(selector))
 {
+  rasterRow = rasterRowOverride ? rasterRowOverride : defaultRasterRow(info.device);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
-  program = buildProgram(context, info.device, kernelBuildOptions());
+  program = buildProgram(context, info.device, kernelBuildOptions(rasterRow));
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
 }

@@ -29,10 +29,15 @@ std::vector<DeviceInfo> listDevices();
 // platform name (case-insensitive).
 DeviceInfo selectDevice(const std::string& selector);
 
-// The OpenCL context every stage shares.
+// Pixels per work-item of the raster kernel for a device: 16 (one vector
+// row) on CPUs, where PoCL vectorises explicit vector types; 1 elsewhere.
+int defaultRasterRow(const cl::Device& device);
+
+// The OpenCL context every stage shares. rasterRow 0 picks the device's default.
 struct ClContext {
-  explicit ClContext(const std::string& selector);
+  explicit ClContext(const std::string& selector, int rasterRow = 0);
   DeviceInfo info;
+  int rasterRow = 1;  // CLR_RASTER_ROW the program was built with
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;
@@ -41,7 +46,7 @@ struct ClContext {
 };
 
 // The compile options every build uses (also the key of PoCL's cache).
-std::string kernelBuildOptions();
+std::string kernelBuildOptions(int rasterRow);
 
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
 

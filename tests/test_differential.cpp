@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cstring>
 #include <random>
 
 namespace {
@@ -88,4 +89,33 @@ TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)",
       }
   }
   compare(g);
+}
+
+TEST_CASE("differential: one-pixel and 16-pixel-row raster kernels agree bit for bit", "[differential][raster]")
+{
+  // The GPU shape (one work-item per pixel) is checked here on the test device too.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f), depth(-6.0f, 6.0f), unit(-1, 1);
+  test::Geometry g;
+  for (int t = 0; t < 2000; ++t) {
+    const glm::vec3 c(coord(rng), coord(rng), depth(rng));
+    g.addTriangle(c + glm::vec3(unit(rng), unit(rng), unit(rng)), c + glm::vec3(unit(rng), unit(rng), unit(rng)),
+                  c + glm::vec3(unit(rng), unit(rng), unit(rng)));
+  }
+  std::vector<std::vector<VisSample>> vis;
+  for (int row : {1, 16}) {
+    clr::ClContext ctx(test::context().info.name, row);
+    clr::Pipeline pipeline(ctx);
+    pipeline.uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    pipeline.render(test::idSettings(kWidth, kHeight, camera()), rgba);
+    vis.push_back(pipeline.readVis());
+  }
+  REQUIRE(vis[0].size() == vis[1].size());
+  size_t covered = 0;
+  for (size_t p = 0; p < vis[0].size(); ++p) {
+    REQUIRE(std::memcmp(&vis[0][p], &vis[1][p], sizeof(VisSample)) == 0);
+    covered += vis[0][p].setupIndex != CLR_NONE;
+  }
+  CHECK(covered > 1000);
 }
