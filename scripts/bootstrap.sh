@@ -7,7 +7,8 @@
 #                                      every test (what .ci/run calls)
 #
 # Packages are checked with dpkg and only the missing ones are installed, so a
-# second run installs nothing. PoCL caches compiled kernels in
+# second run installs nothing. zlib1g-dev is listed because assimp's CMake
+# package links libz.so but Debian's libassimp-dev does not depend on it. PoCL caches compiled kernels in
 # build/pocl-cache, so repeated runs compile the kernels once.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -21,7 +22,7 @@ esac
 # Step 1: packages.
 packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
-  libglm-dev catch2 libassimp-dev libstb-dev libosmesa6-dev
+  libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev
   assimp-testmodels clang-format)
 missing=()
 for p in "${packages[@]}"; do
