@@ -96,15 +96,15 @@ DeviceInfo selectDevice(const std::string& selector)
   throw Error("--device " + selector + ": no device name matches (see 'clraster devices')");
 }
 
-int defaultRasterRow(const cl::Device& device)
+int defaultRowPixels(const cl::Device& device)
 {
   return (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) ? 16 : 1;
 }
 
-std::string kernelBuildOptions(int rasterRow)
+std::string kernelBuildOptions(int rowPixels)
 {
   std::ostringstream options;
-  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_RASTER_ROW=" << rasterRow;
+  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_ROW_PIXELS=" << rowPixels;
   return options.str();
 }
 
@@ -130,12 +130,12 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
-ClContext::ClContext(const std::string& selector, int rasterRowOverride) : info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int rowPixelsOverride) : info(selectDevice(selector))
 {
-  rasterRow = rasterRowOverride ? rasterRowOverride : defaultRasterRow(info.device);
+  rowPixels = rowPixelsOverride ? rowPixelsOverride : defaultRowPixels(info.device);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
-  program = buildProgram(context, info.device, kernelBuildOptions(rasterRow));
+  program = buildProgram(context, info.device, kernelBuildOptions(rowPixels));
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
 }

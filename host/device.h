@@ -31,13 +31,13 @@ DeviceInfo selectDevice(const std::string& selector);
 
 // Pixels per work-item of the raster kernel for a device: 16 (one vector
 // row) on CPUs, where PoCL vectorises explicit vector types; 1 elsewhere.
-int defaultRasterRow(const cl::Device& device);
+int defaultRowPixels(const cl::Device& device);
 
-// The OpenCL context every stage shares. rasterRow 0 picks the device's default.
+// The OpenCL context every stage shares. rowPixels 0 picks the device's default.
 struct ClContext {
-  explicit ClContext(const std::string& selector, int rasterRow = 0);
+  explicit ClContext(const std::string& selector, int rowPixels = 0);
   DeviceInfo info;
-  int rasterRow = 1;  // CLR_RASTER_ROW the program was built with
+  int rowPixels = 1;  // CLR_ROW_PIXELS the program was built with
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;
@@ -46,7 +46,7 @@ struct ClContext {
 };
 
 // The compile options every build uses (also the key of PoCL's cache).
-std::string kernelBuildOptions(int rasterRow);
+std::string kernelBuildOptions(int rowPixels);
 
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
 

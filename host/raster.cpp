@@ -1,5 +1,5 @@
 // raster.cpp — host side of kernels/raster.cl: one work-group per tile, one
-// work-item per CLR_RASTER_ROW pixel samples of a row, writing the
+// work-item per CLR_ROW_PIXELS pixel samples of a row, writing the
 // visibility buffer.
 #include "pipeline.h"
 
@@ -14,7 +14,7 @@ void Pipeline::raster()
   rasterKernel_.setArg(2, tileCount_.get());
   rasterKernel_.setArg(3, binEntries_.get());
   rasterKernel_.setArg(4, vis_.get());
-  const size_t row = size_t(cl_.rasterRow);
+  const size_t row = size_t(cl_.rowPixels);
   cl_.queue.enqueueNDRangeKernel(rasterKernel_, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);

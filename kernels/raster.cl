@@ -1,6 +1,6 @@
 /* raster.cl — stage 5: the per-pixel kernel.
  *
- * One work-group per tile. Each work-item owns CLR_RASTER_ROW pixel samples
+ * One work-group per tile. Each work-item owns CLR_ROW_PIXELS pixel samples
  * of one row (1 on a GPU: one work-item per pixel; 16 on a CPU, where PoCL
  * vectorises the explicit vector types to AVX-512 but not a data-dependent
  * loop across work-items). Every work-item walks its tile's bin and, for
@@ -16,12 +16,12 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-#ifndef CLR_RASTER_ROW
-#define CLR_RASTER_ROW 1
+#ifndef CLR_ROW_PIXELS
+#define CLR_ROW_PIXELS 1
 #endif
 
 /* The per-row vector types: scalars for one pixel, 16-wide vectors for 16. */
-#if CLR_RASTER_ROW == 1
+#if CLR_ROW_PIXELS == 1
 typedef long longR;
 typedef int intR;
 typedef uint uintR;
@@ -32,7 +32,7 @@ typedef float floatR;
 #define convert_intR convert_int
 #define convert_floatR convert_float
 #define CLR_STORE_LANES(value, array) ((array)[0] = (value))
-#elif CLR_RASTER_ROW == 16
+#elif CLR_ROW_PIXELS == 16
 typedef long16 longR;
 typedef int16 intR;
 typedef uint16 uintR;
@@ -44,11 +44,11 @@ typedef float16 floatR;
 #define convert_floatR convert_float16
 #define CLR_STORE_LANES(value, array) vstore16((value), 0, (array))
 #else
-#error "CLR_RASTER_ROW must be 1 or 16"
+#error "CLR_ROW_PIXELS must be 1 or 16"
 #endif
 
-#if CLR_TILE_SIZE % CLR_RASTER_ROW != 0
-#error "CLR_RASTER_ROW must divide CLR_TILE_SIZE"
+#if CLR_TILE_SIZE % CLR_ROW_PIXELS != 0
+#error "CLR_ROW_PIXELS must divide CLR_TILE_SIZE"
 #endif
 
 /* Edge function of the directed edge (ax, ay)→(bx, by) at the samples
@@ -66,16 +66,18 @@ inline long edge_bias(int ax, int ay, int bx, int by)
   return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_RASTER_ROW, CLR_TILE_SIZE, 1))) void raster(
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR_TILE_SIZE, 1))) void raster(
     __constant FrameParams* params, __global const TriSetup* setup,
     __global const uint* tileOffset,  // tiles + 1
     __global const uint* binEntries,
     __global VisSample* vis)  // width · height
 {
-  const uint firstX = get_global_id(0) * CLR_RASTER_ROW, py = get_global_id(1);
+  const uint firstX = get_global_id(0) * CLR_ROW_PIXELS, py = get_global_id(1);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
   const intR sx = (int)firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  const int firstSx = (int)firstX * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  const int lastSx = firstSx + (CLR_ROW_PIXELS - 1) * CLR_FIXED_ONE;
 
   uintR bestIndex = CLR_NONE;
   floatR bestDepth = 1.0f, bestB1 = 0.0f, bestB2 = 0.0f;
@@ -83,7 +85,11 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_RASTER_ROW, CLR
   for (uint k = tileOffset[tile]; k < end; ++k) {
     const uint s = binEntries[k];
     __global const TriSetup* t = &setup[s];
-    // Step 1: coverage by the three edge functions and the fill rule.
+    // Step 1: skip triangles whose bounds miss this row segment.
+    const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
+    const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
+    if (sy < minY || sy > maxY || firstSx > maxX || lastSx < minX) continue;
+    // Step 2: coverage by the three edge functions and the fill rule.
     const longR e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
     const longR e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
     const longR e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
@@ -91,11 +97,11 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_RASTER_ROW, CLR
                                      (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
                                      (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
     if (!CLR_ANY(inside)) continue;
-    // Step 2: barycentrics and depth.
+    // Step 3: barycentrics and depth.
     const floatR b1 = convert_floatR(e1) * t->invArea2;
     const floatR b2 = convert_floatR(e2) * t->invArea2;
     const floatR z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
-    // Step 3: depth test, LESS, ties to the earlier triangle.
+    // Step 4: depth test, LESS, ties to the earlier triangle.
     const intR nearer = z < bestDepth;
     const intR tieWin = (z == bestDepth) & (bestIndex != CLR_NONE) & (s < bestIndex);
     const intR take = inside & (nearer | tieWin);
@@ -104,15 +110,15 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_RASTER_ROW, CLR
     bestB1 = select(bestB1, b1, take);
     bestB2 = select(bestB2, b2, take);
   }
-  // Step 4: write the samples that lie inside the viewport.
+  // Step 5: write the samples that lie inside the viewport.
   if (py >= params->height) return;
-  uint index[CLR_RASTER_ROW];
-  float depth[CLR_RASTER_ROW], b1[CLR_RASTER_ROW], b2[CLR_RASTER_ROW];
+  uint index[CLR_ROW_PIXELS];
+  float depth[CLR_ROW_PIXELS], b1[CLR_ROW_PIXELS], b2[CLR_ROW_PIXELS];
   CLR_STORE_LANES(bestIndex, index);
   CLR_STORE_LANES(bestDepth, depth);
   CLR_STORE_LANES(bestB1, b1);
   CLR_STORE_LANES(bestB2, b2);
-  for (int lane = 0; lane < CLR_RASTER_ROW; ++lane) {
+  for (int lane = 0; lane < CLR_ROW_PIXELS; ++lane) {
     if (firstX + lane >= params->width) break;
     VisSample v;
     v.setupIndex = index[lane];

@@ -1,6 +1,8 @@
 /* resolve.cl — stage 6: attribute resolve and shading.
  *
- * One work-item per pixel. Reads the visibility sample, turns its
+ * One work-item per CLR_ROW_PIXELS pixels of a row (as in raster.cl); a
+ * row without any fragment is filled with the background at once. Per
+ * pixel it reads the visibility sample, turns its
  * screen-space barycentrics b_i into perspective-correct ones with the 1/w
  * rule of the notes, λ_i = (b_i / w_i) / Σ_j (b_j / w_j), maps them to the
  * input triangle's vertices (through ClipBary when the triangle was clipped,
@@ -20,26 +22,14 @@ inline uint pack_rgba(float3 c)
   return q.x | (q.y << 8) | (q.z << 16) | 0xFF000000u;
 }
 
-__kernel void resolve(__constant FrameParams* params,
-                      __global const VisSample* vis,  // width · height
-                      __global const TriSetup* setup, __global const ClipBary* clipBary,
-                      __global const uint* indices,   // 3·numTris
-                      __global const float* normals,  // 3·numVerts
-                      __global uint* image)           // width · height
+/* Shades one visibility sample into RGBA8. */
+inline uint resolve_pixel(__constant FrameParams* params, VisSample v, __global const TriSetup* setup,
+                          __global const ClipBary* clipBary, __global const uint* indices,
+                          __global const float* normals)
 {
-  const uint px = get_global_id(0), py = get_global_id(1);
-  if (px >= params->width || py >= params->height) return;
-  const VisSample v = vis[py * params->width + px];
-  const uint out = (params->height - 1 - py) * params->width + px;
-  if (v.setupIndex == CLR_NONE) {
-    image[out] = params->shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
-    return;
-  }
+  if (v.setupIndex == CLR_NONE) return params->shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
   const TriSetup t = setup[v.setupIndex];
-  if (params->shadeMode == CLR_SHADE_ID) {
-    image[out] = ((t.triId + 1) & 0xFFFFFFu) | 0xFF000000u;
-    return;
-  }
+  if (params->shadeMode == CLR_SHADE_ID) return ((t.triId + 1) & 0xFFFFFFu) | 0xFF000000u;
   // Step 1: perspective-correct barycentrics (1/w rule).
   const float b0 = 1.0f - v.b1 - v.b2;
   const float q0 = b0 * t.invW[0], q1 = v.b1 * t.invW[1], q2 = v.b2 * t.invW[2];
@@ -60,8 +50,7 @@ __kernel void resolve(__constant FrameParams* params,
   if (params->shadeMode == CLR_SHADE_DEPTH) {
     const float eyeDepth = 1.0f / invWSum;
     const float g = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
-    image[out] = pack_rgba((float3)(g));
-    return;
+    return pack_rgba((float3)(g));
   }
   // Step 3: interpolate and shade the normal.
   const uint i0 = indices[3 * t.triId], i1 = indices[3 * t.triId + 1], i2 = indices[3 * t.triId + 2];
@@ -69,12 +58,26 @@ __kernel void resolve(__constant FrameParams* params,
   const float len = length(n);
   n = len > 0.0f ? n / len : (float3)(0.0f, 0.0f, 1.0f);
   if (t.flags & CLR_FLAG_BACKFACING) n = -n;
-  if (params->shadeMode == CLR_SHADE_NORMAL) {
-    image[out] = pack_rgba(n * 0.5f + 0.5f);
-    return;
-  }
+  if (params->shadeMode == CLR_SHADE_NORMAL) return pack_rgba(n * 0.5f + 0.5f);
   const float3 light = (float3)(params->lightDir[0], params->lightDir[1], params->lightDir[2]);
   const float diffuse = max(dot(n, light), 0.0f);
   const float3 albedo = (float3)(0.80f, 0.78f, 0.74f);
-  image[out] = pack_rgba(albedo * (0.12f + 0.88f * diffuse));
+  return pack_rgba(albedo * (0.12f + 0.88f * diffuse));
+}
+
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR_TILE_SIZE, 1))) void resolve(
+    __constant FrameParams* params,
+    __global const VisSample* vis,  // width · height
+    __global const TriSetup* setup, __global const ClipBary* clipBary,
+    __global const uint* indices,   // 3·numTris
+    __global const float* normals,  // 3·numVerts
+    __global uint* image)           // width · height
+{
+  const uint firstX = get_global_id(0) * CLR_ROW_PIXELS, py = get_global_id(1);
+  if (py >= params->height || firstX >= params->width) return;
+  const uint count = min((uint)CLR_ROW_PIXELS, params->width - firstX);
+  __global const VisSample* in = &vis[py * params->width + firstX];
+  __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
+  for (uint lane = 0; lane < count; ++lane)
+    out[lane] = resolve_pixel(params, in[lane], setup, clipBary, indices, normals);
 }
