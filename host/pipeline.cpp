@@ -48,6 +48,7 @@ Pipeline::Pipeline(ClContext& cl)
       clipPos_(memory_, "clip-space positions"),
       triCount_(memory_, "setup counts"),
       counters_(memory_, "counters"),
+      clipList_(memory_, "clip list"),
       setup_(memory_, "setup triangles"),
       clipBary_(memory_, "clipped-triangle barycentrics"),
       tileCount_(memory_, "tile counts"),
@@ -60,6 +61,7 @@ Pipeline::Pipeline(ClContext& cl)
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
   setupEmitKernel_ = cl::Kernel(cl.program, "setup_emit");
+  setupClipKernel_ = cl::Kernel(cl.program, "setup_clip");
   scanReduceKernel_ = cl::Kernel(cl.program, "scan_reduce");
   scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_apply");
@@ -69,6 +71,7 @@ Pipeline::Pipeline(ClContext& cl)
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   paramsBuf_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);
+  clipList_.reserve(1024);
 }
 
 void Pipeline::uploadScene(const Mesh& mesh)
@@ -124,7 +127,8 @@ FrameStats Pipeline::finishFrame()
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
   stats.trianglesCulled = counters[CLR_COUNTER_CULLED_TRIS];
-  stats.setupTriangles = numSetup_;
+  stats.setupTriangles = numSetup_ - counters[CLR_COUNTER_DEAD_RECORDS];
+  numClipSlots_ = counters[CLR_COUNTER_CLIP_SLOTS];
   stats.binEntries = numBinEntries_;
   return stats;
 }

@@ -88,12 +88,12 @@ class Pipeline {
   FrameParams params_{};
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
-  uint32_t numClipSlots_ = 0;
+  uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
   std::vector<std::pair<const char*, cl::Event>> events_;
 
-  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, scanReduceKernel_, scanPartialsKernel_,
-      scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, resolveKernel_;
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
+      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, resolveKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_;
@@ -101,6 +101,7 @@ class Pipeline {
   DeviceBuffer<cl_float4> clipPos_;
   DeviceBuffer<uint32_t> triCount_;
   DeviceBuffer<uint32_t> counters_;
+  DeviceBuffer<uint32_t> clipList_;
   DeviceBuffer<TriSetup> setup_;
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, binEntries_;

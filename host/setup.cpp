@@ -1,6 +1,7 @@
 // setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
 // triangles each input triangle yields, scan the counts into offsets, size
-// the setup and ClipBary buffers from the totals, then emit.
+// the setup and ClipBary buffers from the totals, then emit the unclipped
+// triangles and clip the listed ones.
 #include "pipeline.h"
 
 namespace clr {
@@ -8,37 +9,58 @@ namespace clr {
 void Pipeline::setup()
 {
   const uint32_t numTris = params_.numTris;
-  // Step 1: count.
-  cl::Event countEvent;
-  setupCountKernel_.setArg(0, paramsBuf_.get());
-  setupCountKernel_.setArg(1, clipPos_.get());
-  setupCountKernel_.setArg(2, indices_.get());
-  setupCountKernel_.setArg(3, triCount_.get());
-  setupCountKernel_.setArg(4, counters_.get());
-  cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
-                                 &countEvent);
-  record("setup_count", countEvent);
+  // Step 1: count; if the clip list was too short, grow it and count again.
+  uint32_t clipped = 0;
+  for (;;) {
+    cl::Event countEvent;
+    setupCountKernel_.setArg(0, paramsBuf_.get());
+    setupCountKernel_.setArg(1, clipPos_.get());
+    setupCountKernel_.setArg(2, indices_.get());
+    setupCountKernel_.setArg(3, triCount_.get());
+    setupCountKernel_.setArg(4, counters_.get());
+    setupCountKernel_.setArg(5, clipList_.get());
+    setupCountKernel_.setArg(6, uint32_t(clipList_.capacity()));
+    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+                                   &countEvent);
+    record("setup_count", countEvent);
+    clipped = counters_.download(1, CLR_COUNTER_CLIPPED_TRIS)[0];
+    if (clipped <= clipList_.capacity()) break;
+    clipList_.reserve(clipped);
+    counters_.zero(CLR_NUM_COUNTERS);
+  }
 
-  // Step 2: offsets, and the exact sizes of this frame's outputs.
+  // Step 2: offsets, and the sizes of this frame's outputs.
   const uint64_t total = scan(triCount_, numTris, "setup_scan");
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
   numSetup_ = uint32_t(total);
-  numClipSlots_ = counters_.download(1, CLR_COUNTER_CLIP_SLOTS)[0];
   setup_.reserve(numSetup_);
-  clipBary_.reserve(numClipSlots_);
+  clipBary_.reserve(uint64_t(clipped) * CLR_MAX_SUBTRIS);
 
-  // Step 3: emit.
+  // Step 3: emit the unclipped triangles.
   cl::Event emitEvent;
   setupEmitKernel_.setArg(0, paramsBuf_.get());
   setupEmitKernel_.setArg(1, clipPos_.get());
   setupEmitKernel_.setArg(2, indices_.get());
   setupEmitKernel_.setArg(3, triCount_.get());
   setupEmitKernel_.setArg(4, setup_.get());
-  setupEmitKernel_.setArg(5, clipBary_.get());
-  setupEmitKernel_.setArg(6, counters_.get());
   cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
                                  &emitEvent);
   record("setup_emit", emitEvent);
+
+  // Step 4: clip the listed triangles into their reserved slots.
+  if (clipped == 0) return;
+  cl::Event clipEvent;
+  setupClipKernel_.setArg(0, paramsBuf_.get());
+  setupClipKernel_.setArg(1, clipPos_.get());
+  setupClipKernel_.setArg(2, indices_.get());
+  setupClipKernel_.setArg(3, triCount_.get());
+  setupClipKernel_.setArg(4, clipList_.get());
+  setupClipKernel_.setArg(5, setup_.get());
+  setupClipKernel_.setArg(6, clipBary_.get());
+  setupClipKernel_.setArg(7, counters_.get());
+  cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
+                                 &clipEvent);
+  record("setup_clip", clipEvent);
 }
 
 }  // namespace clr

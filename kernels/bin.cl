@@ -8,8 +8,10 @@
  * raster kernel breaks depth ties by setup index, which is input order.
  */
 
-inline int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
+/* Tiles touched by a triangle's pixel bounds; empty for padding records. */
+CLR_INLINE int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
 {
+  if (t->flags & CLR_FLAG_DEAD) return (int4)(0, 0, -1, -1);
   const int4 px = setup_pixel_bounds(t, params->width, params->height);
   return px / CLR_TILE_SIZE;
 }

@@ -21,7 +21,7 @@ typedef struct ClipVertex {
 
 /* Signed distance to clip plane `plane` (>= 0 is inside). Planes: 0 near,
  * 1 left, 2 right, 3 bottom, 4 top (the last four are the guard band). */
-inline float clip_distance(float4 c, int plane, float gx, float gy)
+CLR_INLINE float clip_distance(float4 c, int plane, float gx, float gy)
 {
   switch (plane) {
     case 0: return c.z + c.w;
@@ -32,28 +32,24 @@ inline float clip_distance(float4 c, int plane, float gx, float gy)
   }
 }
 
-inline bool clip_is_finite(float4 c)
+CLR_INLINE bool clip_is_finite(float4 c)
 {
   return isfinite(c.x) && isfinite(c.y) && isfinite(c.z) && isfinite(c.w);
 }
 
 /* Outcode bits of one vertex: 0-4 as clip_distance planes < 0, 5-8 outside
  * the viewport planes x < −w, x > w, y < −w, y > w, 9 beyond far (z > w). */
-inline uint clip_outcode(float4 c, float gx, float gy)
+CLR_INLINE uint clip_outcode(float4 c, float gx, float gy)
 {
-  uint code = 0;
-  for (int plane = 0; plane < 5; ++plane)
-    if (clip_distance(c, plane, gx, gy) < 0.0f) code |= 1u << plane;
-  if (c.x < -c.w) code |= 1u << 5;
-  if (c.x > c.w) code |= 1u << 6;
-  if (c.y < -c.w) code |= 1u << 7;
-  if (c.y > c.w) code |= 1u << 8;
-  if (c.z > c.w) code |= 1u << 9;
-  return code;
+  // Written without branches or a loop (same expressions as clip_distance),
+  // so setup's common path stays vectorisable.
+  return (c.z + c.w < 0.0f ? 1u : 0u) | (c.x + gx * c.w < 0.0f ? 2u : 0u) | (gx * c.w - c.x < 0.0f ? 4u : 0u) |
+         (c.y + gy * c.w < 0.0f ? 8u : 0u) | (gy * c.w - c.y < 0.0f ? 16u : 0u) | (c.x < -c.w ? 32u : 0u) |
+         (c.x > c.w ? 64u : 0u) | (c.y < -c.w ? 128u : 0u) | (c.y > c.w ? 256u : 0u) | (c.z > c.w ? 512u : 0u);
 }
 
 /* The point where edge a→b crosses `plane`, computed from the inside end. */
-inline ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx, float gy)
+CLR_INLINE ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx, float gy)
 {
   const float dIn = clip_distance(inside.pos, plane, gx, gy);
   const float dOut = clip_distance(outside.pos, plane, gx, gy);
@@ -66,7 +62,7 @@ inline ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plan
 
 /* Clips the polygon poly[0..n) against the planes in `planeMask`, in place.
  * Returns the new vertex count (0 when nothing is left). */
-inline int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, float gy)
+CLR_INLINE int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, float gy)
 {
   ClipVertex scratch[CLR_MAX_CLIP_VERTS];
   for (int plane = 0; plane < 5; ++plane) {

@@ -54,13 +54,13 @@ typedef float16 floatR;
 /* Edge function of the directed edge (ax, ay)→(bx, by) at the samples
  * (px, py): twice the signed area of (a, b, p), positive when p is left of
  * the edge. Exact in 64 bits (fixed.h). */
-inline longR edge_function(int ax, int ay, int bx, int by, intR px, int py)
+CLR_INLINE longR edge_function(int ax, int ay, int bx, int by, intR px, int py)
 {
   return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * convert_longR(px - ax);
 }
 
 /* 1 when a centre exactly on the edge a→b belongs to the triangle. */
-inline long edge_bias(int ax, int ay, int bx, int by)
+CLR_INLINE long edge_bias(int ax, int ay, int bx, int by)
 {
   const int dx = bx - ax, dy = by - ay;
   return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;

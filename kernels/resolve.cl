@@ -16,16 +16,16 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-inline uint pack_rgba(float3 c)
+CLR_INLINE uint pack_rgba(float3 c)
 {
   const uint3 q = convert_uint3_sat_rte(clamp(c, 0.0f, 1.0f) * 255.0f);
   return q.x | (q.y << 8) | (q.z << 16) | 0xFF000000u;
 }
 
 /* Shades one visibility sample into RGBA8. */
-inline uint resolve_pixel(__constant FrameParams* params, VisSample v, __global const TriSetup* setup,
-                          __global const ClipBary* clipBary, __global const uint* indices,
-                          __global const float* normals)
+CLR_INLINE uint resolve_pixel(__constant FrameParams* params, VisSample v, __global const TriSetup* setup,
+                              __global const ClipBary* clipBary, __global const uint* indices,
+                              __global const float* normals)
 {
   if (v.setupIndex == CLR_NONE) return params->shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
   const TriSetup t = setup[v.setupIndex];

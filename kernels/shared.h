@@ -16,11 +16,18 @@
 typedef uint32_t uint;
 #endif
 
+#ifdef __OPENCL_VERSION__
+/* Kernel helpers are always inlined: a call left inside PoCL's work-item
+ * loop stops it from vectorising that loop across work-items. */
+#define CLR_INLINE inline __attribute__((always_inline))
+#endif
+
 /* Marks "no triangle" in a visibility sample. */
 #define CLR_NONE 0xFFFFFFFFu
 
 /* TriSetup.flags bits. */
 #define CLR_FLAG_BACKFACING 1u /* wound clockwise on screen (vertices swapped) */
+#define CLR_FLAG_DEAD 2u       /* unused slot of a clipped triangle; never binned */
 
 /* TriSetup.clipSlot when the triangle was not clipped. */
 #define CLR_NOT_CLIPPED 0xFFFFFFFFu
@@ -32,10 +39,10 @@ typedef uint32_t uint;
 #define CLR_SHADE_ID 3u
 
 /* Indices into the stats counter buffer. */
-#define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping */
+#define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* input triangles that produced nothing */
-#define CLR_COUNTER_CLIP_SLOTS 2   /* clipped sub-triangles (ClipBary records) */
-#define CLR_COUNTER_CLIP_CURSOR 3  /* next free ClipBary slot, during emit */
+#define CLR_COUNTER_CLIP_SLOTS 2   /* ClipBary records written by setup_clip */
+#define CLR_COUNTER_DEAD_RECORDS 3 /* padding records written by setup_clip */
 #define CLR_NUM_COUNTERS 4
 
 /* Per-frame constants. Written by the host once per frame; read by every
@@ -62,8 +69,9 @@ typedef struct FrameParams {
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
- * counter-clockwise (y up). Written by setup_emit, read by bin_count,
- * bin_fill, raster and resolve. Array size: the scanned setup count. */
+ * counter-clockwise (y up). Written by setup_emit and setup_clip, read by
+ * bin_count, bin_fill, raster and resolve. Array size: the scanned setup
+ * count (records flagged CLR_FLAG_DEAD are padding). */
 typedef struct TriSetup {
   int x[3];       /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
   int y[3];       /* snapped fixed-point screen y */
@@ -77,8 +85,8 @@ typedef struct TriSetup {
 
 /* Barycentrics of a clipped sub-triangle's vertices with respect to its
  * input triangle: w[i][j] is the weight of input vertex j in sub-vertex i.
- * Written by setup_emit, read by resolve. Array size: the clipped
- * sub-triangle count of the frame. */
+ * Written by setup_clip, read by resolve. Array size: CLR_MAX_SUBTRIS per
+ * clipped input triangle. */
 typedef struct ClipBary {
   float w[3][3];
 } ClipBary;
@@ -99,7 +107,10 @@ typedef struct VisSample {
  *  clipPos    float4[numVerts]    transform;    read by setup, resolve
  *  triCount   uint[numTris + 1]   setup_count writes counts, the scan turns
  *                                 them into offsets (last = total); read by
- *                                 setup_emit
+ *                                 setup_emit and setup_clip
+ *  clipList   uint[CLIPPED_TRIS]  setup_count lists triangles to clip (the
+ *                                 host grows it and recounts if it was
+ *                                 short); read by setup_clip
  *  tileCount  uint[tiles + 1]     bin_count, then scanned to offsets; read
  *                                 by bin_fill and raster
  *  tileCursor uint[tiles]         bin_fill (atomic cursors)
