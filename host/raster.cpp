@@ -1,5 +1,5 @@
-// raster.cpp — host side of kernels/raster.cl: one work-group per tile, one
-// work-item per CLR_ROW_PIXELS pixel samples of a row, writing the
+// raster.cpp — host side of kernels/raster.cl: one work-group per tile,
+// with one work-item per pixel sample (GPU) or per tile (CPU), writing the
 // visibility buffer.
 #include "pipeline.h"
 
@@ -14,10 +14,12 @@ void Pipeline::raster()
   rasterKernel_.setArg(2, tileCount_.get());
   rasterKernel_.setArg(3, binEntries_.get());
   rasterKernel_.setArg(4, vis_.get());
-  const size_t row = size_t(cl_.rowPixels);
-  cl_.queue.enqueueNDRangeKernel(rasterKernel_, cl::NullRange,
-                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
-                                 cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
+  // One work-item per pixel (GPU shape) or per tile (CPU shape, see raster.cl).
+  const bool perPixel = cl_.rowPixels == 1;
+  const cl::NDRange global = perPixel ? cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE)
+                                      : cl::NDRange(params_.tilesX, params_.tilesY);
+  const cl::NDRange local = perPixel ? cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE) : cl::NDRange(1, 1);
+  cl_.queue.enqueueNDRangeKernel(rasterKernel_, cl::NullRange, global, local, nullptr, &event);
   record("raster", event);
 }
 

@@ -1,11 +1,14 @@
 /* raster.cl — stage 5: the per-pixel kernel.
  *
- * One work-group per tile. Each work-item owns CLR_ROW_PIXELS pixel samples
- * of one row (1 on a GPU: one work-item per pixel; 16 on a CPU, where PoCL
- * vectorises the explicit vector types to AVX-512 but not a data-dependent
- * loop across work-items). Every work-item walks its tile's bin and, for
- * every triangle, evaluates the three integer edge functions of the notes at
- * its pixel centres (i + 0.5, j + 0.5) in 64-bit fixed point. Fill rule (GL
+ * Two work shapes, chosen per device with -D CLR_ROW_PIXELS. On a GPU (1)
+ * one work-item per pixel sample and one work-group per tile; each
+ * work-item walks its tile's bin. On a CPU (16) one work-item per tile, which
+ * walks the bin once and tests each triangle only on the rows its bounds
+ * span, 16 pixels at a time in explicit vector types (PoCL turns these into
+ * AVX-512, but does not vectorise a data-dependent loop across work-items).
+ * Either way, for every triangle the three integer edge functions of the
+ * notes are evaluated at pixel centres (i + 0.5, j + 0.5) in 64-bit fixed
+ * point. Fill rule (GL
  * as in llvmpipe, y up): a centre exactly on an edge is inside for a left
  * edge (dy < 0 on a counter-clockwise triangle) or a horizontal bottom edge
  * (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
@@ -66,58 +69,59 @@ CLR_INLINE long edge_bias(int ax, int ay, int bx, int by)
   return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR_TILE_SIZE, 1))) void raster(
-    __constant FrameParams* params, __global const TriSetup* setup,
-    __global const uint* tileOffset,  // tiles + 1
-    __global const uint* binEntries,
-    __global VisSample* vis)  // width · height
-{
-  const uint firstX = get_global_id(0) * CLR_ROW_PIXELS, py = get_global_id(1);
-  const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
-  const intR sx = (int)firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
-  const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
-  const int firstSx = (int)firstX * CLR_FIXED_ONE + CLR_FIXED_HALF;
-  const int lastSx = firstSx + (CLR_ROW_PIXELS - 1) * CLR_FIXED_ONE;
+/* The nearest fragment so far of one row segment. */
+typedef struct RowBest {
+  uintR index;
+  floatR depth, b1, b2;
+} RowBest;
 
-  uintR bestIndex = CLR_NONE;
-  floatR bestDepth = 1.0f, bestB1 = 0.0f, bestB2 = 0.0f;
-  const uint end = tileOffset[tile + 1];
-  for (uint k = tileOffset[tile]; k < end; ++k) {
-    const uint s = binEntries[k];
-    __global const TriSetup* t = &setup[s];
-    // Step 1: skip triangles whose bounds miss this row segment.
-    const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
-    const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
-    if (sy < minY || sy > maxY || firstSx > maxX || lastSx < minX) continue;
-    // Step 2: coverage by the three edge functions and the fill rule.
-    const longR e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
-    const longR e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
-    const longR e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
-    const intR inside = convert_intR((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
-                                     (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
-                                     (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
-    if (!CLR_ANY(inside)) continue;
-    // Step 3: barycentrics and depth.
-    const floatR b1 = convert_floatR(e1) * t->invArea2;
-    const floatR b2 = convert_floatR(e2) * t->invArea2;
-    const floatR z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
-    // Step 4: depth test, LESS, ties to the earlier triangle.
-    const intR nearer = z < bestDepth;
-    const intR tieWin = (z == bestDepth) & (bestIndex != CLR_NONE) & (s < bestIndex);
-    const intR take = inside & (nearer | tieWin);
-    bestIndex = select(bestIndex, (uintR)s, take);
-    bestDepth = select(bestDepth, z, take);
-    bestB1 = select(bestB1, b1, take);
-    bestB2 = select(bestB2, b2, take);
-  }
-  // Step 5: write the samples that lie inside the viewport.
+CLR_INLINE RowBest row_best_init(void)
+{
+  RowBest b;
+  b.index = CLR_NONE;
+  b.depth = 1.0f;
+  b.b1 = 0.0f;
+  b.b2 = 0.0f;
+  return b;
+}
+
+/* Tests setup triangle s against the row segment (sx, sy) and keeps the
+ * nearest fragment in *best. */
+CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intR sx, int sy, RowBest* best)
+{
+  // Step 1: coverage by the three edge functions and the fill rule.
+  const longR e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
+  const longR e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
+  const longR e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
+  const intR inside = convert_intR((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
+                                   (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
+                                   (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
+  if (!CLR_ANY(inside)) return;
+  // Step 2: barycentrics and depth.
+  const floatR b1 = convert_floatR(e1) * t->invArea2;
+  const floatR b2 = convert_floatR(e2) * t->invArea2;
+  const floatR z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
+  // Step 3: depth test, LESS, ties to the earlier triangle.
+  const intR nearer = z < best->depth;
+  const intR tieWin = (z == best->depth) & (best->index != CLR_NONE) & (s < best->index);
+  const intR take = inside & (nearer | tieWin);
+  best->index = select(best->index, (uintR)s, take);
+  best->depth = select(best->depth, z, take);
+  best->b1 = select(best->b1, b1, take);
+  best->b2 = select(best->b2, b2, take);
+}
+
+/* Writes the samples of a row segment that lie inside the viewport. */
+CLR_INLINE void raster_write_row(__constant FrameParams* params, uint firstX, uint py, const RowBest* best,
+                                 __global VisSample* vis)
+{
   if (py >= params->height) return;
   uint index[CLR_ROW_PIXELS];
   float depth[CLR_ROW_PIXELS], b1[CLR_ROW_PIXELS], b2[CLR_ROW_PIXELS];
-  CLR_STORE_LANES(bestIndex, index);
-  CLR_STORE_LANES(bestDepth, depth);
-  CLR_STORE_LANES(bestB1, b1);
-  CLR_STORE_LANES(bestB2, b2);
+  CLR_STORE_LANES(best->index, index);
+  CLR_STORE_LANES(best->depth, depth);
+  CLR_STORE_LANES(best->b1, b1);
+  CLR_STORE_LANES(best->b2, b2);
   for (int lane = 0; lane < CLR_ROW_PIXELS; ++lane) {
     if (firstX + lane >= params->width) break;
     VisSample v;
@@ -128,3 +132,67 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR
     vis[py * params->width + firstX + lane] = v;
   }
 }
+
+#if CLR_ROW_PIXELS == 1
+/* GPU shape: one work-item per pixel, one work-group per tile. */
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(
+    __constant FrameParams* params, __global const TriSetup* setup,
+    __global const uint* tileOffset,  // tiles + 1
+    __global const uint* binEntries,
+    __global VisSample* vis)  // width · height
+{
+  const uint px = get_global_id(0), py = get_global_id(1);
+  const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
+  const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  RowBest best = row_best_init();
+  const uint end = tileOffset[tile + 1];
+  for (uint k = tileOffset[tile]; k < end; ++k) {
+    const uint s = binEntries[k];
+    raster_row(&setup[s], s, sx, sy, &best);
+  }
+  raster_write_row(params, px, py, &best, vis);
+}
+#else
+/* CPU shape: one work-item per tile, as llvmpipe's per-tile threads. Each
+ * triangle is tested only on the rows its bounds span, a 16-pixel vector row
+ * at a time; the tile's nearest fragments stay in private memory. */
+__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant FrameParams* params,
+                                                                    __global const TriSetup* setup,
+                                                                    __global const uint* tileOffset,  // tiles + 1
+                                                                    __global const uint* binEntries,
+                                                                    __global VisSample* vis)  // width · height
+{
+  const uint tileX = get_global_id(0), tileY = get_global_id(1);
+  const uint tile = tileY * params->tilesX + tileX;
+  const int firstY = (int)tileY * CLR_TILE_SIZE;
+  // Step 1: the tile's sample positions and its nearest fragments so far.
+  RowBest best[CLR_TILE_SIZE / CLR_ROW_PIXELS][CLR_TILE_SIZE];
+  intR sx[CLR_TILE_SIZE / CLR_ROW_PIXELS];
+  for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col) {
+    const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS;
+    sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
+    for (int row = 0; row < CLR_TILE_SIZE; ++row) best[col][row] = row_best_init();
+  }
+  // Step 2: each binned triangle, on the rows and row segments it spans.
+  const uint end = tileOffset[tile + 1];
+  for (uint k = tileOffset[tile]; k < end; ++k) {
+    const uint s = binEntries[k];
+    __global const TriSetup* t = &setup[s];
+    const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
+    const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
+    const int rowBegin = max(0, ((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);
+    const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS) - firstY);
+    for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col) {
+      const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS) * CLR_FIXED_ONE + CLR_FIXED_HALF;
+      if (firstSx > maxX || firstSx + (CLR_ROW_PIXELS - 1) * CLR_FIXED_ONE < minX) continue;
+      for (int row = rowBegin; row <= rowEnd; ++row)
+        raster_row(t, s, sx[col], (firstY + row) * CLR_FIXED_ONE + CLR_FIXED_HALF, &best[col][row]);
+    }
+  }
+  // Step 3: write the tile.
+  for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col)
+    for (int row = 0; row < CLR_TILE_SIZE; ++row)
+      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS, firstY + row, &best[col][row], vis);
+}
+#endif

@@ -96,6 +96,22 @@ CLR_INLINE bool setup_make(const float4* c, __constant FrameParams* params, uint
   return valid;
 }
 
+/* Field-by-field copy to global memory: a whole-struct copy becomes a
+ * memcpy, which PoCL's vectoriser cannot widen across work-items. */
+CLR_INLINE void setup_store(__global TriSetup* dst, const TriSetup* t)
+{
+  for (int i = 0; i < 3; ++i) {
+    dst->x[i] = t->x[i];
+    dst->y[i] = t->y[i];
+    dst->z[i] = t->z[i];
+    dst->invW[i] = t->invW[i];
+  }
+  dst->invArea2 = t->invArea2;
+  dst->triId = t->triId;
+  dst->clipSlot = t->clipSlot;
+  dst->flags = t->flags;
+}
+
 /* How an input triangle is handled. */
 #define CLR_SETUP_CULLED 0u
 #define CLR_SETUP_SIMPLE 1u
@@ -149,6 +165,7 @@ __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__cons
   barrier(CLK_LOCAL_MEM_FENCE);
   // Step 2: one work-item per group updates the counters and the clip list.
   if (lid != 0) return;
+  const uint groupFirst = get_group_id(0) * 64;
   uint culled = 0, clipped = 0;
   for (uint i = 0; i < 64; ++i) {
     culled += kind[i] == CLR_SETUP_CULLED;
@@ -159,7 +176,7 @@ __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__cons
   uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], clipped);
   for (uint i = 0; i < 64; ++i)
     if (kind[i] == CLR_SETUP_CLIP) {
-      if (slot < clipListCapacity) clipList[slot] = tri + i;
+      if (slot < clipListCapacity) clipList[slot] = groupFirst + i;
       ++slot;
     }
 }
@@ -177,7 +194,7 @@ __kernel void setup_emit(__constant FrameParams* params,
   uint clipPlanes;
   if (setup_classify(tri, clipPos, indices, params, c, &clipPlanes) != CLR_SETUP_SIMPLE) return;
   TriSetup t;
-  if (setup_make(c, params, tri, &t, 0)) setup[triOffset[tri]] = t;
+  if (setup_make(c, params, tri, &t, 0)) setup_store(&setup[triOffset[tri]], &t);
 }
 
 /* Pass 3: clips the listed triangles and fills their reserved slots. */
