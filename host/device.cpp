@@ -96,15 +96,15 @@ DeviceInfo selectDevice(const std::string& selector)
   throw Error("--device " + selector + ": no device name matches (see 'clraster devices')");
 }
 
-int defaultRowPixels(const cl::Device& device)
+int defaultLanes(const cl::Device& device)
 {
   return (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) ? 16 : 1;
 }
 
-std::string kernelBuildOptions(int rowPixels)
+std::string kernelBuildOptions(int lanes)
 {
   std::ostringstream options;
-  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_ROW_PIXELS=" << rowPixels;
+  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
   return options.str();
 }
 
@@ -130,12 +130,12 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
-ClContext::ClContext(const std::string& selector, int rowPixelsOverride) : info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int lanesOverride) : info(selectDevice(selector))
 {
-  rowPixels = rowPixelsOverride ? rowPixelsOverride : defaultRowPixels(info.device);
+  lanes = lanesOverride ? lanesOverride : defaultLanes(info.device);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
-  program = buildProgram(context, info.device, kernelBuildOptions(rowPixels));
+  program = buildProgram(context, info.device, kernelBuildOptions(lanes));
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
 }

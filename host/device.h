@@ -31,13 +31,13 @@ DeviceInfo selectDevice(const std::string& selector);
 
 // Pixels per work-item of the raster kernel for a device: 16 (one vector
 // row) on CPUs, where PoCL vectorises explicit vector types; 1 elsewhere.
-int defaultRowPixels(const cl::Device& device);
+int defaultLanes(const cl::Device& device);
 
-// The OpenCL context every stage shares. rowPixels 0 picks the device's default.
+// The OpenCL context every stage shares. lanes 0 picks the device's default.
 struct ClContext {
-  explicit ClContext(const std::string& selector, int rowPixels = 0);
+  explicit ClContext(const std::string& selector, int lanes = 0);
   DeviceInfo info;
-  int rowPixels = 1;  // CLR_ROW_PIXELS the program was built with
+  int lanes = 1;  // CLR_LANES the program was built with
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;
@@ -46,7 +46,7 @@ struct ClContext {
 };
 
 // The compile options every build uses (also the key of PoCL's cache).
-std::string kernelBuildOptions(int rowPixels);
+std::string kernelBuildOptions(int lanes);
 
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
 

@@ -15,7 +15,7 @@ void Pipeline::raster()
   rasterKernel_.setArg(3, binEntries_.get());
   rasterKernel_.setArg(4, vis_.get());
   // One work-item per pixel (GPU shape) or per tile (CPU shape, see raster.cl).
-  const bool perPixel = cl_.rowPixels == 1;
+  const bool perPixel = cl_.lanes == 1;
   const cl::NDRange global = perPixel ? cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE)
                                       : cl::NDRange(params_.tilesX, params_.tilesY);
   const cl::NDRange local = perPixel ? cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE) : cl::NDRange(1, 1);

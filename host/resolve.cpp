@@ -15,7 +15,7 @@ void Pipeline::resolve()
   resolveKernel_.setArg(4, indices_.get());
   resolveKernel_.setArg(5, normals_.get());
   resolveKernel_.setArg(6, image_.get());
-  const size_t row = size_t(cl_.rowPixels);
+  const size_t row = size_t(cl_.lanes);
   cl_.queue.enqueueNDRangeKernel(resolveKernel_, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);

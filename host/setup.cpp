@@ -9,6 +9,7 @@ namespace clr {
 void Pipeline::setup()
 {
   const uint32_t numTris = params_.numTris;
+  const uint32_t batches = (numTris + cl_.lanes - 1) / cl_.lanes;  // CLR_LANES triangles per work-item
   // Step 1: count; if the clip list was too short, grow it and count again.
   uint32_t clipped = 0;
   for (;;) {
@@ -20,7 +21,7 @@ void Pipeline::setup()
     setupCountKernel_.setArg(4, counters_.get());
     setupCountKernel_.setArg(5, clipList_.get());
     setupCountKernel_.setArg(6, uint32_t(clipList_.capacity()));
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                    &countEvent);
     record("setup_count", countEvent);
     clipped = counters_.download(1, CLR_COUNTER_CLIPPED_TRIS)[0];
@@ -43,7 +44,7 @@ void Pipeline::setup()
   setupEmitKernel_.setArg(2, indices_.get());
   setupEmitKernel_.setArg(3, triCount_.get());
   setupEmitKernel_.setArg(4, setup_.get());
-  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                  &emitEvent);
   record("setup_emit", emitEvent);
 

@@ -1,6 +1,6 @@
 /* raster.cl — stage 5: the per-pixel kernel.
  *
- * Two work shapes, chosen per device with -D CLR_ROW_PIXELS. On a GPU (1)
+ * Two work shapes, chosen per device with -D CLR_LANES. On a GPU (1)
  * one work-item per pixel sample and one work-group per tile; each
  * work-item walks its tile's bin. On a CPU (16) one work-item per tile, which
  * walks the bin once and tests each triangle only on the rows its bounds
@@ -19,47 +19,16 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-#ifndef CLR_ROW_PIXELS
-#define CLR_ROW_PIXELS 1
-#endif
-
-/* The per-row vector types: scalars for one pixel, 16-wide vectors for 16. */
-#if CLR_ROW_PIXELS == 1
-typedef long longR;
-typedef int intR;
-typedef uint uintR;
-typedef float floatR;
-#define CLR_LANE_INDEX 0
-#define CLR_ANY(mask) (mask)
-#define convert_longR convert_long
-#define convert_intR convert_int
-#define convert_floatR convert_float
-#define CLR_STORE_LANES(value, array) ((array)[0] = (value))
-#elif CLR_ROW_PIXELS == 16
-typedef long16 longR;
-typedef int16 intR;
-typedef uint16 uintR;
-typedef float16 floatR;
-#define CLR_LANE_INDEX ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-#define CLR_ANY(mask) any(mask)
-#define convert_longR convert_long16
-#define convert_intR convert_int16
-#define convert_floatR convert_float16
-#define CLR_STORE_LANES(value, array) vstore16((value), 0, (array))
-#else
-#error "CLR_ROW_PIXELS must be 1 or 16"
-#endif
-
-#if CLR_TILE_SIZE % CLR_ROW_PIXELS != 0
-#error "CLR_ROW_PIXELS must divide CLR_TILE_SIZE"
+#if CLR_TILE_SIZE % CLR_LANES != 0
+#error "CLR_LANES must divide CLR_TILE_SIZE"
 #endif
 
 /* Edge function of the directed edge (ax, ay)→(bx, by) at the samples
  * (px, py): twice the signed area of (a, b, p), positive when p is left of
  * the edge. Exact in 64 bits (fixed.h). */
-CLR_INLINE longR edge_function(int ax, int ay, int bx, int by, intR px, int py)
+CLR_INLINE longL edge_function(int ax, int ay, int bx, int by, intL px, int py)
 {
-  return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * convert_longR(px - ax);
+  return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * convert_longL(px - ax);
 }
 
 /* 1 when a centre exactly on the edge a→b belongs to the triangle. */
@@ -71,8 +40,8 @@ CLR_INLINE long edge_bias(int ax, int ay, int bx, int by)
 
 /* The nearest fragment so far of one row segment. */
 typedef struct RowBest {
-  uintR index;
-  floatR depth, b1, b2;
+  uintL index;
+  floatL depth, b1, b2;
 } RowBest;
 
 CLR_INLINE RowBest row_best_init(void)
@@ -87,25 +56,25 @@ CLR_INLINE RowBest row_best_init(void)
 
 /* Tests setup triangle s against the row segment (sx, sy) and keeps the
  * nearest fragment in *best. */
-CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intR sx, int sy, RowBest* best)
+CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best)
 {
   // Step 1: coverage by the three edge functions and the fill rule.
-  const longR e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
-  const longR e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
-  const longR e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
-  const intR inside = convert_intR((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
+  const longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
+  const longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
+  const longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
+  const intL inside = convert_intL((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
                                    (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
                                    (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
   if (!CLR_ANY(inside)) return;
   // Step 2: barycentrics and depth.
-  const floatR b1 = convert_floatR(e1) * t->invArea2;
-  const floatR b2 = convert_floatR(e2) * t->invArea2;
-  const floatR z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
+  const floatL b1 = convert_floatL(e1) * t->invArea2;
+  const floatL b2 = convert_floatL(e2) * t->invArea2;
+  const floatL z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
   // Step 3: depth test, LESS, ties to the earlier triangle.
-  const intR nearer = z < best->depth;
-  const intR tieWin = (z == best->depth) & (best->index != CLR_NONE) & (s < best->index);
-  const intR take = inside & (nearer | tieWin);
-  best->index = select(best->index, (uintR)s, take);
+  const intL nearer = z < best->depth;
+  const intL tieWin = (z == best->depth) & (best->index != CLR_NONE) & (s < best->index);
+  const intL take = inside & (nearer | tieWin);
+  best->index = select(best->index, (uintL)s, take);
   best->depth = select(best->depth, z, take);
   best->b1 = select(best->b1, b1, take);
   best->b2 = select(best->b2, b2, take);
@@ -116,13 +85,13 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint firstX, ui
                                  __global VisSample* vis)
 {
   if (py >= params->height) return;
-  uint index[CLR_ROW_PIXELS];
-  float depth[CLR_ROW_PIXELS], b1[CLR_ROW_PIXELS], b2[CLR_ROW_PIXELS];
+  uint index[CLR_LANES];
+  float depth[CLR_LANES], b1[CLR_LANES], b2[CLR_LANES];
   CLR_STORE_LANES(best->index, index);
   CLR_STORE_LANES(best->depth, depth);
   CLR_STORE_LANES(best->b1, b1);
   CLR_STORE_LANES(best->b2, b2);
-  for (int lane = 0; lane < CLR_ROW_PIXELS; ++lane) {
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
     if (firstX + lane >= params->width) break;
     VisSample v;
     v.setupIndex = index[lane];
@@ -133,7 +102,7 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint firstX, ui
   }
 }
 
-#if CLR_ROW_PIXELS == 1
+#if CLR_LANES == 1
 /* GPU shape: one work-item per pixel, one work-group per tile. */
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(
     __constant FrameParams* params, __global const TriSetup* setup,
@@ -167,10 +136,10 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   const uint tile = tileY * params->tilesX + tileX;
   const int firstY = (int)tileY * CLR_TILE_SIZE;
   // Step 1: the tile's sample positions and its nearest fragments so far.
-  RowBest best[CLR_TILE_SIZE / CLR_ROW_PIXELS][CLR_TILE_SIZE];
-  intR sx[CLR_TILE_SIZE / CLR_ROW_PIXELS];
-  for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col) {
-    const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS;
+  RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
+  intL sx[CLR_TILE_SIZE / CLR_LANES];
+  for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
+    const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_LANES;
     sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
     for (int row = 0; row < CLR_TILE_SIZE; ++row) best[col][row] = row_best_init();
   }
@@ -183,16 +152,16 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
     const int rowBegin = max(0, ((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);
     const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS) - firstY);
-    for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col) {
-      const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS) * CLR_FIXED_ONE + CLR_FIXED_HALF;
-      if (firstSx > maxX || firstSx + (CLR_ROW_PIXELS - 1) * CLR_FIXED_ONE < minX) continue;
+    for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
+      const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF;
+      if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
       for (int row = rowBegin; row <= rowEnd; ++row)
         raster_row(t, s, sx[col], (firstY + row) * CLR_FIXED_ONE + CLR_FIXED_HALF, &best[col][row]);
     }
   }
   // Step 3: write the tile.
-  for (int col = 0; col < CLR_TILE_SIZE / CLR_ROW_PIXELS; ++col)
+  for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
-      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_ROW_PIXELS, firstY + row, &best[col][row], vis);
+      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], vis);
 }
 #endif

@@ -1,6 +1,6 @@
 /* resolve.cl — stage 6: attribute resolve and shading.
  *
- * One work-item per CLR_ROW_PIXELS pixels of a row (as in raster.cl); a
+ * One work-item per CLR_LANES pixels of a row (as in raster.cl); a
  * row without any fragment is filled with the background at once. Per
  * pixel it reads the visibility sample, turns its
  * screen-space barycentrics b_i into perspective-correct ones with the 1/w
@@ -65,7 +65,7 @@ CLR_INLINE uint resolve_pixel(__constant FrameParams* params, VisSample v, __glo
   return pack_rgba(albedo * (0.12f + 0.88f * diffuse));
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR_TILE_SIZE, 1))) void resolve(
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
     __constant FrameParams* params,
     __global const VisSample* vis,  // width · height
     __global const TriSetup* setup, __global const ClipBary* clipBary,
@@ -73,9 +73,9 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_ROW_PIXELS, CLR
     __global const float* normals,  // 3·numVerts
     __global uint* image)           // width · height
 {
-  const uint firstX = get_global_id(0) * CLR_ROW_PIXELS, py = get_global_id(1);
+  const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
   if (py >= params->height || firstX >= params->width) return;
-  const uint count = min((uint)CLR_ROW_PIXELS, params->width - firstX);
+  const uint count = min((uint)CLR_LANES, params->width - firstX);
   __global const VisSample* in = &vis[py * params->width + firstX];
   __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
   for (uint lane = 0; lane < count; ++lane)

@@ -13,9 +13,9 @@
  * exclusive scan, setup_emit writes the unclipped triangles at their
  * offsets and setup_clip clips the listed ones, padding unused reserved
  * slots with CLR_FLAG_DEAD records that binning skips. Output order is input
- * order, whatever the scheduling. setup_count and setup_emit keep the
- * common path free of loops and atomics, so PoCL vectorises them across
- * work-items; the rare clipping path runs in its own kernel.
+ * order, whatever the scheduling. setup_count and setup_emit handle
+ * CLR_LANES triangles per work-item (lanes.h): 16 in vector types on a CPU.
+ * The rare clipping path runs in its own, scalar kernel.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -45,95 +45,170 @@ CLR_INLINE int4 setup_pixel_bounds(const TriSetup* t, uint width, uint height)
   return r;
 }
 
-/* Builds one screen triangle from three clip-space vertices. Returns false
- * when it is culled. bary (may be null) holds the sub-vertices' input
- * barycentrics and is swapped along with the vertices. */
-CLR_INLINE bool setup_make(const float4* c, __constant FrameParams* params, uint triId, TriSetup* out, float3* bary)
-{
-  // Straight-line code (no early return), so PoCL can vectorise callers.
-  // Step 1: viewport transform and snapping.
-  bool valid = true;
-  for (int i = 0; i < 3; ++i) {
-    valid = valid && c[i].w > 0.0f;
-    const float invW = 1.0f / c[i].w;
-    const float xs = c[i].x * invW * params->halfWidth + params->halfWidth;
-    const float ys = c[i].y * invW * params->halfHeight + params->halfHeight;
-    const float zs = c[i].z * invW * 0.5f + 0.5f;
-    out->x[i] = convert_int_rte(xs * (float)CLR_FIXED_ONE);
-    out->y[i] = convert_int_rte(ys * (float)CLR_FIXED_ONE);
-    out->z[i] = zs;
-    out->invW[i] = invW;
-  }
-  // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
-  long area2 = (long)(out->x[1] - out->x[0]) * (long)(out->y[2] - out->y[0]) -
-               (long)(out->x[2] - out->x[0]) * (long)(out->y[1] - out->y[0]);
-  const bool back = area2 < 0;
-  valid = valid && area2 != 0 && !(back && params->cullBack);
-  // Step 3: orient counter-clockwise by swapping vertices 1 and 2.
-  const int x1 = out->x[1], y1 = out->y[1];
-  const float z1 = out->z[1], w1 = out->invW[1];
-  out->x[1] = back ? out->x[2] : x1;
-  out->x[2] = back ? x1 : out->x[2];
-  out->y[1] = back ? out->y[2] : y1;
-  out->y[2] = back ? y1 : out->y[2];
-  out->z[1] = back ? out->z[2] : z1;
-  out->z[2] = back ? z1 : out->z[2];
-  out->invW[1] = back ? out->invW[2] : w1;
-  out->invW[2] = back ? w1 : out->invW[2];
-  if (bary && back) {
-    const float3 b1 = bary[1];
-    bary[1] = bary[2];
-    bary[2] = b1;
-  }
-  area2 = back ? -area2 : area2;
-  out->flags = back ? CLR_FLAG_BACKFACING : 0u;
-  // Step 4: cull triangles whose bounds hold no pixel centre.
-  const int4 b = setup_pixel_bounds(out, params->width, params->height);
-  valid = valid && b.x <= b.z && b.y <= b.w;
-  out->invArea2 = 1.0f / convert_float(area2);
-  out->triId = triId;
-  out->clipSlot = CLR_NOT_CLIPPED;
-  return valid;
-}
+/* CLR_LANES triangles' clip-space vertices, one lane per triangle. */
+typedef struct ClipBatch {
+  floatL x[3], y[3], z[3], w[3];
+} ClipBatch;
 
-/* Field-by-field copy to global memory: a whole-struct copy becomes a
- * memcpy, which PoCL's vectoriser cannot widen across work-items. */
-CLR_INLINE void setup_store(__global TriSetup* dst, const TriSetup* t)
-{
-  for (int i = 0; i < 3; ++i) {
-    dst->x[i] = t->x[i];
-    dst->y[i] = t->y[i];
-    dst->z[i] = t->z[i];
-    dst->invW[i] = t->invW[i];
-  }
-  dst->invArea2 = t->invArea2;
-  dst->triId = t->triId;
-  dst->clipSlot = t->clipSlot;
-  dst->flags = t->flags;
-}
+/* CLR_LANES screen triangles, one lane per triangle (TriSetup, transposed). */
+typedef struct SetupBatch {
+  intL x[3], y[3];
+  floatL z[3], invW[3];
+  floatL invArea2;
+  intL back;  // mask: wound clockwise, vertices 1 and 2 swapped
+} SetupBatch;
+
+/* The same, unpacked to arrays so single lanes can be read. */
+typedef struct SetupLanes {
+  int x[3][CLR_LANES], y[3][CLR_LANES];
+  float z[3][CLR_LANES], invW[3][CLR_LANES];
+  float invArea2[CLR_LANES];
+  int back[CLR_LANES];
+} SetupLanes;
 
 /* How an input triangle is handled. */
 #define CLR_SETUP_CULLED 0u
 #define CLR_SETUP_SIMPLE 1u
 #define CLR_SETUP_CLIP 2u
-#define CLR_SETUP_PADDING 3u /* work-item past the last triangle */
 
-/* Fetches the triangle's clip positions and classifies it; *clipPlanes
- * receives the planes (clip.cl bits 0-4) that clipping must use. */
-CLR_INLINE uint setup_classify(uint tri, __global const float4* clipPos, __global const uint* indices,
-                               __constant FrameParams* params, float4* c, uint* clipPlanes)
+/* Loads the clip positions of triangles first .. first + CLR_LANES − 1
+ * (lanes past the last triangle repeat it). */
+CLR_INLINE void setup_load_batch(uint first, uint numTris, __global const float4* clipPos, __global const uint* indices,
+                                 ClipBatch* c)
 {
-  uint code[3];
-  bool finite = true;
-  for (int i = 0; i < 3; ++i) {
-    c[i] = clipPos[indices[3 * tri + i]];
-    finite = finite && clip_is_finite(c[i]);
-    code[i] = clip_outcode(c[i], params->guardX, params->guardY);
+  float p[3][4][CLR_LANES];  // vertex, component, lane
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
+    const uint tri = min(first + lane, numTris - 1);
+    for (int v = 0; v < 3; ++v) {
+      const float4 q = clipPos[indices[3 * tri + v]];
+      p[v][0][lane] = q.x;
+      p[v][1][lane] = q.y;
+      p[v][2][lane] = q.z;
+      p[v][3][lane] = q.w;
+    }
   }
-  const uint allOut = code[0] & code[1] & code[2];
-  *clipPlanes = (code[0] | code[1] | code[2]) & 0x1Fu;
-  if (!finite || (allOut & (1u | (0x1Fu << 5)))) return CLR_SETUP_CULLED;
-  return *clipPlanes ? CLR_SETUP_CLIP : CLR_SETUP_SIMPLE;
+  for (int v = 0; v < 3; ++v) {
+    c->x[v] = CLR_LOAD_LANES(p[v][0]);
+    c->y[v] = CLR_LOAD_LANES(p[v][1]);
+    c->z[v] = CLR_LOAD_LANES(p[v][2]);
+    c->w[v] = CLR_LOAD_LANES(p[v][3]);
+  }
+}
+
+/* Every lane set to one triangle's clip positions. */
+CLR_INLINE ClipBatch setup_broadcast(const float4* c)
+{
+  ClipBatch b;
+  for (int v = 0; v < 3; ++v) {
+    b.x[v] = (floatL)(c[v].x);
+    b.y[v] = (floatL)(c[v].y);
+    b.z[v] = (floatL)(c[v].z);
+    b.w[v] = (floatL)(c[v].w);
+  }
+  return b;
+}
+
+/* clip_outcode (clip.cl) of one vertex per lane, the same expressions. */
+CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx, float gy)
+{
+  const uintL zero = 0;
+  return select(zero, (uintL)1u, z + w < 0.0f) | select(zero, (uintL)2u, x + gx * w < 0.0f) |
+         select(zero, (uintL)4u, gx * w - x < 0.0f) | select(zero, (uintL)8u, y + gy * w < 0.0f) |
+         select(zero, (uintL)16u, gy * w - y < 0.0f) | select(zero, (uintL)32u, x < -w) |
+         select(zero, (uintL)64u, x > w) | select(zero, (uintL)128u, y < -w) | select(zero, (uintL)256u, y > w) |
+         select(zero, (uintL)512u, z > w);
+}
+
+/* Classifies each lane's triangle: CLR_SETUP_CULLED (non-finite, or wholly
+ * outside one viewport plane or behind the near plane), CLR_SETUP_CLIP, or
+ * CLR_SETUP_SIMPLE. */
+CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* params)
+{
+  intL finite = isfinite(c->w[0]);
+  uintL all = ~(uintL)0, any = 0;
+  for (int v = 0; v < 3; ++v) {
+    finite = finite & isfinite(c->x[v]) & isfinite(c->y[v]) & isfinite(c->z[v]) & isfinite(c->w[v]);
+    const uintL code = setup_outcode(c->x[v], c->y[v], c->z[v], c->w[v], params->guardX, params->guardY);
+    all &= code;
+    any |= code;
+  }
+  const intL culled = !finite | ((all & (1u | (0x1Fu << 5))) != 0);
+  const uintL kind = select((uintL)CLR_SETUP_SIMPLE, (uintL)CLR_SETUP_CLIP, (any & 0x1Fu) != 0);
+  return select(kind, (uintL)CLR_SETUP_CULLED, culled);
+}
+
+/* Builds each lane's screen triangle: viewport transform, snapping, exact
+ * doubled area, orientation, pixel bounds. Returns the mask of lanes that
+ * survive (w > 0, non-zero area, not culled as a back face, a pixel centre
+ * inside the bounds). */
+CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out)
+{
+  // Step 1: viewport transform of the notes and snapping.
+  intL valid = (c->w[0] > 0.0f) & (c->w[1] > 0.0f) & (c->w[2] > 0.0f);
+  for (int v = 0; v < 3; ++v) {
+    const floatL invW = 1.0f / c->w[v];
+    const floatL xs = c->x[v] * invW * params->halfWidth + params->halfWidth;
+    const floatL ys = c->y[v] * invW * params->halfHeight + params->halfHeight;
+    out->z[v] = c->z[v] * invW * 0.5f + 0.5f;
+    out->x[v] = convert_intL_rte(xs * (float)CLR_FIXED_ONE);
+    out->y[v] = convert_intL_rte(ys * (float)CLR_FIXED_ONE);
+    out->invW[v] = invW;
+  }
+  // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
+  longL area2 = convert_longL(out->x[1] - out->x[0]) * convert_longL(out->y[2] - out->y[0]) -
+                convert_longL(out->x[2] - out->x[0]) * convert_longL(out->y[1] - out->y[0]);
+  const intL back = convert_intL(area2 < 0);
+  valid = valid & convert_intL(area2 != 0) & !(params->cullBack ? back : (intL)0);
+  // Step 3: orient counter-clockwise by swapping vertices 1 and 2.
+  const intL x1 = out->x[1], y1 = out->y[1];
+  const floatL z1 = out->z[1], w1 = out->invW[1];
+  out->x[1] = select(x1, out->x[2], back);
+  out->x[2] = select(out->x[2], x1, back);
+  out->y[1] = select(y1, out->y[2], back);
+  out->y[2] = select(out->y[2], y1, back);
+  out->z[1] = select(z1, out->z[2], back);
+  out->z[2] = select(out->z[2], z1, back);
+  out->invW[1] = select(w1, out->invW[2], back);
+  out->invW[2] = select(out->invW[2], w1, back);
+  area2 = select(area2, -area2, convert_longL(back));
+  out->back = back;
+  // Step 4: cull triangles whose bounds hold no pixel centre (as setup_pixel_bounds).
+  const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
+  const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
+  const intL x0 = max((minX - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, 0);
+  const intL y0 = max((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, 0);
+  const intL xEnd = min((maxX - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (int)params->width - 1);
+  const intL yEnd = min((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (int)params->height - 1);
+  valid = valid & (x0 <= xEnd) & (y0 <= yEnd);
+  out->invArea2 = 1.0f / convert_floatL(area2);
+  return valid;
+}
+
+CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
+{
+  for (int v = 0; v < 3; ++v) {
+    CLR_STORE_LANES(b->x[v], l->x[v]);
+    CLR_STORE_LANES(b->y[v], l->y[v]);
+    CLR_STORE_LANES(b->z[v], l->z[v]);
+    CLR_STORE_LANES(b->invW[v], l->invW[v]);
+  }
+  CLR_STORE_LANES(b->invArea2, l->invArea2);
+  CLR_STORE_LANES(b->back, l->back);
+}
+
+/* Writes one lane as a TriSetup record. */
+CLR_INLINE void setup_store(__global TriSetup* dst, const SetupLanes* l, int lane, uint triId, uint clipSlot)
+{
+  for (int v = 0; v < 3; ++v) {
+    dst->x[v] = l->x[v][lane];
+    dst->y[v] = l->y[v][lane];
+    dst->z[v] = l->z[v][lane];
+    dst->invW[v] = l->invW[v][lane];
+  }
+  dst->invArea2 = l->invArea2[lane];
+  dst->triId = triId;
+  dst->clipSlot = clipSlot;
+  dst->flags = l->back[lane] ? CLR_FLAG_BACKFACING : 0u;
 }
 
 /* Pass 1: how many screen triangles each input triangle yields. */
@@ -145,40 +220,46 @@ __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__cons
                                                                           __global uint* clipList,
                                                                           uint clipListCapacity)
 {
-  __local uchar kind[64];
-  const uint tri = get_global_id(0), lid = get_local_id(0);
-  // Step 1: classify and count, one triangle per work-item.
-  uint k = CLR_SETUP_PADDING;
-  if (tri < params->numTris) {
-    float4 c[3];
-    uint clipPlanes;
-    k = setup_classify(tri, clipPos, indices, params, c, &clipPlanes);
-    uint count = k == CLR_SETUP_CLIP ? CLR_MAX_SUBTRIS : 0u;
-    if (k == CLR_SETUP_SIMPLE) {
-      TriSetup t;
-      count = setup_make(c, params, tri, &t, 0) ? 1u : 0u;
-      k = count ? k : CLR_SETUP_CULLED;
+  __local uint culledIn[64], clipBits[64];
+  const uint lid = get_local_id(0), first = get_global_id(0) * CLR_LANES;
+  // Step 1: classify and count CLR_LANES triangles.
+  uint culled = 0, clipMask = 0;
+  if (first < params->numTris) {
+    ClipBatch c;
+    setup_load_batch(first, params->numTris, clipPos, indices, &c);
+    const uintL kind = setup_classify(&c, params);
+    SetupBatch b;
+    const intL made = setup_make(&c, params, &b);
+    const uintL count = select(select((uintL)0u, (uintL)1u, (kind == CLR_SETUP_SIMPLE) & made), (uintL)CLR_MAX_SUBTRIS,
+                               kind == CLR_SETUP_CLIP);
+    uint counts[CLR_LANES];
+    CLR_STORE_LANES(count, counts);
+    for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
+      triCount[first + lane] = counts[lane];
+      culled += counts[lane] == 0;
+      clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
     }
-    triCount[tri] = count;
   }
-  kind[lid] = (uchar)k;
+  culledIn[lid] = culled;
+  clipBits[lid] = clipMask;
   barrier(CLK_LOCAL_MEM_FENCE);
   // Step 2: one work-item per group updates the counters and the clip list.
   if (lid != 0) return;
-  const uint groupFirst = get_group_id(0) * 64;
-  uint culled = 0, clipped = 0;
+  const uint groupFirst = get_group_id(0) * 64 * CLR_LANES;
+  uint culledSum = 0, clipped = 0;
   for (uint i = 0; i < 64; ++i) {
-    culled += kind[i] == CLR_SETUP_CULLED;
-    clipped += kind[i] == CLR_SETUP_CLIP;
+    culledSum += culledIn[i];
+    clipped += popcount(clipBits[i]);
   }
-  if (culled) atomic_add(&counters[CLR_COUNTER_CULLED_TRIS], culled);
+  if (culledSum) atomic_add(&counters[CLR_COUNTER_CULLED_TRIS], culledSum);
   if (!clipped) return;
   uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], clipped);
   for (uint i = 0; i < 64; ++i)
-    if (kind[i] == CLR_SETUP_CLIP) {
-      if (slot < clipListCapacity) clipList[slot] = groupFirst + i;
-      ++slot;
-    }
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      if (clipBits[i] & (1u << lane)) {
+        if (slot < clipListCapacity) clipList[slot] = groupFirst + i * CLR_LANES + lane;
+        ++slot;
+      }
 }
 
 /* Pass 2: writes the unclipped screen triangles at their scanned offsets. */
@@ -188,13 +269,20 @@ __kernel void setup_emit(__constant FrameParams* params,
                          __global const uint* triOffset,  // numTris + 1, scanned
                          __global TriSetup* setup)        // triOffset[numTris]
 {
-  const uint tri = get_global_id(0);
-  if (tri >= params->numTris) return;
-  float4 c[3];
-  uint clipPlanes;
-  if (setup_classify(tri, clipPos, indices, params, c, &clipPlanes) != CLR_SETUP_SIMPLE) return;
-  TriSetup t;
-  if (setup_make(c, params, tri, &t, 0)) setup_store(&setup[triOffset[tri]], &t);
+  const uint first = get_global_id(0) * CLR_LANES;
+  if (first >= params->numTris) return;
+  ClipBatch c;
+  setup_load_batch(first, params->numTris, clipPos, indices, &c);
+  const uintL kind = setup_classify(&c, params);
+  SetupBatch b;
+  const intL write = setup_make(&c, params, &b) & (kind == CLR_SETUP_SIMPLE);
+  if (!CLR_ANY(write)) return;
+  SetupLanes l;
+  setup_unpack(&b, &l);
+  int writeLane[CLR_LANES];
+  CLR_STORE_LANES(write, writeLane);
+  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane)
+    if (writeLane[lane]) setup_store(&setup[triOffset[first + lane]], &l, lane, first + lane, CLR_NOT_CLIPPED);
 }
 
 /* Pass 3: clips the listed triangles and fills their reserved slots. */
@@ -210,32 +298,36 @@ __kernel void setup_clip(__constant FrameParams* params,
   const uint i = get_global_id(0);
   if (i >= counters[CLR_COUNTER_CLIPPED_TRIS]) return;
   const uint tri = clipList[i];
-  float4 c[3];
-  uint clipPlanes;
-  setup_classify(tri, clipPos, indices, params, c, &clipPlanes);
-  // Step 1: clip in homogeneous space.
+  // Step 1: clip in homogeneous space against the planes a vertex is outside.
   ClipVertex poly[CLR_MAX_CLIP_VERTS];
+  uint planes = 0;
   for (int v = 0; v < 3; ++v) {
-    poly[v].pos = c[v];
+    poly[v].pos = clipPos[indices[3 * tri + v]];
     poly[v].bary = (float3)((float)(v == 0), (float)(v == 1), (float)(v == 2));
+    planes |= clip_outcode(poly[v].pos, params->guardX, params->guardY) & 0x1Fu;
   }
-  const int n = clip_polygon(poly, 3, clipPlanes, params->guardX, params->guardY);
+  const int n = clip_polygon(poly, 3, planes, params->guardX, params->guardY);
   // Step 2: fan the polygon; set up and write each surviving triangle.
   const uint base = triOffset[tri];
   uint count = 0;
   for (int k = 1; k + 1 < n; ++k) {
     const float4 sc[3] = {poly[0].pos, poly[k].pos, poly[k + 1].pos};
-    float3 sb[3] = {poly[0].bary, poly[k].bary, poly[k + 1].bary};
-    TriSetup t;
-    if (!setup_make(sc, params, tri, &t, sb)) continue;
+    const ClipBatch batch = setup_broadcast(sc);
+    SetupBatch b;
+    int made[CLR_LANES];
+    CLR_STORE_LANES(setup_make(&batch, params, &b), made);
+    if (!made[0]) continue;
+    SetupLanes l;
+    setup_unpack(&b, &l);
+    const float3 sb[3] = {poly[0].bary, l.back[0] ? poly[k + 1].bary : poly[k].bary,
+                          l.back[0] ? poly[k].bary : poly[k + 1].bary};
     const uint slot = atomic_inc(&counters[CLR_COUNTER_CLIP_SLOTS]);
     for (int v = 0; v < 3; ++v) {
       clipBary[slot].w[v][0] = sb[v].x;
       clipBary[slot].w[v][1] = sb[v].y;
       clipBary[slot].w[v][2] = sb[v].z;
     }
-    t.clipSlot = slot;
-    setup[base + count++] = t;
+    setup_store(&setup[base + count++], &l, 0, tri, slot);
   }
   // Step 3: pad the reservation with records that binning skips.
   for (uint k = count; k < CLR_MAX_SUBTRIS; ++k) {

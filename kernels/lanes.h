@@ -1,0 +1,43 @@
+/* lanes.h — the kernels' lane types: how many items one work-item handles.
+ *
+ * Chosen per device with -D CLR_LANES. On a GPU (1) a work-item handles one
+ * item (a pixel, a triangle) in scalar types. On a CPU (16) it handles 16 in
+ * explicit vector types, which PoCL compiles to AVX-512; PoCL does not
+ * vectorise across work-items anything but the simplest kernels. Code is
+ * written once against these names; comparisons yield masks (1 or −1 for
+ * true), combined with & | ! and consumed by select(), which reads them
+ * correctly in both widths. OpenCL only (follows shared.h).
+ */
+#ifndef CLR_LANES
+#define CLR_LANES 1
+#endif
+
+#if CLR_LANES == 1
+typedef long longL;
+typedef int intL;
+typedef uint uintL;
+typedef float floatL;
+#define CLR_LANE_INDEX 0
+#define CLR_ANY(mask) ((mask) != 0)
+#define convert_longL convert_long
+#define convert_intL convert_int
+#define convert_floatL convert_float
+#define convert_intL_rte convert_int_rte
+#define CLR_STORE_LANES(value, array) ((array)[0] = (value))
+#define CLR_LOAD_LANES(array) ((array)[0])
+#elif CLR_LANES == 16
+typedef long16 longL;
+typedef int16 intL;
+typedef uint16 uintL;
+typedef float16 floatL;
+#define CLR_LANE_INDEX ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+#define CLR_ANY(mask) any(mask)
+#define convert_longL convert_long16
+#define convert_intL convert_int16
+#define convert_floatL convert_float16
+#define convert_intL_rte convert_int16_rte
+#define CLR_STORE_LANES(value, array) vstore16((value), 0, (array))
+#define CLR_LOAD_LANES(array) vload16(0, (array))
+#else
+#error "CLR_LANES must be 1 or 16"
+#endif
