@@ -155,7 +155,16 @@ std::vector<uint32_t> Pipeline::readBinEntries() const
 }
 std::vector<VisSample> Pipeline::readVis() const
 {
-  return vis_.download(uint64_t(params_.width) * params_.height);
+  // Raster leaves the samples of empty tiles unwritten; they read as empty.
+  std::vector<VisSample> vis = vis_.download(uint64_t(params_.width) * params_.height);
+  const std::vector<uint32_t> offsets = readTileOffsets();
+  for (uint32_t y = 0; y < params_.height; ++y)
+    for (uint32_t x = 0; x < params_.width; ++x) {
+      const uint32_t tile = (y / CLR_TILE_SIZE) * params_.tilesX + x / CLR_TILE_SIZE;
+      if (offsets[tile] == offsets[tile + 1])
+        vis[size_t(y) * params_.width + x] = VisSample{CLR_NONE, 1.0f, 0.0f, 0.0f};
+    }
+  return vis;
 }
 std::vector<uint32_t> Pipeline::readImage() const
 {

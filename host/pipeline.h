@@ -70,7 +70,7 @@ class Pipeline {
   std::vector<ClipBary> readClipBary() const;
   std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
   std::vector<uint32_t> readBinEntries() const;
-  std::vector<VisSample> readVis() const;
+  std::vector<VisSample> readVis() const;  // empty tiles read as CLR_NONE
   std::vector<uint32_t> readImage() const;
 
   const FrameParams& params() const { return params_; }

@@ -114,9 +114,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
   const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF;
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
+  if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   RowBest best = row_best_init();
-  const uint end = tileOffset[tile + 1];
-  for (uint k = tileOffset[tile]; k < end; ++k) {
+  for (uint k = begin; k < end; ++k) {
     const uint s = binEntries[k];
     raster_row(&setup[s], s, sx, sy, &best);
   }
@@ -135,6 +136,8 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   const uint tileX = get_global_id(0), tileY = get_global_id(1);
   const uint tile = tileY * params->tilesX + tileX;
   const int firstY = (int)tileY * CLR_TILE_SIZE;
+  const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
+  if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   // Step 1: the tile's sample positions and its nearest fragments so far.
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];
@@ -144,8 +147,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
     for (int row = 0; row < CLR_TILE_SIZE; ++row) best[col][row] = row_best_init();
   }
   // Step 2: each binned triangle, on the rows and row segments it spans.
-  const uint end = tileOffset[tile + 1];
-  for (uint k = tileOffset[tile]; k < end; ++k) {
+  for (uint k = begin; k < end; ++k) {
     const uint s = binEntries[k];
     __global const TriSetup* t = &setup[s];
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));

@@ -1,8 +1,8 @@
 /* resolve.cl — stage 6: attribute resolve and shading.
  *
- * One work-item per CLR_LANES pixels of a row (as in raster.cl); a
- * row without any fragment is filled with the background at once. Per
- * pixel it reads the visibility sample, turns its
+ * One work-item per CLR_LANES pixels of a row (lanes.h). Pixels of a tile
+ * that binning left empty are background, without a visibility read. Per
+ * covered pixel it reads the visibility sample, turns its
  * screen-space barycentrics b_i into perspective-correct ones with the 1/w
  * rule of the notes, λ_i = (b_i / w_i) / Σ_j (b_j / w_j), maps them to the
  * input triangle's vertices (through ClipBary when the triangle was clipped,
@@ -67,7 +67,8 @@ CLR_INLINE uint resolve_pixel(__constant FrameParams* params, VisSample v, __glo
 
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
     __constant FrameParams* params,
-    __global const VisSample* vis,  // width · height
+    __global const VisSample* vis,    // width · height, unwritten in empty tiles
+    __global const uint* tileOffset,  // tiles + 1
     __global const TriSetup* setup, __global const ClipBary* clipBary,
     __global const uint* indices,   // 3·numTris
     __global const float* normals,  // 3·numVerts
@@ -78,6 +79,16 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   const uint count = min((uint)CLR_LANES, params->width - firstX);
   __global const VisSample* in = &vis[py * params->width + firstX];
   __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
+  // Step 1: a tile without triangles is background; raster left it unwritten.
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
+  if (tileOffset[tile] == tileOffset[tile + 1]) {
+    VisSample none;
+    none.setupIndex = CLR_NONE;
+    const uint background = resolve_pixel(params, none, setup, clipBary, indices, normals);
+    for (uint lane = 0; lane < count; ++lane) out[lane] = background;
+    return;
+  }
+  // Step 2: shade each pixel.
   for (uint lane = 0; lane < count; ++lane)
     out[lane] = resolve_pixel(params, in[lane], setup, clipBary, indices, normals);
 }

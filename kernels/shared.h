@@ -92,7 +92,9 @@ typedef struct ClipBary {
 } ClipBary;
 
 /* The visibility buffer: the nearest fragment of one pixel sample.
- * Written by raster, read by resolve. Array size: width · height. */
+ * Written by raster, read by resolve. Array size: width · height. Pixels of
+ * tiles with no binned triangle are not written (resolve knows them from
+ * the tile offsets). */
 typedef struct VisSample {
   uint setupIndex; /* index into TriSetup, or CLR_NONE */
   float depth;     /* window depth of the fragment */
