@@ -1,0 +1,450 @@
+// bench_suite.cpp — clraster_bench: one benchmark case, clraster against
+// Mesa llvmpipe, both shading lambert.
+//
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|near]
+//                  [--size WxH] [--warmup K] [--frames N] [--device SEL]
+//                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
+//                  [--peak-int64-gmadds X] [--peak-copy-gbs Y]
+//
+// The case: SCENE (a file assimp reads; the built-in scene when absent), or
+// --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
+// optionally --grid N (N x N instanced copies of the scene), seen from the
+// --view "far" (whole scene) or "near" (camera close). Each renderer draws K
+// warm-up then N timed frames: clraster is Pipeline::render (parameter
+// upload to the RGBA8 image in host memory) on the clraster device;
+// llvmpipe is glClear + glDrawElements + glFinish + glReadPixels with
+// LP_NUM_THREADS threads (set here to the core count when unset). Then, unless
+// --no-ids, one triangle-ID frame of each is compared as clraster_vs_llvmpipe
+// does. Prints one JSON line on stdout; --csv appends one row (and the
+// header to an empty file); --images writes both lambert images as
+// PREFIX-clraster.png and PREFIX-llvmpipe.png. Definitions of the derived columns:
+//   min_bytes     = 24 B per vertex (position + normal) + 12 B per triangle
+//                   (indices) + 4 B per pixel (the RGBA8 image): what any
+//                   renderer must hold on the device; mem_ratio =
+//                   device_bytes / min_bytes.
+//   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time: the
+//                   nominal edge-function evaluations of the raster kernel;
+//                   each is two 64-bit multiplies and a subtraction, so
+//                   edge_frac_int64 = 2 x edge_gevals_s / the peak 64-bit
+//                   multiply-add rate (clraster_peak).
+//   rr_gbs        = (36 B per pixel: visibility sample written and read,
+//                   16 + 16, image written, 4; plus 64 B of TriSetup read per
+//                   bin entry) / (raster + resolve time); rr_frac_copy =
+//                   rr_gbs / the peak copy bandwidth (read + write bytes).
+// Every failure is one line on stderr and exit status 1.
+#include "llvmpipe_render.h"
+#include "procedural.h"
+
+#include "camera.h"
+#include "cl.h"
+#include "device.h"
+#include "image_io.h"
+#include "pipeline.h"
+#include "scene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace clr;
+using namespace clr::bench;
+
+namespace {
+
+struct Args {
+  std::string scenePath;  // empty: the built-in scene (or --sphere)
+  uint64_t sphereTriangles = 0;
+  uint32_t gridSide = 0;
+  std::string view = "far";
+  uint32_t width = 1920, height = 1080;
+  uint32_t warmup = 2, frames = 5;
+  std::string device;
+  bool ids = true;
+  std::string name;
+  std::string csvPath;
+  std::string imagePrefix;
+  std::optional<double> peakInt64Gmadds, peakCopyGbs;
+};
+
+uint64_t parseUint(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
+{
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || v < lo || v > hi)
+    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
+double parsePositive(const std::string& flag, const std::string& text)
+{
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(v > 0.0) || !std::isfinite(v))
+    throw Error(flag + ": '" + text + "' must be a positive number");
+  return v;
+}
+
+Args parseArgs(const std::vector<std::string>& args)
+{
+  Args r;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw Error(a + ": missing value");
+      return args[++i];
+    };
+    if (a == "--size") {
+      const std::string& s = value();
+      const size_t x = s.find('x');
+      if (x == std::string::npos) throw Error("--size: '" + s + "' is not WxH");
+      r.width = uint32_t(parseUint(a, s.substr(0, x), 1, CLR_MAX_VIEWPORT));
+      r.height = uint32_t(parseUint(a, s.substr(x + 1), 1, CLR_MAX_VIEWPORT));
+    } else if (a == "--sphere") {
+      r.sphereTriangles = parseUint(a, value(), 12, 400000000);
+    } else if (a == "--grid") {
+      r.gridSide = uint32_t(parseUint(a, value(), 1, 1000));
+    } else if (a == "--view") {
+      r.view = value();
+      if (r.view != "far" && r.view != "near") throw Error("--view: '" + r.view + "' is not far or near");
+    } else if (a == "--warmup") {
+      r.warmup = uint32_t(parseUint(a, value(), 0, 100000));
+    } else if (a == "--frames") {
+      r.frames = uint32_t(parseUint(a, value(), 1, 100000));
+    } else if (a == "--device") {
+      r.device = value();
+    } else if (a == "--no-ids") {
+      r.ids = false;
+    } else if (a == "--name") {
+      r.name = value();
+    } else if (a == "--csv") {
+      r.csvPath = value();
+    } else if (a == "--images") {
+      r.imagePrefix = value();
+    } else if (a == "--peak-int64-gmadds") {
+      r.peakInt64Gmadds = parsePositive(a, value());
+    } else if (a == "--peak-copy-gbs") {
+      r.peakCopyGbs = parsePositive(a, value());
+    } else if (!a.empty() && a[0] == '-') {
+      throw Error("unknown option '" + a + "'");
+    } else if (r.scenePath.empty()) {
+      r.scenePath = a;
+    } else {
+      throw Error("unexpected argument '" + a + "' (only one SCENE)");
+    }
+  }
+  if (r.sphereTriangles && !r.scenePath.empty()) throw Error("--sphere and a SCENE exclude each other");
+  return r;
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Text safe inside a JSON string and a CSV field: no quotes, backslashes,
+// commas or control characters.
+std::string plainText(const std::string& s)
+{
+  std::string out;
+  for (char c : s)
+    if (c != '"' && c != '\\' && c != ',' && static_cast<unsigned char>(c) >= 0x20) out += c;
+  return out;
+}
+
+std::string baseName(const std::string& path)
+{
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// The case's scene (built here, not timed) and its default name.
+BenchScene buildScene(const Args& args)
+{
+  if (args.sphereTriangles) {
+    BenchScene sphere = displacedSphere(args.sphereTriangles);
+    return args.gridSide ? instancedGrid(sphere.mesh, args.gridSide) : sphere;
+  }
+  const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  if (args.gridSide) return instancedGrid(mesh, args.gridSide);
+  return BenchScene{mesh, meshBounds(mesh)};
+}
+
+std::string caseName(const Args& args)
+{
+  if (!args.name.empty()) return plainText(args.name);
+  std::string scene = args.sphereTriangles     ? "sphere" + std::to_string(args.sphereTriangles)
+                      : args.scenePath.empty() ? "default"
+                                               : baseName(args.scenePath);
+  if (args.gridSide) scene = "grid" + std::to_string(args.gridSide) + "x" + std::to_string(args.gridSide) + "-" + scene;
+  return plainText(scene + "-" + args.view);
+}
+
+struct ClrasterRun {
+  std::string device;
+  std::vector<double> frameMs;
+  std::map<std::string, double> stageMs;  // medians over the timed frames
+  FrameStats last;
+  size_t deviceBytes = 0;
+  std::vector<uint32_t> image, ids;
+};
+
+ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera)
+{
+  // Step 1: device, program and scene upload (not timed).
+  ClContext cl(args.device);
+  Pipeline pipeline(cl);
+  pipeline.uploadScene(mesh);
+  FrameSettings settings;
+  settings.width = args.width;
+  settings.height = args.height;
+  settings.shadeMode = CLR_SHADE_LAMBERT;
+  settings.mvp = camera.viewProjection(args.width, args.height);
+  settings.lightDir = camera.lightDirection();
+  settings.zNear = camera.zNear;
+  settings.zFar = camera.zFar;
+
+  // Step 2: warm-up and timed frames.
+  ClrasterRun run;
+  run.device = cl.info.name;
+  std::vector<FrameStats> timed;
+  for (uint32_t f = 0; f < args.warmup + args.frames; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    FrameStats stats = pipeline.render(settings, run.image);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (f < args.warmup) continue;
+    run.frameMs.push_back(ms);
+    timed.push_back(std::move(stats));
+  }
+  for (const auto& entry : timed.front().stageMs) {
+    std::vector<double> perFrame;
+    for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);
+    run.stageMs[entry.first] = median(perFrame);
+  }
+  run.last = timed.back();
+  run.deviceBytes = pipeline.deviceBytes();
+
+  // Step 3: the ID frame for the coverage comparison.
+  if (args.ids) {
+    settings.shadeMode = CLR_SHADE_ID;
+    pipeline.render(settings, run.ids);
+    for (uint32_t& p : run.ids) p &= kIdMask;
+  }
+  return run;
+}
+
+// The numbers of one case, as printed.
+struct Report {
+  std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer;
+  uint64_t pixels = 0, triangles = 0, vertices = 0;
+  double clrMs = 0, clrMin = 0, clrMax = 0, llvmMs = 0, llvmMin = 0, llvmMax = 0;
+  double rasterMs = NAN, resolveMs = NAN, otherMs = 0;
+  std::string stages;  // "name=ms;..." for the CSV
+  uint64_t minBytes = 0;
+  std::optional<IdComparison> ids;
+  double shadeDifference = 0;
+  double edgeEvalsPerS = NAN, rasterResolveBytesPerS = NAN;
+};
+
+std::string number(double v, const char* format = "%.6g")
+{
+  if (!std::isfinite(v)) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+std::string fraction(double value, const std::optional<double>& peak)
+{
+  return peak ? number(value / *peak) : "";
+}
+
+// The columns, in order: header name and value (already formatted).
+std::vector<std::pair<std::string, std::string>> columns(const Args& args, const Report& r, const ClrasterRun& clr)
+{
+  const FrameStats& s = clr.last;
+  const double mem = double(clr.deviceBytes) / double(std::max<uint64_t>(1, r.minBytes));
+  const auto perS = [](double count, double ms) { return count / (ms * 1e-3); };
+  return {
+      {"name", r.name},
+      {"scene", r.scene},
+      {"view", args.view},
+      {"width", std::to_string(args.width)},
+      {"height", std::to_string(args.height)},
+      {"pixels", std::to_string(r.pixels)},
+      {"triangles", std::to_string(r.triangles)},
+      {"vertices", std::to_string(r.vertices)},
+      {"setup_triangles", std::to_string(s.setupTriangles)},
+      {"bin_entries", std::to_string(s.binEntries)},
+      {"warmup", std::to_string(args.warmup)},
+      {"frames", std::to_string(args.frames)},
+      {"clr_ms", number(r.clrMs, "%.3f")},
+      {"clr_ms_min", number(r.clrMin, "%.3f")},
+      {"clr_ms_max", number(r.clrMax, "%.3f")},
+      {"llvm_ms", number(r.llvmMs, "%.3f")},
+      {"llvm_ms_min", number(r.llvmMin, "%.3f")},
+      {"llvm_ms_max", number(r.llvmMax, "%.3f")},
+      {"ratio", number(r.clrMs / r.llvmMs, "%.3f")},
+      {"clr_mtris_s", number(perS(double(r.triangles), r.clrMs) * 1e-6)},
+      {"llvm_mtris_s", number(perS(double(r.triangles), r.llvmMs) * 1e-6)},
+      {"clr_mpix_s", number(perS(double(r.pixels), r.clrMs) * 1e-6)},
+      {"llvm_mpix_s", number(perS(double(r.pixels), r.llvmMs) * 1e-6)},
+      {"raster_ms", number(r.rasterMs, "%.3f")},
+      {"resolve_ms", number(r.resolveMs, "%.3f")},
+      {"other_stages_ms", number(r.otherMs, "%.3f")},
+      {"stage_ms", r.stages},
+      {"device_bytes", std::to_string(clr.deviceBytes)},
+      {"min_bytes", std::to_string(r.minBytes)},
+      {"mem_ratio", number(mem, "%.3f")},
+      {"covered_pixels", r.ids ? std::to_string(r.ids->coveredUnion) : ""},
+      {"differing_pixels", r.ids ? std::to_string(r.ids->differing) : ""},
+      {"differing_fraction", r.ids ? number(r.ids->differingFraction(), "%.3e") : ""},
+      {"differing_not_near_edge", r.ids ? std::to_string(r.ids->differingNotNearEdge) : ""},
+      {"shade_mad", number(r.shadeDifference, "%.3f")},
+      {"edge_gevals_s", number(r.edgeEvalsPerS * 1e-9)},
+      {"edge_frac_int64", fraction(2.0 * r.edgeEvalsPerS * 1e-9, args.peakInt64Gmadds)},
+      {"rr_gbs", number(r.rasterResolveBytesPerS * 1e-9)},
+      {"rr_frac_copy", fraction(r.rasterResolveBytesPerS * 1e-9, args.peakCopyGbs)},
+      {"lp_threads", r.llvmpipeThreads},
+      {"device", r.device},
+      {"llvmpipe", r.llvmpipeRenderer},
+  };
+}
+
+void printJson(const std::vector<std::pair<std::string, std::string>>& cols, const ClrasterRun& clr)
+{
+  // Numbers stay bare, empty values become null, text is quoted.
+  std::string line = "{";
+  for (const auto& [key, value] : cols) {
+    if (key == "stage_ms") {
+      line += "\"stage_ms\":{";
+      bool first = true;
+      for (const auto& [stage, ms] : clr.stageMs) {
+        line += (first ? "\"" : ",\"") + stage + "\":" + number(ms, "%.3f");
+        first = false;
+      }
+      line += "},";
+      continue;
+    }
+    char* end = nullptr;
+    std::strtod(value.c_str(), &end);
+    const bool isNumber = !value.empty() && *end == '\0';
+    line += "\"" + key + "\":" + (value.empty() ? "null" : isNumber ? value : "\"" + value + "\"") + ",";
+  }
+  line.back() = '}';
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+}
+
+void appendCsv(const std::string& path, const std::vector<std::pair<std::string, std::string>>& cols)
+{
+  FILE* file = std::fopen(path.c_str(), "a");
+  if (!file) throw Error("--csv: cannot open '" + path + "' for appending");
+  std::string header, row;
+  for (const auto& [key, value] : cols) {
+    header += (header.empty() ? "" : ",") + key;
+    row += (row.empty() ? "" : ",") + value;
+  }
+  std::fseek(file, 0, SEEK_END);
+  if (std::ftell(file) == 0) std::fprintf(file, "%s\n", header.c_str());
+  std::fprintf(file, "%s\n", row.c_str());
+  if (std::fclose(file) != 0) throw Error("--csv: cannot write '" + path + "'");
+}
+
+int run(const Args& args)
+{
+  // Step 1: llvmpipe's threads (the core count unless set), outputs, scene, camera.
+  if (!std::getenv("LP_NUM_THREADS"))
+    setenv("LP_NUM_THREADS", std::to_string(std::max(1u, std::thread::hardware_concurrency())).c_str(), 1);
+  if (!args.csvPath.empty()) {
+    FILE* csv = std::fopen(args.csvPath.c_str(), "a");  // fail before any rendering
+    if (!csv) throw Error("--csv: cannot open '" + args.csvPath + "' for appending");
+    std::fclose(csv);
+  }
+  if (!args.imagePrefix.empty())
+    for (const char* suffix : {"-clraster.png", "-llvmpipe.png"}) checkWritable(args.imagePrefix + suffix);
+  const BenchScene scene = buildScene(args);
+  const Mesh& mesh = scene.mesh;
+  if (mesh.numTris() == 0) throw Error("the scene has no triangles");
+  if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
+  const Camera camera = benchCamera(scene, args.view);
+
+  // Step 2: both renderers, one after the other (never concurrently).
+  const ClrasterRun clr = runClraster(args, mesh, camera);
+  const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
+  const LlvmpipeFrames llvm =
+      renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(), args.warmup, args.frames);
+
+  // Step 3: agreement: ID coverage and the lambert images.
+  Report r;
+  if (args.ids)
+    r.ids = compareIds(clr.ids, renderLlvmpipeIds(mesh, args.width, args.height, mvp), args.width, args.height);
+  r.shadeDifference = meanShadeDifference(clr.image, llvm.image, 0xFF261F1Au);
+
+  // Step 4: derived numbers (definitions in the header comment).
+  r.name = caseName(args);
+  r.scene = args.sphereTriangles ? "procedural" : args.scenePath.empty() ? "default" : plainText(args.scenePath);
+  r.device = plainText(clr.device);
+  r.llvmpipeThreads = plainText(std::getenv("LP_NUM_THREADS"));
+  r.llvmpipeRenderer = plainText(llvm.renderer);
+  r.pixels = uint64_t(args.width) * args.height;
+  r.triangles = mesh.numTris();
+  r.vertices = mesh.numVerts();
+  r.clrMs = median(clr.frameMs);
+  r.clrMin = *std::min_element(clr.frameMs.begin(), clr.frameMs.end());
+  r.clrMax = *std::max_element(clr.frameMs.begin(), clr.frameMs.end());
+  r.llvmMs = median(llvm.frameMs);
+  r.llvmMin = *std::min_element(llvm.frameMs.begin(), llvm.frameMs.end());
+  r.llvmMax = *std::max_element(llvm.frameMs.begin(), llvm.frameMs.end());
+  for (const auto& [stage, ms] : clr.stageMs) {
+    if (stage == "raster")
+      r.rasterMs = ms;
+    else if (stage == "resolve")
+      r.resolveMs = ms;
+    else
+      r.otherMs += ms;
+    r.stages += (r.stages.empty() ? "" : ";") + stage + "=" + number(ms, "%.3f");
+  }
+  r.minBytes = 24 * r.vertices + 12 * r.triangles + 4 * r.pixels;
+  const double tilePixels = double(CLR_TILE_SIZE) * CLR_TILE_SIZE;
+  r.edgeEvalsPerS = double(clr.last.binEntries) * tilePixels * 3.0 / (r.rasterMs * 1e-3);
+  r.rasterResolveBytesPerS =
+      (36.0 * double(r.pixels) + 64.0 * double(clr.last.binEntries)) / ((r.rasterMs + r.resolveMs) * 1e-3);
+
+  // Step 5: output.
+  if (!args.imagePrefix.empty()) {
+    writePng(args.imagePrefix + "-clraster.png", args.width, args.height, clr.image);
+    writePng(args.imagePrefix + "-llvmpipe.png", args.width, args.height, llvm.image);
+  }
+  const auto cols = columns(args, r, clr);
+  printJson(cols, clr);
+  if (!args.csvPath.empty()) appendCsv(args.csvPath, cols);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  try {
+    return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc)));
+  } catch (const Error& e) {
+    std::fprintf(stderr, "clraster_bench: %s\n", e.what());
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "clraster_bench: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()), e.err());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "clraster_bench: out of host memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "clraster_bench: %s\n", e.what());
+  }
+  return 1;
+}

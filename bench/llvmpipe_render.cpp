@@ -1,0 +1,228 @@
+// llvmpipe_render.cpp — OSMesa rendering and ID comparison (see
+// llvmpipe_render.h for the contract).
+#define GL_GLEXT_PROTOTYPES
+#include "llvmpipe_render.h"
+
+#include "cl.h"
+
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+
+namespace clr::bench {
+
+namespace {
+
+// An OSMesa RGBA8 context with a 24-bit depth buffer, current for its
+// lifetime, drawing into its own buffer of width x height pixels.
+class OsMesaContext {
+ public:
+  OsMesaContext(uint32_t width, uint32_t height) : width_(width), height_(height), buffer_(size_t(width) * height)
+  {
+    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+    if (!context_) throw Error("OSMesaCreateContextExt failed");
+    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, GLsizei(width), GLsizei(height))) {
+      OSMesaDestroyContext(context_);
+      throw Error("OSMesaMakeCurrent failed for " + std::to_string(width) + "x" + std::to_string(height));
+    }
+  }
+  ~OsMesaContext() { OSMesaDestroyContext(context_); }
+  OsMesaContext(const OsMesaContext&) = delete;
+  OsMesaContext& operator=(const OsMesaContext&) = delete;
+
+  // The common state: the mvp as projection, identity modelview (so eye
+  // space is world space for lighting), depth LESS against 1, no blending,
+  // dithering, culling or multisampling.
+  void setCommonState(const glm::mat4& mvp) const
+  {
+    glViewport(0, 0, GLsizei(width_), GLsizei(height_));
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(glm::value_ptr(mvp));
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    glDisable(GL_DITHER);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_MULTISAMPLE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glClearDepth(1.0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  }
+
+  // Reads the colour buffer into `image`, flipped to top row first.
+  void readImage(std::vector<uint32_t>& rows, std::vector<uint32_t>& image) const
+  {
+    rows.resize(size_t(width_) * height_);
+    glReadPixels(0, 0, GLsizei(width_), GLsizei(height_), GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    image.resize(rows.size());
+    for (uint32_t y = 0; y < height_; ++y)
+      std::copy_n(&rows[size_t(height_ - 1 - y) * width_], width_, &image[size_t(y) * width_]);
+  }
+
+  void checkError(const char* what) const
+  {
+    const GLenum error = glGetError();
+    if (error != GL_NO_ERROR) throw Error("GL error " + std::to_string(error) + " while " + what);
+  }
+
+ private:
+  uint32_t width_, height_;
+  std::vector<uint32_t> buffer_;
+  OSMesaContext context_ = nullptr;
+};
+
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
+                                     const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames)
+{
+  // Step 1: context and state; lighting equal to clraster's lambert shade.
+  OsMesaContext gl(width, height);
+  gl.setCommonState(mvp);
+  const glm::vec3 light = glm::normalize(lightDir);
+  const GLfloat position[4] = {light.x, light.y, light.z, 0.0f};  // directional
+  const GLfloat ambient[4] = {0.12f, 0.12f, 0.12f, 1.0f}, diffuse[4] = {0.88f, 0.88f, 0.88f, 1.0f};
+  const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f}, albedo[4] = {0.80f, 0.78f, 0.74f, 1.0f};
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  glLightfv(GL_LIGHT0, GL_POSITION, position);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, ambient);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, black);
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, black);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, albedo);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, black);
+  glEnable(GL_NORMALIZE);  // clraster normalises the interpolated normal; file normals may not be unit
+  glShadeModel(GL_SMOOTH);
+  glFrontFace(GL_CCW);
+  glClearColor(0x1A / 255.0f, 0x1F / 255.0f, 0x26 / 255.0f, 1.0f);  // clraster's lambert background
+
+  // Step 2: positions, normals and indices in buffer objects, uploaded once.
+  GLuint buffers[3];
+  glGenBuffers(3, buffers);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.positions.size() * sizeof(float)), mesh.positions.data(),
+               GL_STATIC_DRAW);
+  glVertexPointer(3, GL_FLOAT, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.normals.size() * sizeof(float)), mesh.normals.data(), GL_STATIC_DRAW);
+  glNormalPointer(GL_FLOAT, 0, nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[2]);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
+               GL_STATIC_DRAW);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  gl.checkError("uploading the mesh");
+
+  // Step 3: frames, timed from the clear to the image in host memory.
+  LlvmpipeFrames out;
+  out.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  std::vector<uint32_t> rows;
+  for (uint32_t f = 0; f < warmupFrames + timedFrames; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDrawElements(GL_TRIANGLES, GLsizei(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glFinish();
+    gl.readImage(rows, out.image);
+    if (f >= warmupFrames) out.frameMs.push_back(msSince(start));
+  }
+  gl.checkError("drawing");
+  glDeleteBuffers(3, buffers);
+  return out;
+}
+
+std::vector<uint32_t> renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp)
+{
+  // Step 1: unlit, flat, black background.
+  OsMesaContext gl(width, height);
+  gl.setCommonState(mvp);
+  glDisable(GL_LIGHTING);
+  glShadeModel(GL_FLAT);
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+
+  // Step 2: un-shared vertices in index order, each triangle's three
+  // carrying its id (index + 1) as R (low byte), G, B (high byte).
+  const size_t numTris = mesh.numTris();
+  std::vector<float> positions(numTris * 9);
+  std::vector<uint8_t> colours(numTris * 12);
+  for (size_t t = 0; t < numTris; ++t) {
+    const uint32_t id = uint32_t(t + 1) & kIdMask;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * t + k];
+      std::copy_n(&mesh.positions[3 * size_t(v)], 3, &positions[9 * t + 3 * k]);
+      uint8_t* c = &colours[12 * t + 4 * k];
+      c[0] = uint8_t(id), c[1] = uint8_t(id >> 8), c[2] = uint8_t(id >> 16), c[3] = 255;
+    }
+  }
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, positions.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, colours.data());
+
+  // Step 3: one frame, ids masked to 24 bits.
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(numTris * 3));
+  glFinish();
+  std::vector<uint32_t> rows, image;
+  gl.readImage(rows, image);
+  gl.checkError("drawing ids");
+  for (uint32_t& p : image) p &= kIdMask;
+  return image;
+}
+
+namespace {
+
+// True when the 3x3 neighbourhood of (x, y), clipped to the image, holds one id.
+bool uniformNeighbourhood(const std::vector<uint32_t>& image, uint32_t w, uint32_t h, uint32_t x, uint32_t y)
+{
+  const uint32_t id = image[size_t(y) * w + x];
+  for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(y + 1, h - 1); ++ny)
+    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(x + 1, w - 1); ++nx)
+      if (image[size_t(ny) * w + nx] != id) return false;
+  return true;
+}
+
+}  // namespace
+
+IdComparison compareIds(const std::vector<uint32_t>& ours, const std::vector<uint32_t>& theirs, uint32_t width,
+                        uint32_t height)
+{
+  IdComparison c;
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * width + x;
+      c.coveredUnion += ours[i] != 0 || theirs[i] != 0;
+      if (ours[i] == theirs[i]) continue;
+      ++c.differing;
+      if (uniformNeighbourhood(ours, width, height, x, y) && uniformNeighbourhood(theirs, width, height, x, y))
+        ++c.differingNotNearEdge;
+    }
+  return c;
+}
+
+double meanShadeDifference(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b, uint32_t background)
+{
+  const uint32_t rgb = 0xFFFFFFu;
+  uint64_t pixels = 0, sum = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if ((a[i] & rgb) == (background & rgb) && (b[i] & rgb) == (background & rgb)) continue;
+    ++pixels;
+    for (int shift = 0; shift < 24; shift += 8)
+      sum += uint64_t(std::abs(int((a[i] >> shift) & 0xFF) - int((b[i] >> shift) & 0xFF)));
+  }
+  return pixels ? double(sum) / (3.0 * double(pixels)) : 0.0;
+}
+
+}  // namespace clr::bench

@@ -1,0 +1,57 @@
+// llvmpipe_render.h — Mesa llvmpipe (OSMesa) as the benchmark's reference
+// renderer, and the triangle-ID comparison of two images.
+//
+// renderLlvmpipeLambert draws the mesh from GL buffer objects with
+// glDrawElements, fixed-function lighting equal to clraster's lambert shade
+// (one directional light, ambient 0.12 + diffuse 0.88 times the albedo
+// (0.80, 0.78, 0.74), two-sided, no specular, no global ambient; smooth
+// vertex normals renormalised (GL_NORMALIZE: some files' normals are not
+// unit, and clraster normalises), GL_SMOOTH, so per-vertex rather than
+// per-pixel), 24-bit depth, LESS, and clraster's background colour. A frame is timed from
+// glClear through glDrawElements, glFinish and glReadPixels of the RGBA8
+// image. renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat
+// colour = triangle index + 1, un-shared vertices). Images come back top row
+// first, R in the low byte. llvmpipe's thread count is LP_NUM_THREADS, read
+// when the first context is created. Failures are clr::Error.
+#pragma once
+
+#include "scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clr::bench {
+
+constexpr uint32_t kIdMask = 0xFFFFFFu;  // ID images: low 24 bits = triangle + 1
+
+struct LlvmpipeFrames {
+  std::vector<double> frameMs;  // the timed frames only
+  std::vector<uint32_t> image;  // the last frame
+  std::string renderer;         // GL_RENDERER
+};
+
+LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
+                                     const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames);
+
+std::vector<uint32_t> renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp);
+
+// Pixel-by-pixel comparison of two ID images, as clraster_vs_llvmpipe does:
+// the differing fraction is over the pixels either image covers; a differing
+// pixel is "near an edge" unless its 3x3 neighbourhood holds one id in both.
+struct IdComparison {
+  uint64_t coveredUnion = 0, differing = 0, differingNotNearEdge = 0;
+  double differingFraction() const { return coveredUnion ? double(differing) / double(coveredUnion) : 0.0; }
+};
+
+IdComparison compareIds(const std::vector<uint32_t>& ours, const std::vector<uint32_t>& theirs, uint32_t width,
+                        uint32_t height);
+
+// Mean absolute difference of the RGB channels (0..255) over the pixels
+// that differ from `background` in either image; a sanity check that both
+// renderers shade alike (they differ by Gouraud versus per-pixel normals).
+double meanShadeDifference(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b, uint32_t background);
+
+}  // namespace clr::bench
