@@ -23,6 +23,7 @@ typedef float floatL;
 #define convert_intL convert_int
 #define convert_floatL convert_float
 #define convert_intL_rte convert_int_rte
+#define convert_uintL_sat_rte convert_uint_sat_rte
 #define CLR_STORE_LANES(value, array) ((array)[0] = (value))
 #define CLR_LOAD_LANES(array) ((array)[0])
 #elif CLR_LANES == 16
@@ -36,6 +37,7 @@ typedef float16 floatL;
 #define convert_intL convert_int16
 #define convert_floatL convert_float16
 #define convert_intL_rte convert_int16_rte
+#define convert_uintL_sat_rte convert_uint16_sat_rte
 #define CLR_STORE_LANES(value, array) vstore16((value), 0, (array))
 #define CLR_LOAD_LANES(array) vload16(0, (array))
 #else

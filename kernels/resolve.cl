@@ -1,8 +1,9 @@
 /* resolve.cl — stage 6: attribute resolve and shading.
  *
- * One work-item per CLR_LANES pixels of a row (lanes.h). Pixels of a tile
- * that binning left empty are background, without a visibility read. Per
- * covered pixel it reads the visibility sample, turns its
+ * One work-item per CLR_LANES pixels of a row (lanes.h), shaded together in
+ * lane types after the per-pixel gathers. Pixels of a tile that binning
+ * left empty are background, without a visibility read. Per covered pixel
+ * it reads the visibility sample, turns its
  * screen-space barycentrics b_i into perspective-correct ones with the 1/w
  * rule of the notes, λ_i = (b_i / w_i) / Σ_j (b_j / w_j), maps them to the
  * input triangle's vertices (through ClipBary when the triangle was clipped,
@@ -16,53 +17,72 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-CLR_INLINE uint pack_rgba(float3 c)
+/* RGBA8 (R in the low byte, alpha 255) from colour channels in [0, 1]. */
+CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 {
-  const uint3 q = convert_uint3_sat_rte(clamp(c, 0.0f, 1.0f) * 255.0f);
-  return q.x | (q.y << 8) | (q.z << 16) | 0xFF000000u;
+  const floatL lo = 0.0f, hi = 1.0f;
+  const uintL qr = convert_uintL_sat_rte(clamp(r, lo, hi) * 255.0f);
+  const uintL qg = convert_uintL_sat_rte(clamp(g, lo, hi) * 255.0f);
+  const uintL qb = convert_uintL_sat_rte(clamp(b, lo, hi) * 255.0f);
+  return qr | (qg << 8) | (qb << 16) | 0xFF000000u;
 }
 
-/* Shades one visibility sample into RGBA8. */
-CLR_INLINE uint resolve_pixel(__constant FrameParams* params, VisSample v, __global const TriSetup* setup,
-                              __global const ClipBary* clipBary, __global const uint* indices,
-                              __global const float* normals)
+/* What resolve needs of the CLR_LANES pixels' fragments, gathered per lane:
+ * screen barycentrics, the triangle's 1/w, the weights of the input
+ * triangle's vertices in each setup vertex (identity, swapped or ClipBary)
+ * and the input vertex normals. */
+typedef struct ResolveLanes {
+  uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES];
+  float b1[CLR_LANES], b2[CLR_LANES];
+  float invW[3][CLR_LANES];
+  float weight[3][3][CLR_LANES];  // [setup vertex][input vertex][lane]
+  float normal[3][3][CLR_LANES];  // [input vertex][component][lane]
+} ResolveLanes;
+
+CLR_INLINE void resolve_gather(__global const VisSample* in, uint count, __global const TriSetup* setup,
+                               __global const ClipBary* clipBary, __global const uint* indices,
+                               __global const float* normals, bool needNormals, ResolveLanes* g)
 {
-  if (v.setupIndex == CLR_NONE) return params->shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
-  const TriSetup t = setup[v.setupIndex];
-  if (params->shadeMode == CLR_SHADE_ID) return ((t.triId + 1) & 0xFFFFFFu) | 0xFF000000u;
-  // Step 1: perspective-correct barycentrics (1/w rule).
-  const float b0 = 1.0f - v.b1 - v.b2;
-  const float q0 = b0 * t.invW[0], q1 = v.b1 * t.invW[1], q2 = v.b2 * t.invW[2];
-  const float invWSum = q0 + q1 + q2;
-  float3 lambda = (float3)(q0, q1, q2) / invWSum;
-  // Step 2: map to the input triangle's vertex order.
-  if (t.clipSlot != CLR_NOT_CLIPPED) {
-    const ClipBary cb = clipBary[t.clipSlot];
-    float3 mu = (float3)(0.0f);
-    for (int i = 0; i < 3; ++i) {
-      const float li = i == 0 ? lambda.x : (i == 1 ? lambda.y : lambda.z);
-      mu += li * (float3)(cb.w[i][0], cb.w[i][1], cb.w[i][2]);
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    // Step 1: the visibility sample (lanes past the viewport read as empty).
+    const VisSample v = lane < count ? in[lane] : (VisSample){CLR_NONE, 1.0f, 0.0f, 0.0f};
+    g->setupIndex[lane] = v.setupIndex;
+    g->b1[lane] = v.b1;
+    g->b2[lane] = v.b2;
+    // Neighbouring pixels mostly show the same triangle: reuse its gathers.
+    if (lane > 0 && v.setupIndex == g->setupIndex[lane - 1]) {
+      g->triId[lane] = g->triId[lane - 1];
+      g->backfacing[lane] = g->backfacing[lane - 1];
+      for (int i = 0; i < 3; ++i) {
+        g->invW[i][lane] = g->invW[i][lane - 1];
+        for (int j = 0; j < 3; ++j) {
+          g->weight[i][j][lane] = g->weight[i][j][lane - 1];
+          g->normal[i][j][lane] = g->normal[i][j][lane - 1];
+        }
+      }
+      continue;
     }
-    lambda = mu;
-  } else if (t.flags & CLR_FLAG_BACKFACING) {
-    lambda = lambda.xzy;
+    const bool covered = v.setupIndex != CLR_NONE;
+    const TriSetup t = setup[covered ? v.setupIndex : 0];
+    g->triId[lane] = t.triId;
+    g->backfacing[lane] = (t.flags & CLR_FLAG_BACKFACING) != 0;
+    for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
+    // Step 2: input-vertex weights of each setup vertex.
+    const bool clipped = covered && t.clipSlot != CLR_NOT_CLIPPED;
+    const bool swapped = !clipped && (t.flags & CLR_FLAG_BACKFACING);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int identity = swapped && i != 0 ? 3 - i : i;  // setup vertices 1, 2 are input 2, 1
+        g->weight[i][j][lane] = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
+      }
+    // Step 3: the input vertices' normals.
+    for (int j = 0; j < 3; ++j) {
+      const float3 n = covered && needNormals ? vload3(indices[3 * t.triId + j], normals) : (float3)(0.0f);
+      g->normal[j][0][lane] = n.x;
+      g->normal[j][1][lane] = n.y;
+      g->normal[j][2][lane] = n.z;
+    }
   }
-  if (params->shadeMode == CLR_SHADE_DEPTH) {
-    const float eyeDepth = 1.0f / invWSum;
-    const float g = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
-    return pack_rgba((float3)(g));
-  }
-  // Step 3: interpolate and shade the normal.
-  const uint i0 = indices[3 * t.triId], i1 = indices[3 * t.triId + 1], i2 = indices[3 * t.triId + 2];
-  float3 n = lambda.x * vload3(i0, normals) + lambda.y * vload3(i1, normals) + lambda.z * vload3(i2, normals);
-  const float len = length(n);
-  n = len > 0.0f ? n / len : (float3)(0.0f, 0.0f, 1.0f);
-  if (t.flags & CLR_FLAG_BACKFACING) n = -n;
-  if (params->shadeMode == CLR_SHADE_NORMAL) return pack_rgba(n * 0.5f + 0.5f);
-  const float3 light = (float3)(params->lightDir[0], params->lightDir[1], params->lightDir[2]);
-  const float diffuse = max(dot(n, light), 0.0f);
-  const float3 albedo = (float3)(0.80f, 0.78f, 0.74f);
-  return pack_rgba(albedo * (0.12f + 0.88f * diffuse));
 }
 
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
@@ -77,18 +97,65 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
   if (py >= params->height || firstX >= params->width) return;
   const uint count = min((uint)CLR_LANES, params->width - firstX);
-  __global const VisSample* in = &vis[py * params->width + firstX];
   __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
+  const uint background = params->shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
   // Step 1: a tile without triangles is background; raster left it unwritten.
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
-    VisSample none;
-    none.setupIndex = CLR_NONE;
-    const uint background = resolve_pixel(params, none, setup, clipBary, indices, normals);
     for (uint lane = 0; lane < count; ++lane) out[lane] = background;
     return;
   }
-  // Step 2: shade each pixel.
-  for (uint lane = 0; lane < count; ++lane)
-    out[lane] = resolve_pixel(params, in[lane], setup, clipBary, indices, normals);
+  // Step 2: gather, then load the lanes.
+  ResolveLanes g;
+  const uint mode = params->shadeMode;
+  resolve_gather(&vis[py * params->width + firstX], count, setup, clipBary, indices, normals,
+                 mode == CLR_SHADE_LAMBERT || mode == CLR_SHADE_NORMAL, &g);
+  const intL covered = CLR_LOAD_LANES(g.setupIndex) != CLR_NONE;
+  uintL colour;
+  if (mode == CLR_SHADE_ID) {
+    colour = ((CLR_LOAD_LANES(g.triId) + 1u) & 0xFFFFFFu) | 0xFF000000u;
+  } else {
+    // Step 3: perspective-correct barycentrics (1/w rule) of the setup vertices.
+    const floatL b1 = CLR_LOAD_LANES(g.b1), b2 = CLR_LOAD_LANES(g.b2);
+    const floatL b0 = 1.0f - b1 - b2;
+    const floatL q0 = b0 * CLR_LOAD_LANES(g.invW[0]), q1 = b1 * CLR_LOAD_LANES(g.invW[1]),
+                 q2 = b2 * CLR_LOAD_LANES(g.invW[2]);
+    const floatL invWSum = q0 + q1 + q2;
+    const floatL lambda[3] = {q0 / invWSum, q1 / invWSum, q2 / invWSum};
+    if (mode == CLR_SHADE_DEPTH) {
+      const floatL eyeDepth = 1.0f / invWSum;
+      const floatL grey = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
+      colour = pack_rgba(grey, grey, grey);
+    } else {
+      // Step 4: weights of the input vertices, and the interpolated normal.
+      floatL n[3] = {0.0f, 0.0f, 0.0f};
+      for (int j = 0; j < 3; ++j) {
+        floatL mu = 0.0f;
+        for (int i = 0; i < 3; ++i) mu += lambda[i] * CLR_LOAD_LANES(g.weight[i][j]);
+        for (int k = 0; k < 3; ++k) n[k] += mu * CLR_LOAD_LANES(g.normal[j][k]);
+      }
+      const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const intL degenerate = !(len > 0.0f);
+      // Two-sided: back faces use the flipped normal.
+      const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_LOAD_LANES(g.backfacing) != 0u);
+      const floatL inv = sign / select(len, (floatL)1.0f, degenerate);
+      const floatL nx = select(n[0] * inv, (floatL)0.0f, degenerate);
+      const floatL ny = select(n[1] * inv, (floatL)0.0f, degenerate);
+      const floatL nz = select(n[2] * inv, sign, degenerate);
+      if (mode == CLR_SHADE_NORMAL) {
+        colour = pack_rgba(nx * 0.5f + 0.5f, ny * 0.5f + 0.5f, nz * 0.5f + 0.5f);
+      } else {
+        // Step 5: Lambert.
+        const floatL diffuse =
+            max(nx * params->lightDir[0] + ny * params->lightDir[1] + nz * params->lightDir[2], 0.0f);
+        const floatL light = 0.12f + 0.88f * diffuse;
+        colour = pack_rgba(0.80f * light, 0.78f * light, 0.74f * light);
+      }
+    }
+  }
+  // Step 6: write, background where nothing was covered.
+  colour = select((uintL)background, colour, covered);
+  uint result[CLR_LANES];
+  CLR_STORE_LANES(colour, result);
+  for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }
