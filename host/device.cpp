@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <sstream>
 
 namespace clr {
@@ -132,7 +133,10 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
 
 ClContext::ClContext(const std::string& selector, int lanesOverride) : info(selectDevice(selector))
 {
-  lanes = lanesOverride ? lanesOverride : defaultLanes(info.device);
+  // Step 1: the work shape: the caller's, else CLRASTER_LANES, else the device's default.
+  const char* fromEnv = std::getenv("CLRASTER_LANES");
+  lanes = lanesOverride ? lanesOverride : fromEnv ? std::atoi(fromEnv) : defaultLanes(info.device);
+  if (lanes != 1 && lanes != 16) throw Error("CLRASTER_LANES must be 1 or 16");
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   program = buildProgram(context, info.device, kernelBuildOptions(lanes));

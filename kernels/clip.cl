@@ -49,15 +49,14 @@ CLR_INLINE uint clip_outcode(float4 c, float gx, float gy)
 }
 
 /* The point where edge a→b crosses `plane`, computed from the inside end. */
-CLR_INLINE ClipVertex clip_intersect(ClipVertex inside, ClipVertex outside, int plane, float gx, float gy)
+CLR_INLINE void clip_intersect(const ClipVertex* inside, const ClipVertex* outside, int plane, float gx, float gy,
+                               ClipVertex* out)
 {
-  const float dIn = clip_distance(inside.pos, plane, gx, gy);
-  const float dOut = clip_distance(outside.pos, plane, gx, gy);
+  const float dIn = clip_distance(inside->pos, plane, gx, gy);
+  const float dOut = clip_distance(outside->pos, plane, gx, gy);
   const float t = dIn / (dIn - dOut);
-  ClipVertex r;
-  r.pos = inside.pos + t * (outside.pos - inside.pos);
-  r.bary = inside.bary + t * (outside.bary - inside.bary);
-  return r;
+  out->pos = inside->pos + t * (outside->pos - inside->pos);
+  out->bary = inside->bary + t * (outside->bary - inside->bary);
 }
 
 /* Clips the polygon poly[0..n) against the planes in `planeMask`, in place.
@@ -75,7 +74,13 @@ CLR_INLINE int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, f
       const bool aIn = clip_distance(a.pos, plane, gx, gy) >= 0.0f;
       const bool bIn = clip_distance(b.pos, plane, gx, gy) >= 0.0f;
       if (aIn) scratch[m++] = a;
-      if (aIn != bIn) scratch[m++] = aIn ? clip_intersect(a, b, plane, gx, gy) : clip_intersect(b, a, plane, gx, gy);
+      if (aIn != bIn) {
+        if (aIn)
+          clip_intersect(&a, &b, plane, gx, gy, &scratch[m]);
+        else
+          clip_intersect(&b, &a, plane, gx, gy, &scratch[m]);
+        ++m;
+      }
     }
     // Step 2: copy back for the next plane.
     for (int i = 0; i < m; ++i) poly[i] = scratch[i];

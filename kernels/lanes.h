@@ -5,9 +5,15 @@
  * explicit vector types, which PoCL compiles to AVX-512; PoCL does not
  * vectorise across work-items anything but the simplest kernels. Code is
  * written once against these names; comparisons yield masks (1 or −1 for
- * true), combined with & | ! and consumed by select(), which reads them
- * correctly in both widths. OpenCL only (follows shared.h).
+ * true), combined with & | and CLR_NOT and consumed by select(), which
+ * reads them correctly in both widths. Two habits keep the code portable
+ * to Oclgrind, which gets both wrong for vectors: negate masks with CLR_NOT,
+ * never '!', and give min/max/clamp vector arguments, never a scalar.
+ * OpenCL only (follows shared.h).
  */
+
+/* Logical not of a mask, in either width. */
+#define CLR_NOT(mask) ((mask) == 0)
 #ifndef CLR_LANES
 #define CLR_LANES 1
 #endif

@@ -44,14 +44,12 @@ typedef struct RowBest {
   floatL depth, b1, b2;
 } RowBest;
 
-CLR_INLINE RowBest row_best_init(void)
+CLR_INLINE void row_best_init(RowBest* b)
 {
-  RowBest b;
-  b.index = CLR_NONE;
-  b.depth = 1.0f;
-  b.b1 = 0.0f;
-  b.b2 = 0.0f;
-  return b;
+  b->index = CLR_NONE;
+  b->depth = 1.0f;
+  b->b1 = 0.0f;
+  b->b2 = 0.0f;
 }
 
 /* Tests setup triangle s against the row segment (sx, sy) and keeps the
@@ -116,7 +114,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
-  RowBest best = row_best_init();
+  RowBest best;
+  row_best_init(&best);
   for (uint k = begin; k < end; ++k) {
     const uint s = binEntries[k];
     raster_row(&setup[s], s, sx, sy, &best);
@@ -144,7 +143,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
     const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_LANES;
     sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
-    for (int row = 0; row < CLR_TILE_SIZE; ++row) best[col][row] = row_best_init();
+    for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row]);
   }
   // Step 2: each binned triangle, on the rows and row segments it spans.
   for (uint k = begin; k < end; ++k) {

@@ -135,7 +135,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
         for (int k = 0; k < 3; ++k) n[k] += mu * CLR_LOAD_LANES(g.normal[j][k]);
       }
       const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      const intL degenerate = !(len > 0.0f);
+      const intL degenerate = CLR_NOT(len > 0.0f);
       // Two-sided: back faces use the flipped normal.
       const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_LOAD_LANES(g.backfacing) != 0u);
       const floatL inv = sign / select(len, (floatL)1.0f, degenerate);
@@ -147,7 +147,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       } else {
         // Step 5: Lambert.
         const floatL diffuse =
-            max(nx * params->lightDir[0] + ny * params->lightDir[1] + nz * params->lightDir[2], 0.0f);
+            max(nx * params->lightDir[0] + ny * params->lightDir[1] + nz * params->lightDir[2], (floatL)0.0f);
         const floatL light = 0.12f + 0.88f * diffuse;
         colour = pack_rgba(0.80f * light, 0.78f * light, 0.74f * light);
       }

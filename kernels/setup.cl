@@ -96,16 +96,14 @@ CLR_INLINE void setup_load_batch(uint first, uint numTris, __global const float4
 }
 
 /* Every lane set to one triangle's clip positions. */
-CLR_INLINE ClipBatch setup_broadcast(const float4* c)
+CLR_INLINE void setup_broadcast(const float4* c, ClipBatch* b)
 {
-  ClipBatch b;
   for (int v = 0; v < 3; ++v) {
-    b.x[v] = (floatL)(c[v].x);
-    b.y[v] = (floatL)(c[v].y);
-    b.z[v] = (floatL)(c[v].z);
-    b.w[v] = (floatL)(c[v].w);
+    b->x[v] = (floatL)(c[v].x);
+    b->y[v] = (floatL)(c[v].y);
+    b->z[v] = (floatL)(c[v].z);
+    b->w[v] = (floatL)(c[v].w);
   }
-  return b;
 }
 
 /* clip_outcode (clip.cl) of one vertex per lane, the same expressions. */
@@ -132,7 +130,7 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
     all &= code;
     any |= code;
   }
-  const intL culled = !finite | ((all & (1u | (0x1Fu << 5))) != 0);
+  const intL culled = CLR_NOT(finite) | ((all & (1u | (0x1Fu << 5))) != 0);
   const uintL kind = select((uintL)CLR_SETUP_SIMPLE, (uintL)CLR_SETUP_CLIP, (any & 0x1Fu) != 0);
   return select(kind, (uintL)CLR_SETUP_CULLED, culled);
 }
@@ -158,7 +156,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   longL area2 = convert_longL(out->x[1] - out->x[0]) * convert_longL(out->y[2] - out->y[0]) -
                 convert_longL(out->x[2] - out->x[0]) * convert_longL(out->y[1] - out->y[0]);
   const intL back = convert_intL(area2 < 0);
-  valid = valid & convert_intL(area2 != 0) & !(params->cullBack ? back : (intL)0);
+  valid = valid & convert_intL(area2 != 0) & CLR_NOT(params->cullBack ? back : (intL)0);
   // Step 3: orient counter-clockwise by swapping vertices 1 and 2.
   const intL x1 = out->x[1], y1 = out->y[1];
   const floatL z1 = out->z[1], w1 = out->invW[1];
@@ -175,10 +173,10 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   // Step 4: cull triangles whose bounds hold no pixel centre (as setup_pixel_bounds).
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
   const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
-  const intL x0 = max((minX - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, 0);
-  const intL y0 = max((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, 0);
-  const intL xEnd = min((maxX - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (int)params->width - 1);
-  const intL yEnd = min((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (int)params->height - 1);
+  const intL x0 = max((minX - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
+  const intL y0 = max((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
+  const intL xEnd = min((maxX - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (intL)((int)params->width - 1));
+  const intL yEnd = min((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (intL)((int)params->height - 1));
   valid = valid & (x0 <= xEnd) & (y0 <= yEnd);
   out->invArea2 = 1.0f / convert_floatL(area2);
   return valid;
@@ -312,7 +310,8 @@ __kernel void setup_clip(__constant FrameParams* params,
   uint count = 0;
   for (int k = 1; k + 1 < n; ++k) {
     const float4 sc[3] = {poly[0].pos, poly[k].pos, poly[k + 1].pos};
-    const ClipBatch batch = setup_broadcast(sc);
+    ClipBatch batch;
+    setup_broadcast(sc, &batch);
     SetupBatch b;
     int made[CLR_LANES];
     CLR_STORE_LANES(setup_make(&batch, params, &b), made);

@@ -9,11 +9,13 @@ namespace test {
 
 clr::ClContext& context()
 {
-  static clr::ClContext ctx([] {
+  // Never destroyed: releasing OpenCL objects from a static destructor races
+  // the ICD's own teardown at exit (Oclgrind's runtime crashes on it).
+  static clr::ClContext* ctx = new clr::ClContext([] {
     const char* selector = std::getenv("CLRASTER_TEST_DEVICE");
     return std::string(selector ? selector : "");
   }());
-  return ctx;
+  return *ctx;
 }
 
 uint32_t Geometry::addVertex(glm::vec3 p)
