@@ -116,14 +116,14 @@ FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>
 
 FrameStats Pipeline::finishFrame()
 {
-  cl_.queue.finish();
+  // The blocking read waits for every earlier command of the in-order queue.
+  const std::vector<uint32_t> counters = counters_.download(CLR_NUM_COUNTERS);
   FrameStats stats;
   for (const auto& [stage, event] : events_) {
     const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
     const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
     stats.stageMs[stage] += double(end - start) * 1e-6;
   }
-  const std::vector<uint32_t> counters = counters_.download(CLR_NUM_COUNTERS);
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
   stats.trianglesCulled = counters[CLR_COUNTER_CULLED_TRIS];

@@ -10,8 +10,10 @@ void Pipeline::setup()
 {
   const uint32_t numTris = params_.numTris;
   const uint32_t batches = (numTris + cl_.lanes - 1) / cl_.lanes;  // CLR_LANES triangles per work-item
-  // Step 1: count; if the clip list was too short, grow it and count again.
+  // Step 1: count and scan, reading the clip-list length and the total with
+  // one synchronisation; if the clip list was too short, grow it and redo.
   uint32_t clipped = 0;
+  uint64_t total = 0;
   for (;;) {
     cl::Event countEvent;
     setupCountKernel_.setArg(0, paramsBuf_.get());
@@ -24,14 +26,15 @@ void Pipeline::setup()
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                    &countEvent);
     record("setup_count", countEvent);
-    clipped = counters_.download(1, CLR_COUNTER_CLIPPED_TRIS)[0];
+    cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_CLIPPED_TRIS * sizeof(uint32_t), sizeof clipped,
+                                &clipped);
+    total = scan(triCount_, numTris, "setup_scan");  // blocks; the in-order queue has read `clipped` by then
     if (clipped <= clipList_.capacity()) break;
     clipList_.reserve(clipped);
     counters_.zero(CLR_NUM_COUNTERS);
   }
 
-  // Step 2: offsets, and the sizes of this frame's outputs.
-  const uint64_t total = scan(triCount_, numTris, "setup_scan");
+  // Step 2: the sizes of this frame's outputs.
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
   numSetup_ = uint32_t(total);
   setup_.reserve(numSetup_);

@@ -57,6 +57,19 @@ TEST_CASE("differential: random overlapping triangles, some through the near pla
   compare(g, true);
 }
 
+TEST_CASE("differential: more near-plane crossings than the initial clip list holds", "[differential][clip]")
+{
+  // 3000 triangles straddling the eye's plane: the clip list (1024 at first)
+  // must grow and the frame be recounted, with nothing lost.
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> coord(-3.0f, 3.0f), behind(6.5f, 9.0f), ahead(-4.0f, 4.0f);
+  test::Geometry g;
+  for (int t = 0; t < 3000; ++t)
+    g.addTriangle({coord(rng), coord(rng), behind(rng)}, {coord(rng), coord(rng), ahead(rng)},
+                  {coord(rng), coord(rng), ahead(rng)});
+  compare(g);
+}
+
 TEST_CASE("differential: slivers thinner than a subpixel", "[differential]")
 {
   std::mt19937 rng(5);
