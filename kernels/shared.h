@@ -114,10 +114,10 @@ typedef struct VisSample {
  *                                 host grows it and recounts if it was
  *                                 short); read by setup_clip
  *  tileCount  uint[tiles + 1]     bin_count, then scanned to offsets; read
- *                                 by bin_fill and raster
+ *                                 by bin_fill, raster and resolve
  *  tileCursor uint[tiles]         bin_fill (atomic cursors)
  *  binEntries uint[total]         bin_fill writes setup indices; raster reads
- *  scanPartials ulong[...]        scan internals
+ *  scanPartials ulong[chunks + 1] scan internals (at most 4097)
  *  counters   uint[CLR_NUM_COUNTERS] setup kernels; host reads for stats
  *  image      uint[width·height]  resolve writes RGBA8, top row first
  */
