@@ -32,6 +32,7 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
  * triangle's vertices in each setup vertex (identity, swapped or ClipBary)
  * and the input vertex normals. */
 typedef struct ResolveLanes {
+  bool uniform;  // all lanes show one triangle: only lane 0 of the per-triangle arrays is filled
   uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES];
   float b1[CLR_LANES], b2[CLR_LANES];
   float invW[3][CLR_LANES];
@@ -43,7 +44,19 @@ CLR_INLINE void resolve_gather(__global const VisSample* in, uint count, __globa
                                __global const ClipBary* clipBary, __global const uint* indices,
                                __global const float* normals, bool needNormals, ResolveLanes* g)
 {
+  // Step 0: a row inside one triangle (common for large triangles) needs one
+  // gather; its barycentrics still differ per lane.
+  g->uniform = count == CLR_LANES;
+  for (uint lane = 1; lane < count && g->uniform; ++lane) g->uniform = in[lane].setupIndex == in[0].setupIndex;
+  if (g->uniform)
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      g->setupIndex[lane] = in[lane].setupIndex;
+      g->b1[lane] = in[lane].b1;
+      g->b2[lane] = in[lane].b2;
+    }
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    // With every lane on one triangle, lane 0's gathers serve all (see uniform).
+    if (g->uniform && lane > 0) break;
     // Step 1: the visibility sample (lanes past the viewport read as empty).
     const VisSample v = lane < count ? in[lane] : (VisSample){CLR_NONE, 1.0f, 0.0f, 0.0f};
     g->setupIndex[lane] = v.setupIndex;
@@ -111,15 +124,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   resolve_gather(&vis[py * params->width + firstX], count, setup, clipBary, indices, normals,
                  mode == CLR_SHADE_LAMBERT || mode == CLR_SHADE_NORMAL, &g);
   const intL covered = CLR_LOAD_LANES(g.setupIndex) != CLR_NONE;
+  // A per-triangle value for every lane: broadcast when the row is uniform.
+#define CLR_PER_LANE(array, type) (g.uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
   uintL colour;
   if (mode == CLR_SHADE_ID) {
-    colour = ((CLR_LOAD_LANES(g.triId) + 1u) & 0xFFFFFFu) | 0xFF000000u;
+    colour = ((CLR_PER_LANE(g.triId, uintL) + 1u) & 0xFFFFFFu) | 0xFF000000u;
   } else {
     // Step 3: perspective-correct barycentrics (1/w rule) of the setup vertices.
     const floatL b1 = CLR_LOAD_LANES(g.b1), b2 = CLR_LOAD_LANES(g.b2);
     const floatL b0 = 1.0f - b1 - b2;
-    const floatL q0 = b0 * CLR_LOAD_LANES(g.invW[0]), q1 = b1 * CLR_LOAD_LANES(g.invW[1]),
-                 q2 = b2 * CLR_LOAD_LANES(g.invW[2]);
+    const floatL q0 = b0 * CLR_PER_LANE(g.invW[0], floatL), q1 = b1 * CLR_PER_LANE(g.invW[1], floatL),
+                 q2 = b2 * CLR_PER_LANE(g.invW[2], floatL);
     const floatL invWSum = q0 + q1 + q2;
     const floatL lambda[3] = {q0 / invWSum, q1 / invWSum, q2 / invWSum};
     if (mode == CLR_SHADE_DEPTH) {
@@ -131,13 +146,13 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       floatL n[3] = {0.0f, 0.0f, 0.0f};
       for (int j = 0; j < 3; ++j) {
         floatL mu = 0.0f;
-        for (int i = 0; i < 3; ++i) mu += lambda[i] * CLR_LOAD_LANES(g.weight[i][j]);
-        for (int k = 0; k < 3; ++k) n[k] += mu * CLR_LOAD_LANES(g.normal[j][k]);
+        for (int i = 0; i < 3; ++i) mu += lambda[i] * CLR_PER_LANE(g.weight[i][j], floatL);
+        for (int k = 0; k < 3; ++k) n[k] += mu * CLR_PER_LANE(g.normal[j][k], floatL);
       }
       const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       const intL degenerate = CLR_NOT(len > 0.0f);
       // Two-sided: back faces use the flipped normal.
-      const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_LOAD_LANES(g.backfacing) != 0u);
+      const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_PER_LANE(g.backfacing, uintL) != 0u);
       const floatL inv = sign / select(len, (floatL)1.0f, degenerate);
       const floatL nx = select(n[0] * inv, (floatL)0.0f, degenerate);
       const floatL ny = select(n[1] * inv, (floatL)0.0f, degenerate);
@@ -153,6 +168,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       }
     }
   }
+#undef CLR_PER_LANE
   // Step 6: write, background where nothing was covered.
   colour = select((uintL)background, colour, covered);
   uint result[CLR_LANES];
