@@ -23,7 +23,7 @@ esac
 packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
   libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev
-  assimp-testmodels clang-format)
+  assimp-testmodels clang-format oclgrind)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
