@@ -36,6 +36,7 @@
 #include "procedural.h"
 
 #include "camera.h"
+#include "cli.h"
 #include "cl.h"
 #include "device.h"
 #include "image_io.h"
@@ -73,15 +74,6 @@ struct Args {
   std::optional<double> peakInt64Gmadds, peakCopyGbs;
 };
 
-uint64_t parseUint(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
-{
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || v < lo || v > hi)
-    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  return v;
-}
-
 double parsePositive(const std::string& flag, const std::string& text)
 {
   char* end = nullptr;
@@ -101,22 +93,18 @@ Args parseArgs(const std::vector<std::string>& args)
       return args[++i];
     };
     if (a == "--size") {
-      const std::string& s = value();
-      const size_t x = s.find('x');
-      if (x == std::string::npos) throw Error("--size: '" + s + "' is not WxH");
-      r.width = uint32_t(parseUint(a, s.substr(0, x), 1, CLR_MAX_VIEWPORT));
-      r.height = uint32_t(parseUint(a, s.substr(x + 1), 1, CLR_MAX_VIEWPORT));
+      parseSize(a, value(), r.width, r.height);
     } else if (a == "--sphere") {
-      r.sphereTriangles = parseUint(a, value(), 12, 400000000);
+      r.sphereTriangles = parseUnsigned(a, value(), 12, 400000000);
     } else if (a == "--grid") {
-      r.gridSide = uint32_t(parseUint(a, value(), 1, 1000));
+      r.gridSide = uint32_t(parseUnsigned(a, value(), 1, 1000));
     } else if (a == "--view") {
       r.view = value();
       if (r.view != "far" && r.view != "near") throw Error("--view: '" + r.view + "' is not far or near");
     } else if (a == "--warmup") {
-      r.warmup = uint32_t(parseUint(a, value(), 0, 100000));
+      r.warmup = uint32_t(parseUnsigned(a, value(), 0, 100000));
     } else if (a == "--frames") {
-      r.frames = uint32_t(parseUint(a, value(), 1, 100000));
+      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
     } else if (a == "--device") {
       r.device = value();
     } else if (a == "--no-ids") {
@@ -387,7 +375,7 @@ int run(const Args& args)
   // Step 3: agreement: ID coverage and the lambert images.
   Report r;
   if (args.ids)
-    r.ids = compareIds(clr.ids, renderLlvmpipeIds(mesh, args.width, args.height, mvp), args.width, args.height);
+    r.ids = compareIds(clr.ids, renderLlvmpipeIds(mesh, args.width, args.height, mvp).image, args.width, args.height);
   r.shadeDifference = meanShadeDifference(clr.image, llvm.image, 0xFF261F1Au);
 
   // Step 4: derived numbers (definitions in the header comment).

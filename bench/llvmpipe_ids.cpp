@@ -15,15 +15,13 @@
 // fraction exceeds F or any differing pixel is not near an edge. Every
 // failure is one line on stderr and exit status 1.
 #include "camera.h"
+#include "cli.h"
 #include "cl.h"
 #include "device.h"
 #include "image_io.h"
+#include "llvmpipe_render.h"
 #include "pipeline.h"
 #include "scene.h"
-
-#include <GL/osmesa.h>
-#include <GL/gl.h>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -34,10 +32,13 @@
 #include <vector>
 
 using namespace clr;
+using clr::bench::compareIds;
+using clr::bench::IdComparison;
+using clr::bench::kIdMask;
+using clr::bench::LlvmpipeFrames;
+using clr::bench::renderLlvmpipeIds;
 
 namespace {
-
-constexpr uint32_t kIdMask = 0xFFFFFFu;  // ID images: low 24 bits = triangle + 1
 
 struct Args {
   std::string scenePath;  // empty: the built-in default scene
@@ -47,15 +48,6 @@ struct Args {
   std::optional<double> maxDiffFraction;
   uint32_t frames = 1;
 };
-
-uint32_t parseUint(const std::string& flag, const std::string& text, uint32_t lo, uint32_t hi)
-{
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || v < lo || v > hi)
-    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  return uint32_t(v);
-}
 
 Args parseArgs(const std::vector<std::string>& args)
 {
@@ -67,17 +59,13 @@ Args parseArgs(const std::vector<std::string>& args)
       return args[++i];
     };
     if (a == "--size") {
-      const std::string& s = value();
-      const size_t x = s.find('x');
-      if (x == std::string::npos) throw Error("--size: '" + s + "' is not WxH");
-      r.width = parseUint(a, s.substr(0, x), 1, CLR_MAX_VIEWPORT);
-      r.height = parseUint(a, s.substr(x + 1), 1, CLR_MAX_VIEWPORT);
+      parseSize(a, value(), r.width, r.height);
     } else if (a == "--device") {
       r.device = value();
     } else if (a == "--diff") {
       r.diffPath = value();
     } else if (a == "--frames") {
-      r.frames = parseUint(a, value(), 1, 100000);
+      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
     } else if (a == "--max-diff-fraction") {
       const std::string& s = value();
       char* end = nullptr;
@@ -140,116 +128,6 @@ std::vector<uint32_t> renderClraster(const Args& args, const Mesh& mesh, const g
   return image;
 }
 
-// llvmpipe's ID image through OSMesa, flipped to top row first.
-std::vector<uint32_t> renderLlvmpipe(const Args& args, const Mesh& mesh, const glm::mat4& mvp,
-                                     std::vector<double>& frameMs)
-{
-  // Step 1: an RGBA8 context with a 24-bit depth buffer drawing into memory.
-  const uint32_t w = args.width, h = args.height;
-  OSMesaContext context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
-  if (!context) throw Error("OSMesaCreateContextExt failed");
-  std::vector<uint32_t> buffer(size_t(w) * h, 0);
-  if (!OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, GLsizei(w), GLsizei(h))) {
-    OSMesaDestroyContext(context);
-    throw Error("OSMesaMakeCurrent failed for " + std::to_string(w) + "x" + std::to_string(h));
-  }
-
-  // Step 2: fixed-function state: the mvp as projection, no lighting,
-  // blending, dithering, culling or multisampling; depth LESS against 1.
-  glViewport(0, 0, GLsizei(w), GLsizei(h));
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(glm::value_ptr(mvp));
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
-  glDisable(GL_LIGHTING);
-  glDisable(GL_DITHER);
-  glDisable(GL_BLEND);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_MULTISAMPLE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glClearDepth(1.0);
-  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  glShadeModel(GL_FLAT);
-
-  // Step 3: un-shared vertices in index order, each triangle's three
-  // carrying its id (index + 1) as R (low byte), G, B (high byte).
-  const size_t numTris = mesh.numTris();
-  std::vector<float> positions(numTris * 9);
-  std::vector<uint8_t> colours(numTris * 12);
-  for (size_t t = 0; t < numTris; ++t) {
-    const uint32_t id = uint32_t(t + 1) & kIdMask;
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.indices[3 * t + k];
-      std::copy_n(&mesh.positions[3 * size_t(v)], 3, &positions[9 * t + 3 * k]);
-      uint8_t* c = &colours[12 * t + 4 * k];
-      c[0] = uint8_t(id), c[1] = uint8_t(id >> 8), c[2] = uint8_t(id >> 16), c[3] = 255;
-    }
-  }
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_COLOR_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, positions.data());
-  glColorPointer(4, GL_UNSIGNED_BYTE, 0, colours.data());
-
-  // Step 4: frames, timed from the clear to glFinish.
-  for (uint32_t f = 0; f < args.frames; ++f) {
-    const auto start = std::chrono::steady_clock::now();
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, GLsizei(numTris * 3));
-    glFinish();
-    frameMs.push_back(msSince(start));
-  }
-  const GLenum glError = glGetError();
-  OSMesaDestroyContext(context);
-  if (glError != GL_NO_ERROR) throw Error("GL error " + std::to_string(glError) + " while drawing");
-
-  // Step 5: OSMesa's rows are bottom first (OSMESA_Y_UP); flip them.
-  std::vector<uint32_t> image(buffer.size());
-  for (uint32_t y = 0; y < h; ++y)
-    std::transform(&buffer[size_t(h - 1 - y) * w], &buffer[size_t(h - y) * w], &image[size_t(y) * w],
-                   [](uint32_t p) { return p & kIdMask; });
-  return image;
-}
-
-// True when the 3x3 neighbourhood of (x, y), clipped to the image, holds one id.
-bool uniformNeighbourhood(const std::vector<uint32_t>& image, uint32_t w, uint32_t h, uint32_t x, uint32_t y)
-{
-  const uint32_t id = image[size_t(y) * w + x];
-  for (uint32_t ny = y ? y - 1 : 0; ny <= std::min(y + 1, h - 1); ++ny)
-    for (uint32_t nx = x ? x - 1 : 0; nx <= std::min(x + 1, w - 1); ++nx)
-      if (image[size_t(ny) * w + nx] != id) return false;
-  return true;
-}
-
-struct Comparison {
-  uint64_t coveredClraster = 0, coveredLlvmpipe = 0, coveredUnion = 0;
-  uint64_t differing = 0, differingNotNearEdge = 0;
-  std::string firstNotNearEdge;     // "(x, y): clraster id A, llvmpipe id B", top row 0
-  std::vector<uint32_t> diffImage;  // RGBA8: black equal, red differing
-  double differingFraction() const { return double(differing) / double(std::max<uint64_t>(1, coveredUnion)); }
-};
-
-Comparison compare(const std::vector<uint32_t>& ours, const std::vector<uint32_t>& theirs, uint32_t w, uint32_t h)
-{
-  Comparison c;
-  c.diffImage.assign(ours.size(), 0xFF000000u);
-  for (uint32_t y = 0; y < h; ++y)
-    for (uint32_t x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * w + x;
-      c.coveredClraster += ours[i] != 0;
-      c.coveredLlvmpipe += theirs[i] != 0;
-      c.coveredUnion += ours[i] != 0 || theirs[i] != 0;
-      if (ours[i] == theirs[i]) continue;
-      ++c.differing;
-      c.diffImage[i] = 0xFF0000FFu;
-      if (uniformNeighbourhood(ours, w, h, x, y) && uniformNeighbourhood(theirs, w, h, x, y) &&
-          c.differingNotNearEdge++ == 0)
-        c.firstNotNearEdge = "(" + std::to_string(x) + ", " + std::to_string(y) + "): clraster id " +
-                             std::to_string(ours[i]) + ", llvmpipe id " + std::to_string(theirs[i]);
-    }
-  return c;
-}
-
 int run(const Args& args)
 {
   // Step 1: scene, camera and the output path, before any rendering.
@@ -264,10 +142,12 @@ int run(const Args& args)
   // Step 2: both renderers, same triangles, camera and viewport.
   std::vector<double> clrasterMs, llvmpipeMs;
   const std::vector<uint32_t> ours = renderClraster(args, mesh, mvp, clrasterMs);
-  const std::vector<uint32_t> theirs = renderLlvmpipe(args, mesh, mvp, llvmpipeMs);
+  const LlvmpipeFrames llvmpipe = renderLlvmpipeIds(mesh, args.width, args.height, mvp, args.frames);
+  const std::vector<uint32_t>& theirs = llvmpipe.image;
+  llvmpipeMs = llvmpipe.frameMs;
 
   // Step 3: pixel-by-pixel comparison and the report.
-  const Comparison c = compare(ours, theirs, args.width, args.height);
+  const IdComparison c = compareIds(ours, theirs, args.width, args.height);
   if (!args.diffPath.empty()) writePng(args.diffPath, args.width, args.height, c.diffImage);
   const char* threads = std::getenv("LP_NUM_THREADS");
   std::printf(
@@ -276,7 +156,7 @@ int run(const Args& args)
       "\"differing_pixels\":%llu,\"differing_fraction\":%.8f,\"differing_not_near_edge\":%llu,"
       "\"clraster_ms\":%.3f,\"llvmpipe_ms\":%.3f,\"llvmpipe_threads\":\"%s\"}\n",
       args.scenePath.empty() ? "default" : jsonEscape(args.scenePath).c_str(), args.width, args.height, mesh.numTris(),
-      (unsigned long long)c.coveredClraster, (unsigned long long)c.coveredLlvmpipe, (unsigned long long)c.differing,
+      (unsigned long long)c.coveredOurs, (unsigned long long)c.coveredTheirs, (unsigned long long)c.differing,
       c.differingFraction(), (unsigned long long)c.differingNotNearEdge, median(clrasterMs), median(llvmpipeMs),
       threads ? jsonEscape(threads).c_str() : "default");
   std::fflush(stdout);

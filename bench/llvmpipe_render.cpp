@@ -143,7 +143,8 @@ LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t 
   return out;
 }
 
-std::vector<uint32_t> renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp)
+LlvmpipeFrames renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
+                                 uint32_t frames)
 {
   // Step 1: unlit, flat, black background.
   OsMesaContext gl(width, height);
@@ -171,15 +172,21 @@ std::vector<uint32_t> renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32
   glVertexPointer(3, GL_FLOAT, 0, positions.data());
   glColorPointer(4, GL_UNSIGNED_BYTE, 0, colours.data());
 
-  // Step 3: one frame, ids masked to 24 bits.
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(numTris * 3));
-  glFinish();
-  std::vector<uint32_t> rows, image;
-  gl.readImage(rows, image);
+  // Step 3: the frames, timed from the clear to glFinish; ids masked to 24 bits.
+  LlvmpipeFrames out;
+  for (uint32_t f = 0; f < std::max(frames, 1u); ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(numTris * 3));
+    glFinish();
+    out.frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::vector<uint32_t> rows;
+  gl.readImage(rows, out.image);
   gl.checkError("drawing ids");
-  for (uint32_t& p : image) p &= kIdMask;
-  return image;
+  out.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  for (uint32_t& p : out.image) p &= kIdMask;
+  return out;
 }
 
 namespace {
@@ -200,14 +207,20 @@ IdComparison compareIds(const std::vector<uint32_t>& ours, const std::vector<uin
                         uint32_t height)
 {
   IdComparison c;
+  c.diffImage.assign(ours.size(), 0xFF000000u);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
       const size_t i = size_t(y) * width + x;
+      c.coveredOurs += ours[i] != 0;
+      c.coveredTheirs += theirs[i] != 0;
       c.coveredUnion += ours[i] != 0 || theirs[i] != 0;
       if (ours[i] == theirs[i]) continue;
       ++c.differing;
-      if (uniformNeighbourhood(ours, width, height, x, y) && uniformNeighbourhood(theirs, width, height, x, y))
-        ++c.differingNotNearEdge;
+      c.diffImage[i] = 0xFF0000FFu;
+      if (uniformNeighbourhood(ours, width, height, x, y) && uniformNeighbourhood(theirs, width, height, x, y) &&
+          c.differingNotNearEdge++ == 0)
+        c.firstNotNearEdge = "(" + std::to_string(x) + ", " + std::to_string(y) + "): clraster id " +
+                             std::to_string(ours[i]) + ", llvmpipe id " + std::to_string(theirs[i]);
     }
   return c;
 }

@@ -36,13 +36,17 @@ struct LlvmpipeFrames {
 LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
                                      const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames);
 
-std::vector<uint32_t> renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp);
+// frames ID frames, each timed from glClear to glFinish; image is the last.
+LlvmpipeFrames renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
+                                 uint32_t frames = 1);
 
 // Pixel-by-pixel comparison of two ID images, as clraster_vs_llvmpipe does:
 // the differing fraction is over the pixels either image covers; a differing
 // pixel is "near an edge" unless its 3x3 neighbourhood holds one id in both.
 struct IdComparison {
-  uint64_t coveredUnion = 0, differing = 0, differingNotNearEdge = 0;
+  uint64_t coveredOurs = 0, coveredTheirs = 0, coveredUnion = 0, differing = 0, differingNotNearEdge = 0;
+  std::string firstNotNearEdge;     // "(x, y): clraster id A, llvmpipe id B", top row 0
+  std::vector<uint32_t> diffImage;  // RGBA8: black equal, red differing
   double differingFraction() const { return coveredUnion ? double(differing) / double(coveredUnion) : 0.0; }
 };
 

@@ -17,6 +17,7 @@
 // Prints one JSON line on stdout; every failure is one line on stderr and
 // exit status 1.
 #include "cl.h"
+#include "cli.h"
 #include "device.h"
 
 #include <algorithm>
@@ -83,15 +84,6 @@ struct Args {
   uint32_t copyMib = 256;
 };
 
-uint32_t parseUint(const std::string& flag, const std::string& text, uint32_t lo, uint32_t hi)
-{
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || v < lo || v > hi)
-    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  return uint32_t(v);
-}
-
 Args parseArgs(const std::vector<std::string>& args)
 {
   Args r;
@@ -104,9 +96,9 @@ Args parseArgs(const std::vector<std::string>& args)
     if (a == "--device")
       r.device = value();
     else if (a == "--repeats")
-      r.repeats = parseUint(a, value(), 1, 1000);
+      r.repeats = uint32_t(parseUnsigned(a, value(), 1, 1000));
     else if (a == "--copy-mib")
-      r.copyMib = parseUint(a, value(), 1, 65536);
+      r.copyMib = uint32_t(parseUnsigned(a, value(), 1, 65536));
     else
       throw Error("unknown argument '" + a + "'");
   }

@@ -35,16 +35,6 @@ float parseFloat(const std::string& flag, const std::string& text)
   return v;
 }
 
-uint32_t parseUint(const std::string& flag, const std::string& text, uint32_t lo, uint32_t hi)
-{
-  errno = 0;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE || v < lo || v > hi)
-    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  return uint32_t(v);
-}
-
 glm::vec3 parseVec3(const std::string& flag, const std::string& text)
 {
   glm::vec3 v;
@@ -60,6 +50,24 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text)
 
 }  // namespace
 
+uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
+{
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
+void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height)
+{
+  const size_t x = text.find('x');
+  if (x == std::string::npos) throw Error(flag + ": '" + text + "' is not WxH");
+  width = uint32_t(parseUnsigned(flag, text.substr(0, x), 1, CLR_MAX_VIEWPORT));
+  height = uint32_t(parseUnsigned(flag, text.substr(x + 1), 1, CLR_MAX_VIEWPORT));
+}
+
 RenderArgs parseRenderArgs(const std::vector<std::string>& args)
 {
   RenderArgs r;
@@ -73,11 +81,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     if (a == "-o" || a == "--output") {
       r.outPath = value();
     } else if (a == "--size") {
-      const std::string& s = value();
-      const size_t x = s.find('x');
-      if (x == std::string::npos) throw Error("--size: '" + s + "' is not WxH");
-      r.width = parseUint("--size", s.substr(0, x), 1, CLR_MAX_VIEWPORT);
-      r.height = parseUint("--size", s.substr(x + 1), 1, CLR_MAX_VIEWPORT);
+      parseSize(a, value(), r.width, r.height);
     } else if (a == "--eye") {
       r.camera.eye = parseVec3(a, value());
     } else if (a == "--target") {
@@ -109,7 +113,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--device") {
       r.device = value();
     } else if (a == "--frames") {
-      r.frames = parseUint(a, value(), 1, 100000);
+      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
       // Step 2: switches and the scene path.
     } else if (a == "--stats") {
       r.stats = true;

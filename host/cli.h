@@ -26,4 +26,9 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args);
 
 const char* usageText();
 
+// Shared flag parsers (the bench tools use them too); each throws a
+// clr::Error naming the flag and the bad text.
+uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi);
+void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height);
+
 }  // namespace clr
