@@ -8,14 +8,14 @@
  * AVX-512, but does not vectorise a data-dependent loop across work-items).
  * Either way, for every triangle the three integer edge functions of the
  * notes are evaluated at pixel centres (i + 0.5, j + 0.5) in 64-bit fixed
- * point. Fill rule (GL
- * as in llvmpipe, y up): a centre exactly on an edge is inside for a left
- * edge (dy < 0 on a counter-clockwise triangle) or a horizontal bottom edge
- * (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
+ * point. Fill rule (GL as in llvmpipe, y up): a centre exactly on an edge is
+ * inside for a left edge (dy < 0 on a counter-clockwise triangle) or a
+ * horizontal bottom edge (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
  * b_i = E_i / (2·area) and window depth z = z0 + b1·(z1 − z0) + b2·(z2 − z0);
  * the nearest is kept (GL LESS against the far value 1, ties to the lower
  * setup index, i.e. the earlier input triangle) and written to the
- * visibility buffer. Both row widths compute bit-identical results.
+ * visibility buffer. Both shapes compute bit-identical results. Tiles with
+ * no binned triangle are skipped; resolve fills them.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
