@@ -55,7 +55,8 @@ Pipeline::Pipeline(ClContext& cl)
       tileCursor_(memory_, "tile cursors"),
       binEntries_(memory_, "bin entries"),
       scanPartials_(memory_, "scan partial sums"),
-      vis_(memory_, "visibility buffer"),
+      visIndex_(memory_, "visibility buffer (triangles)"),
+      visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
       image_(memory_, "image")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
@@ -155,17 +156,23 @@ std::vector<uint32_t> Pipeline::readBinEntries() const
 }
 std::vector<VisSample> Pipeline::readVis() const
 {
-  // Raster leaves the samples of empty tiles unwritten; they read as empty.
-  std::vector<VisSample> vis = vis_.download(uint64_t(params_.width) * params_.height);
+  // Step 1: the planes.
+  const uint64_t n = uint64_t(params_.width) * params_.height;
+  const std::vector<uint32_t> index = visIndex_.download(n);
+  const std::vector<float> attr = visAttr_.download(3 * n);
   const std::vector<uint32_t> offsets = readTileOffsets();
+  // Step 2: samples; raster leaves empty tiles unwritten, so they read as empty.
+  std::vector<VisSample> vis(n);
   for (uint32_t y = 0; y < params_.height; ++y)
     for (uint32_t x = 0; x < params_.width; ++x) {
+      const size_t p = size_t(y) * params_.width + x;
       const uint32_t tile = (y / CLR_TILE_SIZE) * params_.tilesX + x / CLR_TILE_SIZE;
-      if (offsets[tile] == offsets[tile + 1])
-        vis[size_t(y) * params_.width + x] = VisSample{CLR_NONE, 1.0f, 0.0f, 0.0f};
+      vis[p] = offsets[tile] == offsets[tile + 1] ? VisSample{CLR_NONE, 1.0f, 0.0f, 0.0f}
+                                                  : VisSample{index[p], attr[p], attr[n + p], attr[2 * n + p]};
     }
   return vis;
 }
+
 std::vector<uint32_t> Pipeline::readImage() const
 {
   return image_.download(uint64_t(params_.width) * params_.height);

@@ -106,7 +106,8 @@ class Pipeline {
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, binEntries_;
   DeviceBuffer<cl_ulong> scanPartials_;
-  DeviceBuffer<VisSample> vis_;
+  DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
+  DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
 };
 

@@ -78,25 +78,32 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   best->b2 = select(best->b2, b2, take);
 }
 
-/* Writes the samples of a row segment that lie inside the viewport. */
+/* Writes the samples of a row segment that lie inside the viewport into
+ * the visibility planes (shared.h): a whole row segment in one vector store
+ * per plane, a segment cut by the viewport's right edge lane by lane. */
 CLR_INLINE void raster_write_row(__constant FrameParams* params, uint firstX, uint py, const RowBest* best,
-                                 __global VisSample* vis)
+                                 __global uint* visIndex, __global float* visAttr)
 {
   if (py >= params->height) return;
+  const uint plane = params->width * params->height, p = py * params->width + firstX;
+  if (firstX + CLR_LANES <= params->width) {
+    CLR_STORE_LANES(best->index, &visIndex[p]);
+    CLR_STORE_LANES(best->depth, &visAttr[p]);
+    CLR_STORE_LANES(best->b1, &visAttr[plane + p]);
+    CLR_STORE_LANES(best->b2, &visAttr[2 * plane + p]);
+    return;
+  }
   uint index[CLR_LANES];
   float depth[CLR_LANES], b1[CLR_LANES], b2[CLR_LANES];
   CLR_STORE_LANES(best->index, index);
   CLR_STORE_LANES(best->depth, depth);
   CLR_STORE_LANES(best->b1, b1);
   CLR_STORE_LANES(best->b2, b2);
-  for (int lane = 0; lane < CLR_LANES; ++lane) {
-    if (firstX + lane >= params->width) break;
-    VisSample v;
-    v.setupIndex = index[lane];
-    v.depth = depth[lane];
-    v.b1 = b1[lane];
-    v.b2 = b2[lane];
-    vis[py * params->width + firstX + lane] = v;
+  for (uint lane = 0; firstX + lane < params->width; ++lane) {
+    visIndex[p + lane] = index[lane];
+    visAttr[p + lane] = depth[lane];
+    visAttr[plane + p + lane] = b1[lane];
+    visAttr[2 * plane + p + lane] = b2[lane];
   }
 }
 
@@ -106,7 +113,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
     __constant FrameParams* params, __global const TriSetup* setup,
     __global const uint* tileOffset,  // tiles + 1
     __global const uint* binEntries,
-    __global VisSample* vis)  // width · height
+    __global uint* visIndex,  // width · height
+    __global float* visAttr)  // 3 planes of width · height: depth, b1, b2
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
@@ -120,7 +128,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
     const uint s = binEntries[k];
     raster_row(&setup[s], s, sx, sy, &best);
   }
-  raster_write_row(params, px, py, &best, vis);
+  raster_write_row(params, px, py, &best, visIndex, visAttr);
 }
 #else
 /* CPU shape: one work-item per tile, as llvmpipe's per-tile threads. Each
@@ -130,7 +138,8 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
                                                                     __global const TriSetup* setup,
                                                                     __global const uint* tileOffset,  // tiles + 1
                                                                     __global const uint* binEntries,
-                                                                    __global VisSample* vis)  // width · height
+                                                                    __global uint* visIndex,  // width · height
+                                                                    __global float* visAttr)  // 3 planes
 {
   const uint tileX = get_global_id(0), tileY = get_global_id(1);
   const uint tile = tileY * params->tilesX + tileX;
@@ -163,6 +172,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   // Step 3: write the tile.
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
-      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], vis);
+      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], visIndex,
+                       visAttr);
 }
 #endif

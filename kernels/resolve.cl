@@ -34,36 +34,29 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 typedef struct ResolveLanes {
   bool uniform;  // all lanes show one triangle: only lane 0 of the per-triangle arrays is filled
   uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES];
-  float b1[CLR_LANES], b2[CLR_LANES];
   float invW[3][CLR_LANES];
   float weight[3][3][CLR_LANES];  // [setup vertex][input vertex][lane]
   float normal[3][3][CLR_LANES];  // [input vertex][component][lane]
 } ResolveLanes;
 
-CLR_INLINE void resolve_gather(__global const VisSample* in, uint count, __global const TriSetup* setup,
+CLR_INLINE void resolve_gather(__global const uint* visIndex, uint count, __global const TriSetup* setup,
                                __global const ClipBary* clipBary, __global const uint* indices,
                                __global const float* normals, bool needNormals, ResolveLanes* g)
 {
   // Step 0: a row inside one triangle (common for large triangles) needs one
   // gather; its barycentrics still differ per lane.
   g->uniform = count == CLR_LANES;
-  for (uint lane = 1; lane < count && g->uniform; ++lane) g->uniform = in[lane].setupIndex == in[0].setupIndex;
+  for (uint lane = 1; lane < count && g->uniform; ++lane) g->uniform = visIndex[lane] == visIndex[0];
   if (g->uniform)
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
-      g->setupIndex[lane] = in[lane].setupIndex;
-      g->b1[lane] = in[lane].b1;
-      g->b2[lane] = in[lane].b2;
-    }
+    for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     // With every lane on one triangle, lane 0's gathers serve all (see uniform).
     if (g->uniform && lane > 0) break;
-    // Step 1: the visibility sample (lanes past the viewport read as empty).
-    const VisSample v = lane < count ? in[lane] : (VisSample){CLR_NONE, 1.0f, 0.0f, 0.0f};
-    g->setupIndex[lane] = v.setupIndex;
-    g->b1[lane] = v.b1;
-    g->b2[lane] = v.b2;
+    // Step 1: the visible triangle (lanes past the viewport read as empty).
+    const uint index = lane < count ? visIndex[lane] : CLR_NONE;
+    g->setupIndex[lane] = index;
     // Neighbouring pixels mostly show the same triangle: reuse its gathers.
-    if (lane > 0 && v.setupIndex == g->setupIndex[lane - 1]) {
+    if (lane > 0 && index == g->setupIndex[lane - 1]) {
       g->triId[lane] = g->triId[lane - 1];
       g->backfacing[lane] = g->backfacing[lane - 1];
       for (int i = 0; i < 3; ++i) {
@@ -75,8 +68,8 @@ CLR_INLINE void resolve_gather(__global const VisSample* in, uint count, __globa
       }
       continue;
     }
-    const bool covered = v.setupIndex != CLR_NONE;
-    const TriSetup t = setup[covered ? v.setupIndex : 0];
+    const bool covered = index != CLR_NONE;
+    const TriSetup t = setup[covered ? index : 0];
     g->triId[lane] = t.triId;
     g->backfacing[lane] = (t.flags & CLR_FLAG_BACKFACING) != 0;
     for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
@@ -100,7 +93,8 @@ CLR_INLINE void resolve_gather(__global const VisSample* in, uint count, __globa
 
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
     __constant FrameParams* params,
-    __global const VisSample* vis,    // width · height, unwritten in empty tiles
+    __global const uint* visIndex,    // width · height, unwritten in empty tiles
+    __global const float* visAttr,    // 3 planes of width · height: depth, b1, b2
     __global const uint* tileOffset,  // tiles + 1
     __global const TriSetup* setup, __global const ClipBary* clipBary,
     __global const uint* indices,   // 3·numTris
@@ -121,7 +115,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   // Step 2: gather, then load the lanes.
   ResolveLanes g;
   const uint mode = params->shadeMode;
-  resolve_gather(&vis[py * params->width + firstX], count, setup, clipBary, indices, normals,
+  const uint plane = params->width * params->height, p = py * params->width + firstX;
+  resolve_gather(&visIndex[p], count, setup, clipBary, indices, normals,
                  mode == CLR_SHADE_LAMBERT || mode == CLR_SHADE_NORMAL, &g);
   const intL covered = CLR_LOAD_LANES(g.setupIndex) != CLR_NONE;
   // A per-triangle value for every lane: broadcast when the row is uniform.
@@ -131,7 +126,14 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     colour = ((CLR_PER_LANE(g.triId, uintL) + 1u) & 0xFFFFFFu) | 0xFF000000u;
   } else {
     // Step 3: perspective-correct barycentrics (1/w rule) of the setup vertices.
-    const floatL b1 = CLR_LOAD_LANES(g.b1), b2 = CLR_LOAD_LANES(g.b2);
+    // A row cut by the viewport's edge reads its lanes one by one, zero past the edge.
+    float cutB1[CLR_LANES], cutB2[CLR_LANES];
+    for (uint lane = 0; count < CLR_LANES && lane < CLR_LANES; ++lane) {
+      cutB1[lane] = lane < count ? visAttr[plane + p + lane] : 0.0f;
+      cutB2[lane] = lane < count ? visAttr[2 * plane + p + lane] : 0.0f;
+    }
+    const floatL b1 = count == CLR_LANES ? CLR_LOAD_LANES(&visAttr[plane + p]) : CLR_LOAD_LANES(cutB1);
+    const floatL b2 = count == CLR_LANES ? CLR_LOAD_LANES(&visAttr[2 * plane + p]) : CLR_LOAD_LANES(cutB2);
     const floatL b0 = 1.0f - b1 - b2;
     const floatL q0 = b0 * CLR_PER_LANE(g.invW[0], floatL), q1 = b1 * CLR_PER_LANE(g.invW[1], floatL),
                  q2 = b2 * CLR_PER_LANE(g.invW[2], floatL);

@@ -91,10 +91,13 @@ typedef struct ClipBary {
   float w[3][3];
 } ClipBary;
 
-/* The visibility buffer: the nearest fragment of one pixel sample.
- * Written by raster, read by resolve. Array size: width · height. Pixels of
- * tiles with no binned triangle are not written (resolve knows them from
- * the tile offsets). */
+/* The visibility buffer: the nearest fragment of each pixel sample, stored
+ * as planes so that a row of samples is one vector load or store:
+ *  visIndex uint[width·height]     setup index, or CLR_NONE
+ *  visAttr  float[3·width·height]  planes of window depth, b1, b2
+ * Written by raster, read by resolve. Pixels of tiles with no binned
+ * triangle are not written (resolve knows them from the tile offsets).
+ * VisSample is one sample as Pipeline::readVis() returns it. */
 typedef struct VisSample {
   uint setupIndex; /* index into TriSetup, or CLR_NONE */
   float depth;     /* window depth of the fragment */
