@@ -138,9 +138,9 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     const floatL q0 = b0 * CLR_PER_LANE(g.invW[0], floatL), q1 = b1 * CLR_PER_LANE(g.invW[1], floatL),
                  q2 = b2 * CLR_PER_LANE(g.invW[2], floatL);
     const floatL invWSum = q0 + q1 + q2;
-    const floatL lambda[3] = {q0 / invWSum, q1 / invWSum, q2 / invWSum};
+    const floatL eyeDepth = 1.0f / invWSum;  // w, interpolated as 1/w is
+    const floatL lambda[3] = {q0 * eyeDepth, q1 * eyeDepth, q2 * eyeDepth};
     if (mode == CLR_SHADE_DEPTH) {
-      const floatL eyeDepth = 1.0f / invWSum;
       const floatL grey = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
       colour = pack_rgba(grey, grey, grey);
     } else {
@@ -173,6 +173,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
 #undef CLR_PER_LANE
   // Step 6: write, background where nothing was covered.
   colour = select((uintL)background, colour, covered);
+  if (count == CLR_LANES) {
+    CLR_STORE_LANES(colour, out);
+    return;
+  }
   uint result[CLR_LANES];
   CLR_STORE_LANES(colour, result);
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
