@@ -131,14 +131,6 @@ Args parseArgs(const std::vector<std::string>& args)
   return r;
 }
 
-double median(std::vector<double> v)
-{
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // Text safe inside a JSON string and a CSV field: no quotes, backslashes,
 // commas or control characters.
 std::string plainText(const std::string& s)
@@ -192,14 +184,7 @@ ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  FrameSettings settings;
-  settings.width = args.width;
-  settings.height = args.height;
-  settings.shadeMode = CLR_SHADE_LAMBERT;
-  settings.mvp = camera.viewProjection(args.width, args.height);
-  settings.lightDir = camera.lightDirection();
-  settings.zNear = camera.zNear;
-  settings.zFar = camera.zFar;
+  FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
 
   // Step 2: warm-up and timed frames.
   ClrasterRun run;
@@ -423,16 +408,5 @@ int run(const Args& args)
 
 int main(int argc, char** argv)
 {
-  try {
-    return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc)));
-  } catch (const Error& e) {
-    std::fprintf(stderr, "clraster_bench: %s\n", e.what());
-  } catch (const cl::Error& e) {
-    std::fprintf(stderr, "clraster_bench: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()), e.err());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "clraster_bench: out of host memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "clraster_bench: %s\n", e.what());
-  }
-  return 1;
+  return runProgram("clraster_bench", [&] { return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc))); });
 }

@@ -84,26 +84,9 @@ Args parseArgs(const std::vector<std::string>& args)
   return r;
 }
 
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 double msSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::string jsonEscape(const std::string& s)
-{
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out;
 }
 
 // clraster's ID image, top row first; frame times in frameMs.
@@ -182,17 +165,6 @@ int run(const Args& args)
 
 int main(int argc, char** argv)
 {
-  try {
-    return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc)));
-  } catch (const Error& e) {
-    std::fprintf(stderr, "clraster_vs_llvmpipe: %s\n", e.what());
-  } catch (const cl::Error& e) {
-    std::fprintf(stderr, "clraster_vs_llvmpipe: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()),
-                 e.err());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "clraster_vs_llvmpipe: out of host memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "clraster_vs_llvmpipe: %s\n", e.what());
-  }
-  return 1;
+  return runProgram("clraster_vs_llvmpipe",
+                    [&] { return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc))); });
 }

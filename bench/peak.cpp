@@ -173,16 +173,5 @@ int run(const Args& args)
 
 int main(int argc, char** argv)
 {
-  try {
-    return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc)));
-  } catch (const Error& e) {
-    std::fprintf(stderr, "clraster_peak: %s\n", e.what());
-  } catch (const cl::Error& e) {
-    std::fprintf(stderr, "clraster_peak: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()), e.err());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "clraster_peak: out of host memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "clraster_peak: %s\n", e.what());
-  }
-  return 1;
+  return runProgram("clraster_peak", [&] { return run(parseArgs(std::vector<std::string>(argv + 1, argv + argc))); });
 }

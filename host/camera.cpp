@@ -22,6 +22,20 @@ glm::vec3 Camera::lightDirection() const
   return glm::normalize(back + 0.6f * trueUp + 0.4f * right);
 }
 
+FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack) const
+{
+  FrameSettings s;
+  s.width = width;
+  s.height = height;
+  s.shadeMode = shadeMode;
+  s.cullBack = cullBack;
+  s.mvp = viewProjection(width, height);
+  s.lightDir = lightDirection();
+  s.zNear = zNear;
+  s.zFar = zFar;
+  return s;
+}
+
 Camera frameCamera(const CameraArgs& args, const Bounds& bounds)
 {
   // Step 1: the field of view comes first, everything else may depend on it.

@@ -6,6 +6,7 @@
 // impossible camera with a clr::Error.
 #pragma once
 
+#include "pipeline.h"
 #include "scene.h"
 
 #include <glm/glm.hpp>
@@ -26,6 +27,8 @@ struct Camera {
   glm::mat4 viewProjection(uint32_t width, uint32_t height) const;
   // Towards the light: above, right of and behind the eye.
   glm::vec3 lightDirection() const;
+  // The frame settings of this camera for a viewport and a shading mode.
+  FrameSettings frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack = false) const;
 };
 
 // Fills unset fields so the scene's bounding sphere is in view, then

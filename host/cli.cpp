@@ -5,7 +5,9 @@
 
 #include "../kernels/shared.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 
@@ -133,6 +135,39 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     throw Error("--far must be greater than --near");
   if (r.camera.zFar && !(*r.camera.zFar > 0.0f)) throw Error("--far must be > 0");
   return r;
+}
+
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::string jsonEscape(const std::string& s)
+{
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) >= 0x20) out += c;
+  }
+  return out;
+}
+
+int runProgram(const char* program, const std::function<int()>& body)
+{
+  try {
+    return body();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "%s: OpenCL call %s failed: %s (%d)\n", program, e.what(), clErrorName(e.err()), e.err());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: out of host memory\n", program);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  }
+  return 1;
 }
 
 }  // namespace clr

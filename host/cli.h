@@ -4,6 +4,7 @@
 
 #include "camera.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,5 +31,14 @@ const char* usageText();
 // clr::Error naming the flag and the bad text.
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi);
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height);
+
+// Helpers every command-line program of the project shares.
+double median(std::vector<double> values);     // of a non-empty list
+std::string jsonEscape(const std::string& s);  // for a JSON string literal
+
+// Runs a program's body and turns every failure (clr::Error, an OpenCL
+// error, exhausted memory) into one line "PROGRAM: message" on stderr and
+// exit status 1.
+int runProgram(const char* program, const std::function<int()>& body);
 
 }  // namespace clr

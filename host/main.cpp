@@ -26,23 +26,6 @@ int listDevicesCommand()
   return 0;
 }
 
-double median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-std::string jsonEscape(const std::string& s)
-{
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out;
-}
-
 void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline, double firstFrameMs,
                 const std::vector<double>& frameMs, const std::vector<FrameStats>& frames)
 {
@@ -82,15 +65,7 @@ int renderCommand(const std::vector<std::string>& argList)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  FrameSettings settings;
-  settings.width = args.width;
-  settings.height = args.height;
-  settings.shadeMode = args.shadeMode;
-  settings.cullBack = args.cullBack;
-  settings.mvp = camera.viewProjection(args.width, args.height);
-  settings.lightDir = camera.lightDirection();
-  settings.zNear = camera.zNear;
-  settings.zFar = camera.zFar;
+  const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
 
   // Step 3: frames, timed from parameter upload to the image in host memory.
   // With --stats, one untimed frame first: PoCL finishes compiling each
@@ -122,7 +97,7 @@ int renderCommand(const std::vector<std::string>& argList)
 int main(int argc, char** argv)
 {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  try {
+  return runProgram("clraster", [&] {
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
       std::fputs(usageText(), args.empty() ? stderr : stdout);
       return args.empty() ? 1 : 0;
@@ -130,14 +105,5 @@ int main(int argc, char** argv)
     if (args[0] == "devices") return listDevicesCommand();
     if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
     throw Error("unknown command '" + args[0] + "' (render, devices)");
-  } catch (const Error& e) {
-    std::fprintf(stderr, "clraster: %s\n", e.what());
-  } catch (const cl::Error& e) {
-    std::fprintf(stderr, "clraster: OpenCL call %s failed: %s (%d)\n", e.what(), clErrorName(e.err()), e.err());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "clraster: out of host memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "clraster: %s\n", e.what());
-  }
-  return 1;
+  });
 }
