@@ -10,10 +10,7 @@ void Pipeline::bin()
   std::vector<cl::Event> fills;
   tileCount_.zero(numTiles_ + 1, &fills);
   cl::Event countEvent;
-  binCountKernel_.setArg(0, paramsBuf_.get());
-  binCountKernel_.setArg(1, setup_.get());
-  binCountKernel_.setArg(2, numSetup_);
-  binCountKernel_.setArg(3, tileCount_.get());
+  setArgs(binCountKernel_, paramsBuf_.get(), setup_.get(), numSetup_, tileCount_.get());
   cl_.queue.enqueueNDRangeKernel(binCountKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
                                  &countEvent);
   record("bin_count", countEvent);
@@ -28,12 +25,8 @@ void Pipeline::bin()
   // Step 3: fill.
   tileCursor_.zero(numTiles_, &fills);
   cl::Event fillEvent;
-  binFillKernel_.setArg(0, paramsBuf_.get());
-  binFillKernel_.setArg(1, setup_.get());
-  binFillKernel_.setArg(2, numSetup_);
-  binFillKernel_.setArg(3, tileCount_.get());
-  binFillKernel_.setArg(4, tileCursor_.get());
-  binFillKernel_.setArg(5, binEntries_.get());
+  setArgs(binFillKernel_, paramsBuf_.get(), setup_.get(), numSetup_, tileCount_.get(), tileCursor_.get(),
+          binEntries_.get());
   cl_.queue.enqueueNDRangeKernel(binFillKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
                                  &fillEvent);
   record("bin_fill", fillEvent);

@@ -81,6 +81,13 @@ class Pipeline {
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
   uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
+  // Sets a kernel's arguments 0, 1, 2, ... in order.
+  template <typename... Args>
+  static void setArgs(cl::Kernel& kernel, const Args&... args)
+  {
+    cl_uint index = 0;
+    (kernel.setArg(index++, args), ...);
+  }
   cl::NDRange linear(uint64_t n) const;
 
   ClContext& cl_;

@@ -11,12 +11,8 @@ void Pipeline::raster()
   visIndex_.reserve(pixels);
   visAttr_.reserve(3 * pixels);
   cl::Event event;
-  rasterKernel_.setArg(0, paramsBuf_.get());
-  rasterKernel_.setArg(1, setup_.get());
-  rasterKernel_.setArg(2, tileCount_.get());
-  rasterKernel_.setArg(3, binEntries_.get());
-  rasterKernel_.setArg(4, visIndex_.get());
-  rasterKernel_.setArg(5, visAttr_.get());
+  setArgs(rasterKernel_, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(),
+          visAttr_.get());
   // One work-item per pixel (GPU shape) or per tile (CPU shape, see raster.cl).
   const bool perPixel = cl_.lanes == 1;
   const cl::NDRange global = perPixel ? cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE)

@@ -15,22 +15,13 @@ uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* st
 
   // Step 2: chunk sums, their scan, and the rescan of every chunk.
   cl::Event reduceEvent, partialsEvent, applyEvent;
-  scanReduceKernel_.setArg(0, data.get());
-  scanReduceKernel_.setArg(1, n);
-  scanReduceKernel_.setArg(2, chunk);
-  scanReduceKernel_.setArg(3, numChunks);
-  scanReduceKernel_.setArg(4, scanPartials_.get());
+  setArgs(scanReduceKernel_, data.get(), n, chunk, numChunks, scanPartials_.get());
   cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
                                  &reduceEvent);
-  scanPartialsKernel_.setArg(0, scanPartials_.get());
-  scanPartialsKernel_.setArg(1, numChunks);
+  setArgs(scanPartialsKernel_, scanPartials_.get(), numChunks);
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, cl::NDRange(64), cl::NDRange(64), nullptr,
                                  &partialsEvent);
-  scanApplyKernel_.setArg(0, data.get());
-  scanApplyKernel_.setArg(1, n);
-  scanApplyKernel_.setArg(2, chunk);
-  scanApplyKernel_.setArg(3, numChunks);
-  scanApplyKernel_.setArg(4, scanPartials_.get());
+  setArgs(scanApplyKernel_, data.get(), n, chunk, numChunks, scanPartials_.get());
   cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
                                  &applyEvent);
   record(stage, reduceEvent);

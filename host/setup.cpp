@@ -16,13 +16,8 @@ void Pipeline::setup()
   uint64_t total = 0;
   for (;;) {
     cl::Event countEvent;
-    setupCountKernel_.setArg(0, paramsBuf_.get());
-    setupCountKernel_.setArg(1, clipPos_.get());
-    setupCountKernel_.setArg(2, indices_.get());
-    setupCountKernel_.setArg(3, triCount_.get());
-    setupCountKernel_.setArg(4, counters_.get());
-    setupCountKernel_.setArg(5, clipList_.get());
-    setupCountKernel_.setArg(6, uint32_t(clipList_.capacity()));
+    setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
+            clipList_.get(), uint32_t(clipList_.capacity()));
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                    &countEvent);
     record("setup_count", countEvent);
@@ -42,11 +37,7 @@ void Pipeline::setup()
 
   // Step 3: emit the unclipped triangles.
   cl::Event emitEvent;
-  setupEmitKernel_.setArg(0, paramsBuf_.get());
-  setupEmitKernel_.setArg(1, clipPos_.get());
-  setupEmitKernel_.setArg(2, indices_.get());
-  setupEmitKernel_.setArg(3, triCount_.get());
-  setupEmitKernel_.setArg(4, setup_.get());
+  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), setup_.get());
   cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                  &emitEvent);
   record("setup_emit", emitEvent);
@@ -54,14 +45,8 @@ void Pipeline::setup()
   // Step 4: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
-  setupClipKernel_.setArg(0, paramsBuf_.get());
-  setupClipKernel_.setArg(1, clipPos_.get());
-  setupClipKernel_.setArg(2, indices_.get());
-  setupClipKernel_.setArg(3, triCount_.get());
-  setupClipKernel_.setArg(4, clipList_.get());
-  setupClipKernel_.setArg(5, setup_.get());
-  setupClipKernel_.setArg(6, clipBary_.get());
-  setupClipKernel_.setArg(7, counters_.get());
+  setArgs(setupClipKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), clipList_.get(),
+          setup_.get(), clipBary_.get(), counters_.get());
   cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
                                  &clipEvent);
   record("setup_clip", clipEvent);

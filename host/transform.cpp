@@ -7,9 +7,7 @@ namespace clr {
 void Pipeline::transform()
 {
   cl::Event event;
-  transformKernel_.setArg(0, positions_.get());
-  transformKernel_.setArg(1, paramsBuf_.get());
-  transformKernel_.setArg(2, clipPos_.get());
+  setArgs(transformKernel_, positions_.get(), paramsBuf_.get(), clipPos_.get());
   cl_.queue.enqueueNDRangeKernel(transformKernel_, cl::NullRange, linear(params_.numVerts), cl::NDRange(64), nullptr,
                                  &event);
   record("transform", event);

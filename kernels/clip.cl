@@ -32,11 +32,6 @@ CLR_INLINE float clip_distance(float4 c, int plane, float gx, float gy)
   }
 }
 
-CLR_INLINE bool clip_is_finite(float4 c)
-{
-  return isfinite(c.x) && isfinite(c.y) && isfinite(c.z) && isfinite(c.w);
-}
-
 /* Outcode bits of one vertex: 0-4 as clip_distance planes < 0, 5-8 outside
  * the viewport planes x < −w, x > w, y < −w, y > w, 9 beyond far (z > w). */
 CLR_INLINE uint clip_outcode(float4 c, float gx, float gy)
