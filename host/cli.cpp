@@ -1,6 +1,8 @@
 // cli.cpp — strict parsing of the render command's flags (see cli.h).
 #include "cli.h"
 
+#include "aa.h"
+
 #include "cl.h"
 
 #include "../kernels/shared.h"
@@ -18,7 +20,10 @@ const char* usageText()
   return "usage:\n"
          "  clraster render [SCENE] -o OUT.png [--size WxH] [--eye x,y,z] [--target x,y,z]\n"
          "                  [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
-         "                  [--shade lambert|normal|depth|id] [--cull none|back]\n"
+         "                  [--shade lambert|normal|depth|uv|checker|id] [--cull none|back]\n"
+         "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
+         "                  [--edges fixed|float] [--interp perspective|affine]\n"
+         "                  [--traversal bbox|hierarchical] [--quality auto]\n"
          "                  [--device SEL] [--frames N] [--stats]\n"
          "  clraster devices\n"
          "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
@@ -50,7 +55,31 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text)
   return v;
 }
 
+// The index of `text` in `choices`, or an error listing them.
+uint32_t parseChoice(const std::string& flag, const std::string& text, std::initializer_list<const char*> choices)
+{
+  std::string names;
+  uint32_t index = 0;
+  for (const char* c : choices) {
+    if (text == c) return index;
+    names += std::string(index++ ? ", " : "") + c;
+  }
+  throw Error(flag + ": unknown value '" + text + "' (" + names + ")");
+}
+
 }  // namespace
+
+void applyMethods(const RenderArgs& args, FrameSettings& settings)
+{
+  if (args.aa != "auto") {
+    const AaMode& mode = findAaMode(args.aa);
+    settings.samples = mode.samples;
+    settings.shadeEverySample = mode.shadeEverySample;
+  }
+  settings.edgeMode = args.edgeMode;
+  settings.interpMode = args.interpMode;
+  settings.traversal = args.traversal;
+}
 
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
 {
@@ -106,8 +135,24 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
         r.shadeMode = CLR_SHADE_DEPTH;
       else if (s == "id")
         r.shadeMode = CLR_SHADE_ID;
+      else if (s == "uv")
+        r.shadeMode = CLR_SHADE_UV;
+      else if (s == "checker")
+        r.shadeMode = CLR_SHADE_CHECKER;
       else
-        throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, id)");
+        throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, uv, checker, id)");
+    } else if (a == "--aa") {
+      r.aa = value();
+      if (r.aa != "auto") findAaMode(r.aa);  // throws for an unknown name
+    } else if (a == "--edges") {
+      r.edgeMode = parseChoice(a, value(), {"fixed", "float"});
+    } else if (a == "--interp") {
+      r.interpMode = parseChoice(a, value(), {"perspective", "affine"});
+    } else if (a == "--traversal") {
+      r.traversal = parseChoice(a, value(), {"bbox", "hierarchical"});
+    } else if (a == "--quality") {
+      parseChoice(a, value(), {"auto"});
+      r.qualityAuto = true;
     } else if (a == "--cull") {
       const std::string& s = value();
       if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "camera.h"
+#include "pipeline.h"
 
 #include <functional>
 #include <string>
@@ -20,7 +21,16 @@ struct RenderArgs {
   std::string device;
   uint32_t frames = 1;
   bool stats = false;
+  // Methods (see README, "Methods"): --aa, --edges, --interp, --traversal.
+  std::string aa = "none";  // an aa.h mode name, or "auto"
+  uint32_t edgeMode = CLR_EDGES_FIXED;
+  uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
+  uint32_t traversal = CLR_TRAVERSAL_BBOX;
+  bool qualityAuto = false;  // --quality auto
 };
+
+// Copies the chosen methods (not "auto") into a frame's settings.
+void applyMethods(const RenderArgs& args, FrameSettings& settings);
 
 // args: everything after "render".
 RenderArgs parseRenderArgs(const std::vector<std::string>& args);

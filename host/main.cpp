@@ -65,7 +65,8 @@ int renderCommand(const std::vector<std::string>& argList)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
+  FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
+  applyMethods(args, settings);
 
   // Step 3: frames, timed from parameter upload to the image in host memory.
   // With --stats, one untimed frame first: PoCL finishes compiling each

@@ -3,8 +3,11 @@
 // in transform.cpp, setup.cpp, scan.cpp, bin.cpp, raster.cpp, resolve.cpp.
 #include "pipeline.h"
 
+#include "aa.h"
+
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cstring>
 
 namespace clr {
@@ -35,6 +38,25 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.numTris = uint32_t(numTris);
   p.cullBack = s.cullBack ? 1u : 0u;
   p.shadeMode = s.shadeMode;
+  // Samples: the standard positions, in fixed-point units.
+  const std::vector<SampleOffset>& offsets = samplePositions(s.samples);
+  p.samples = s.samples;
+  p.shadeEverySample = s.shadeEverySample ? 1u : 0u;
+  p.sampleMinX = p.sampleMinY = INT32_MAX;
+  p.sampleMaxX = p.sampleMaxY = INT32_MIN;
+  for (uint32_t k = 0; k < s.samples; ++k) {
+    p.sampleX[k] = offsets[k].x * (CLR_FIXED_ONE / 16);
+    p.sampleY[k] = offsets[k].y * (CLR_FIXED_ONE / 16);
+    p.sampleMinX = std::min(p.sampleMinX, p.sampleX[k]);
+    p.sampleMaxX = std::max(p.sampleMaxX, p.sampleX[k]);
+    p.sampleMinY = std::min(p.sampleMinY, p.sampleY[k]);
+    p.sampleMaxY = std::max(p.sampleMaxY, p.sampleY[k]);
+  }
+  if (s.edgeMode > CLR_EDGES_FLOAT || s.interpMode > CLR_INTERP_AFFINE || s.traversal > CLR_TRAVERSAL_HIERARCHICAL)
+    throw Error("unknown edge, interpolation or traversal method");
+  p.edgeMode = s.edgeMode;
+  p.interpMode = s.interpMode;
+  p.traversal = s.traversal;
   return p;
 }
 
@@ -44,6 +66,7 @@ Pipeline::Pipeline(ClContext& cl)
       paramsBuf_(memory_, "frame parameters"),
       positions_(memory_, "vertex positions"),
       normals_(memory_, "vertex normals"),
+      uvs_(memory_, "vertex texture coordinates"),
       indices_(memory_, "triangle indices"),
       clipPos_(memory_, "clip-space positions"),
       triCount_(memory_, "setup counts"),
@@ -78,8 +101,12 @@ Pipeline::Pipeline(ClContext& cl)
 void Pipeline::uploadScene(const Mesh& mesh)
 {
   if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
+  if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.numVerts()))
+    throw Error("scene's normals or texture coordinates do not match its vertices");
   positions_.upload(mesh.positions);
   normals_.upload(mesh.normals);
+  // Meshes without texture coordinates read (0, 0).
+  uvs_.upload(mesh.uvs.empty() ? std::vector<float>(2 * mesh.numVerts(), 0.0f) : mesh.uvs);
   indices_.upload(mesh.indices);
   clipPos_.reserve(mesh.numVerts());
   triCount_.reserve(mesh.numTris() + 1);
@@ -154,12 +181,13 @@ std::vector<uint32_t> Pipeline::readBinEntries() const
 {
   return binEntries_.download(numBinEntries_);
 }
-std::vector<VisSample> Pipeline::readVis() const
+std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
 {
-  // Step 1: the planes.
+  // Step 1: the planes of the sample.
+  if (sample >= params_.samples) throw Error("readVis: no sample " + std::to_string(sample));
   const uint64_t n = uint64_t(params_.width) * params_.height;
-  const std::vector<uint32_t> index = visIndex_.download(n);
-  const std::vector<float> attr = visAttr_.download(3 * n);
+  const std::vector<uint32_t> index = visIndex_.download(n, sample * n);
+  const std::vector<float> attr = visAttr_.download(3 * n, 3 * sample * n);
   const std::vector<uint32_t> offsets = readTileOffsets();
   // Step 2: samples; raster leaves empty tiles unwritten, so they read as empty.
   std::vector<VisSample> vis(n);

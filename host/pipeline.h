@@ -23,11 +23,16 @@
 
 namespace clr {
 
-// What one frame renders: viewport, shading and culling.
+// What one frame renders: viewport, shading, culling and the methods.
 struct FrameSettings {
   uint32_t width = 0, height = 0;
   uint32_t shadeMode = CLR_SHADE_LAMBERT;
   bool cullBack = false;
+  uint32_t samples = 1;           // per pixel: 1, 2, 4, 8, 16 (aa.h)
+  bool shadeEverySample = false;  // SSAA rather than MSAA
+  uint32_t edgeMode = CLR_EDGES_FIXED;
+  uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
+  uint32_t traversal = CLR_TRAVERSAL_BBOX;
   glm::mat4 mvp{1.0f};
   glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
   float zNear = 0.1f, zFar = 100.0f;     // for depth shading only
@@ -49,7 +54,7 @@ class Pipeline {
  public:
   explicit Pipeline(ClContext& cl);
 
-  // Uploads positions, normals and indices once per scene.
+  // Uploads positions, normals, texture coordinates and indices once per scene.
   void uploadScene(const Mesh& mesh);
 
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
@@ -70,11 +75,13 @@ class Pipeline {
   std::vector<ClipBary> readClipBary() const;
   std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
   std::vector<uint32_t> readBinEntries() const;
-  std::vector<VisSample> readVis() const;  // empty tiles read as CLR_NONE
+  std::vector<VisSample> readVis(uint32_t sample = 0) const;  // one sample plane; empty tiles read as CLR_NONE
   std::vector<uint32_t> readImage() const;
 
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
+  // Bytes per pixel of the per-sample buffers and the image of this frame.
+  double bytesPerPixel() const { return 16.0 * params_.samples + 4.0; }
   const ClContext& cl() const { return cl_; }
 
  private:
@@ -103,7 +110,7 @@ class Pipeline {
       scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, resolveKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
-  DeviceBuffer<float> positions_, normals_;
+  DeviceBuffer<float> positions_, normals_, uvs_;
   DeviceBuffer<uint32_t> indices_;
   DeviceBuffer<cl_float4> clipPos_;
   DeviceBuffer<uint32_t> triCount_;

@@ -46,6 +46,9 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
     dst.positions.insert(dst.positions.end(), {p.x, p.y, p.z});
     aiVector3D n = src->mNormals ? normalMatrix * src->mNormals[v] : aiVector3D(0, 0, 0);
     dst.normals.insert(dst.normals.end(), {n.x, n.y, n.z});
+    // Texture coordinates of the first channel, (0, 0) without one.
+    const aiVector3D uv = src->mTextureCoords[0] ? src->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
+    dst.uvs.insert(dst.uvs.end(), {uv.x, uv.y});
   }
   // Step 2: faces, validated and fan-triangulated in file order.
   for (unsigned f = 0; f < src->mNumFaces; ++f) {

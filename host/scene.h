@@ -20,6 +20,7 @@ namespace clr {
 struct Mesh {
   std::vector<float> positions;   // 3 per vertex
   std::vector<float> normals;     // 3 per vertex, unit or zero
+  std::vector<float> uvs;         // 2 per vertex (texture coordinates), or empty
   std::vector<uint32_t> indices;  // 3 per triangle
   size_t numVerts() const { return positions.size() / 3; }
   size_t numTris() const { return indices.size() / 3; }

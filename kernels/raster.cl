@@ -6,16 +6,23 @@
  * walks the bin once and tests each triangle only on the rows its bounds
  * span, 16 pixels at a time in explicit vector types (PoCL turns these into
  * AVX-512, but does not vectorise a data-dependent loop across work-items).
+ * A third NDRange dimension runs over the FrameParams.samples sample
+ * positions: sample k of pixel (i, j) lies at its centre (i + 0.5, j + 0.5)
+ * plus (sampleX[k], sampleY[k]) and has its own plane of the visibility
+ * buffer (shared.h), so work and memory follow the sample count.
  * Either way, for every triangle the three integer edge functions of the
- * notes are evaluated at pixel centres (i + 0.5, j + 0.5) in 64-bit fixed
- * point. Fill rule (GL as in llvmpipe, y up): a centre exactly on an edge is
+ * notes are evaluated at the sample positions in 64-bit fixed point
+ * (CLR_EDGES_FIXED) or, as the weaker method to compare, in 32-bit floats
+ * in pixel units (CLR_EDGES_FLOAT). Fill rule (GL as in llvmpipe, y up): a centre exactly on an edge is
  * inside for a left edge (dy < 0 on a counter-clockwise triangle) or a
  * horizontal bottom edge (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
  * b_i = E_i / (2·area) and window depth z = z0 + b1·(z1 − z0) + b2·(z2 − z0);
  * the nearest is kept (GL LESS against the far value 1, ties to the lower
  * setup index, i.e. the earlier input triangle) and written to the
  * visibility buffer. Both shapes compute bit-identical results. Tiles with
- * no binned triangle are skipped; resolve fills them.
+ * no binned triangle are skipped; resolve fills them. With hierarchical
+ * traversal the CPU shape accepts a tile that lies inside all three edges
+ * without testing its samples (bin.cl rejects the tiles outside one).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -52,23 +59,22 @@ CLR_INLINE void row_best_init(RowBest* b)
   b->b2 = 0.0f;
 }
 
-/* Tests setup triangle s against the row segment (sx, sy) and keeps the
- * nearest fragment in *best. */
-CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best)
+/* The float edge function, the weaker method: the same formula on float
+ * pixel coordinates, rounded at every operation. */
+CLR_INLINE floatL edge_function_float(int ax, int ay, int bx, int by, intL px, int py)
 {
-  // Step 1: coverage by the three edge functions and the fill rule.
-  const longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
-  const longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
-  const longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
-  const intL inside = convert_intL((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
-                                   (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
-                                   (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
-  if (!CLR_ANY(inside)) return;
-  // Step 2: barycentrics and depth.
-  const floatL b1 = convert_floatL(e1) * t->invArea2;
-  const floatL b2 = convert_floatL(e2) * t->invArea2;
+  const float k = 1.0f / CLR_FIXED_ONE;
+  const float fax = (float)ax * k, fay = (float)ay * k, fbx = (float)bx * k, fby = (float)by * k;
+  const floatL fpx = convert_floatL(px) * k;
+  const float fpy = (float)py * k;
+  return (fbx - fax) * (fpy - fay) - (fby - fay) * (fpx - fax);
+}
+
+/* Keeps the nearer of the samples' fragments of triangle s and *best. */
+CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL inside, floatL b1, floatL b2, RowBest* best)
+{
   const floatL z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
-  // Step 3: depth test, LESS, ties to the earlier triangle.
+  // LESS, ties to the earlier triangle.
   const intL nearer = z < best->depth;
   const intL tieWin = (z == best->depth) & (best->index != CLR_NONE) & (s < best->index);
   const intL take = inside & (nearer | tieWin);
@@ -78,101 +84,168 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   best->b2 = select(best->b2, b2, take);
 }
 
+/* Tests setup triangle s against the row segment of samples (sx, sy) and
+ * keeps the nearest fragment in *best. edgeMode and acceptAll are constant
+ * at every call site, so each combination compiles to its own loop body;
+ * acceptAll skips the inside test for a tile inside all three edges. */
+CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best, const uint edgeMode,
+                           const bool acceptAll)
+{
+  if (edgeMode == CLR_EDGES_FLOAT) {
+    // Coverage and barycentrics from float edge functions; a sample on an
+    // edge (E == 0 after rounding) follows the same fill rule.
+    const floatL e0 = edge_function_float(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
+    const floatL e1 = edge_function_float(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
+    const floatL e2 = edge_function_float(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
+    // Masks are −1 (all bits) for true, as vector comparisons give.
+    const intL on0 = edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) ? (intL)(-1) : (intL)0;
+    const intL on1 = edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) ? (intL)(-1) : (intL)0;
+    const intL on2 = edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) ? (intL)(-1) : (intL)0;
+    const intL inside = ((e0 > 0.0f) | ((e0 == 0.0f) & on0)) & ((e1 > 0.0f) | ((e1 == 0.0f) & on1)) &
+                        ((e2 > 0.0f) | ((e2 == 0.0f) & on2));
+    if (!CLR_ANY(inside)) return;
+    const float invArea2 = t->invArea2 * (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
+    raster_depth_test(t, s, inside, e1 * invArea2, e2 * invArea2, best);
+    return;
+  }
+  // Step 1: coverage by the three edge functions and the fill rule.
+  const longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
+  const longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
+  intL inside = (intL)(-1);
+  if (!acceptAll) {
+    const longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
+    inside = convert_intL((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
+                          (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
+                          (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
+    if (!CLR_ANY(inside)) return;
+  }
+  // Step 2: barycentrics, then the depth test.
+  raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best);
+}
+
 /* Writes the samples of a row segment that lie inside the viewport into
- * the visibility planes (shared.h): a whole row segment in one vector store
- * per plane, a segment cut by the viewport's right edge lane by lane. */
-CLR_INLINE void raster_write_row(__constant FrameParams* params, uint firstX, uint py, const RowBest* best,
+ * sample plane k of the visibility buffer (shared.h): a whole row segment
+ * in one vector store per plane, a segment cut by the viewport's right edge
+ * lane by lane. */
+CLR_INLINE void raster_write_row(__constant FrameParams* params, uint k, uint firstX, uint py, const RowBest* best,
                                  __global uint* visIndex, __global float* visAttr)
 {
   if (py >= params->height) return;
   const uint plane = params->width * params->height, p = py * params->width + firstX;
+  __global uint* index = &visIndex[k * plane + p];
+  __global float* depth = &visAttr[3 * k * plane + p];
+  __global float* b1 = depth + plane;
+  __global float* b2 = depth + 2 * plane;
   if (firstX + CLR_LANES <= params->width) {
-    CLR_STORE_LANES(best->index, &visIndex[p]);
-    CLR_STORE_LANES(best->depth, &visAttr[p]);
-    CLR_STORE_LANES(best->b1, &visAttr[plane + p]);
-    CLR_STORE_LANES(best->b2, &visAttr[2 * plane + p]);
+    CLR_STORE_LANES(best->index, index);
+    CLR_STORE_LANES(best->depth, depth);
+    CLR_STORE_LANES(best->b1, b1);
+    CLR_STORE_LANES(best->b2, b2);
     return;
   }
-  uint index[CLR_LANES];
-  float depth[CLR_LANES], b1[CLR_LANES], b2[CLR_LANES];
-  CLR_STORE_LANES(best->index, index);
-  CLR_STORE_LANES(best->depth, depth);
-  CLR_STORE_LANES(best->b1, b1);
-  CLR_STORE_LANES(best->b2, b2);
+  uint laneIndex[CLR_LANES];
+  float laneDepth[CLR_LANES], laneB1[CLR_LANES], laneB2[CLR_LANES];
+  CLR_STORE_LANES(best->index, laneIndex);
+  CLR_STORE_LANES(best->depth, laneDepth);
+  CLR_STORE_LANES(best->b1, laneB1);
+  CLR_STORE_LANES(best->b2, laneB2);
   for (uint lane = 0; firstX + lane < params->width; ++lane) {
-    visIndex[p + lane] = index[lane];
-    visAttr[p + lane] = depth[lane];
-    visAttr[plane + p + lane] = b1[lane];
-    visAttr[2 * plane + p + lane] = b2[lane];
+    index[lane] = laneIndex[lane];
+    depth[lane] = laneDepth[lane];
+    b1[lane] = laneB1[lane];
+    b2[lane] = laneB2[lane];
   }
 }
 
 #if CLR_LANES == 1
-/* GPU shape: one work-item per pixel, one work-group per tile. */
+/* GPU shape: one work-item per pixel sample, one work-group per tile and
+ * sample index. */
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(
     __constant FrameParams* params, __global const TriSetup* setup,
     __global const uint* tileOffset,  // tiles + 1
     __global const uint* binEntries,
-    __global uint* visIndex,  // width · height
-    __global float* visAttr)  // 3 planes of width · height: depth, b1, b2
+    __global uint* visIndex,  // samples · width · height
+    __global float* visAttr)  // 3 · samples planes of width · height
 {
-  const uint px = get_global_id(0), py = get_global_id(1);
+  const uint px = get_global_id(0), py = get_global_id(1), k = get_global_id(2);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
-  const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF;
-  const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+  const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleX[k];
+  const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
+  const uint edgeMode = params->edgeMode;
   RowBest best;
   row_best_init(&best);
-  for (uint k = begin; k < end; ++k) {
-    const uint s = binEntries[k];
-    raster_row(&setup[s], s, sx, sy, &best);
+  for (uint n = begin; n < end; ++n) {
+    const uint s = binEntries[n];
+    if (edgeMode == CLR_EDGES_FLOAT)
+      raster_row(&setup[s], s, sx, sy, &best, CLR_EDGES_FLOAT, false);
+    else
+      raster_row(&setup[s], s, sx, sy, &best, CLR_EDGES_FIXED, false);
   }
-  raster_write_row(params, px, py, &best, visIndex, visAttr);
+  raster_write_row(params, k, px, py, &best, visIndex, visAttr);
 }
 #else
-/* CPU shape: one work-item per tile, as llvmpipe's per-tile threads. Each
- * triangle is tested only on the rows its bounds span, a 16-pixel vector row
- * at a time; the tile's nearest fragments stay in private memory. */
+/* CPU shape: one work-item per tile and sample index, as llvmpipe's
+ * per-tile threads. Each triangle is tested only on the rows its bounds
+ * span, a 16-pixel vector row at a time; the tile's nearest fragments stay
+ * in private memory. */
 __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant FrameParams* params,
                                                                     __global const TriSetup* setup,
                                                                     __global const uint* tileOffset,  // tiles + 1
                                                                     __global const uint* binEntries,
-                                                                    __global uint* visIndex,  // width · height
-                                                                    __global float* visAttr)  // 3 planes
+                                                                    __global uint* visIndex,  // samples · pixels
+                                                                    __global float* visAttr)  // 3 · samples planes
 {
-  const uint tileX = get_global_id(0), tileY = get_global_id(1);
+  const uint tileX = get_global_id(0), tileY = get_global_id(1), k = get_global_id(2);
   const uint tile = tileY * params->tilesX + tileX;
   const int firstY = (int)tileY * CLR_TILE_SIZE;
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   // Step 1: the tile's sample positions and its nearest fragments so far.
+  const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
+  const uint edgeMode = params->edgeMode;
+  const bool hierarchical = params->traversal == CLR_TRAVERSAL_HIERARCHICAL;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
     const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_LANES;
-    sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + CLR_LANE_INDEX * CLR_FIXED_ONE;
+    sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX + CLR_LANE_INDEX * CLR_FIXED_ONE;
     for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row]);
   }
-  // Step 2: each binned triangle, on the rows and row segments it spans.
-  for (uint k = begin; k < end; ++k) {
-    const uint s = binEntries[k];
+  // Step 2: each binned triangle, on the rows and row segments its bounds span.
+  for (uint n = begin; n < end; ++n) {
+    const uint s = binEntries[n];
     __global const TriSetup* t = &setup[s];
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
-    const int rowBegin = max(0, ((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);
-    const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS) - firstY);
+    const int centreY = CLR_FIXED_HALF + offsetY;
+    const int rowBegin = max(0, ((minY - centreY + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);
+    const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - centreY) >> CLR_SUBPIXEL_BITS) - firstY);
+    // Hierarchical: a tile inside all three edges needs no inside test.
+    bool acceptAll = false;
+    if (hierarchical && edgeMode == CLR_EDGES_FIXED) {
+      const TriSetup tri = *t;
+      acceptAll = bin_tile_class(&tri, params, (int)tileX, (int)tileY) > 0;
+    }
     for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
-      const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF;
+      const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX;
       if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
-      for (int row = rowBegin; row <= rowEnd; ++row)
-        raster_row(t, s, sx[col], (firstY + row) * CLR_FIXED_ONE + CLR_FIXED_HALF, &best[col][row]);
+      for (int row = rowBegin; row <= rowEnd; ++row) {
+        const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
+        if (edgeMode == CLR_EDGES_FLOAT)
+          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FLOAT, false);
+        else if (acceptAll)
+          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FIXED, true);
+        else
+          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FIXED, false);
+      }
     }
   }
-  // Step 3: write the tile.
+  // Step 3: write the tile's sample plane.
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
-      raster_write_row(params, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], visIndex,
+      raster_write_row(params, k, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], visIndex,
                        visAttr);
 }
 #endif

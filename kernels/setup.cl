@@ -29,19 +29,22 @@ CLR_INLINE int fixed_ceil(int a)
   return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
 }
 
-/* Inclusive pixel range whose centres (i + 0.5) can lie in the triangle,
- * clamped to the viewport. Empty when x0 > x1 or y0 > y1. */
-CLR_INLINE int4 setup_pixel_bounds(const TriSetup* t, uint width, uint height)
+/* Inclusive pixel range that can hold a sample of the triangle, clamped to
+ * the viewport: pixel i's samples lie at i·ONE + HALF + offset with the
+ * offset in [sampleMin, sampleMax] (FrameParams), so with one sample at the
+ * centre this is the range of pixel centres (i + 0.5) in the bounds. Empty
+ * when x0 > x1 or y0 > y1. */
+CLR_INLINE int4 setup_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
 {
   const int minX = min(t->x[0], min(t->x[1], t->x[2]));
   const int maxX = max(t->x[0], max(t->x[1], t->x[2]));
   const int minY = min(t->y[0], min(t->y[1], t->y[2]));
   const int maxY = max(t->y[0], max(t->y[1], t->y[2]));
   int4 r;
-  r.x = max(0, fixed_ceil(minX - CLR_FIXED_HALF));
-  r.y = max(0, fixed_ceil(minY - CLR_FIXED_HALF));
-  r.z = min((int)width - 1, fixed_floor(maxX - CLR_FIXED_HALF));
-  r.w = min((int)height - 1, fixed_floor(maxY - CLR_FIXED_HALF));
+  r.x = max(0, fixed_ceil(minX - CLR_FIXED_HALF - params->sampleMaxX));
+  r.y = max(0, fixed_ceil(minY - CLR_FIXED_HALF - params->sampleMaxY));
+  r.z = min((int)params->width - 1, fixed_floor(maxX - CLR_FIXED_HALF - params->sampleMinX));
+  r.w = min((int)params->height - 1, fixed_floor(maxY - CLR_FIXED_HALF - params->sampleMinY));
   return r;
 }
 
@@ -170,13 +173,15 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->invW[2] = select(out->invW[2], w1, back);
   area2 = select(area2, -area2, convert_longL(back));
   out->back = back;
-  // Step 4: cull triangles whose bounds hold no pixel centre (as setup_pixel_bounds).
+  // Step 4: cull triangles whose bounds hold no sample (as setup_pixel_bounds).
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
   const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
-  const intL x0 = max((minX - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
-  const intL y0 = max((minY - CLR_FIXED_HALF + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
-  const intL xEnd = min((maxX - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (intL)((int)params->width - 1));
-  const intL yEnd = min((maxY - CLR_FIXED_HALF) >> CLR_SUBPIXEL_BITS, (intL)((int)params->height - 1));
+  const intL x0 = max((minX - (CLR_FIXED_HALF + params->sampleMaxX) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
+  const intL y0 = max((minY - (CLR_FIXED_HALF + params->sampleMaxY) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
+  const intL xEnd =
+      min((maxX - (CLR_FIXED_HALF + params->sampleMinX)) >> CLR_SUBPIXEL_BITS, (intL)((int)params->width - 1));
+  const intL yEnd =
+      min((maxY - (CLR_FIXED_HALF + params->sampleMinY)) >> CLR_SUBPIXEL_BITS, (intL)((int)params->height - 1));
   valid = valid & (x0 <= xEnd) & (y0 <= yEnd);
   out->invArea2 = 1.0f / convert_floatL(area2);
   return valid;

@@ -37,6 +37,23 @@ typedef uint32_t uint;
 #define CLR_SHADE_NORMAL 1u
 #define CLR_SHADE_DEPTH 2u
 #define CLR_SHADE_ID 3u
+#define CLR_SHADE_UV 4u      /* texture coordinates (u, v) as red, green */
+#define CLR_SHADE_CHECKER 5u /* an 8×8 checkerboard per unit of (u, v) */
+
+/* Most samples per pixel (FrameParams.samples). */
+#define CLR_MAX_SAMPLES 16
+
+/* FrameParams.edgeMode: how raster evaluates the three edge functions. */
+#define CLR_EDGES_FIXED 0u /* 64-bit integers on the snapped grid: exact (fixed.h) */
+#define CLR_EDGES_FLOAT 1u /* 32-bit floats in pixel units: rounds, cracks when large */
+
+/* FrameParams.interpMode: how resolve interpolates attributes. */
+#define CLR_INTERP_PERSPECTIVE 0u /* the 1/w rule of the notes */
+#define CLR_INTERP_AFFINE 1u      /* screen-space barycentrics as they are */
+
+/* FrameParams.traversal: which tiles and samples a triangle is tested on. */
+#define CLR_TRAVERSAL_BBOX 0u         /* every tile and row of its bounding box */
+#define CLR_TRAVERSAL_HIERARCHICAL 1u /* tiles outside an edge rejected, tiles inside all edges accepted */
 
 /* Indices into the stats counter buffer. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
@@ -46,7 +63,7 @@ typedef uint32_t uint;
 #define CLR_NUM_COUNTERS 4
 
 /* Per-frame constants. Written by the host once per frame; read by every
- * kernel. One struct, 144 bytes. */
+ * kernel. One struct, 304 bytes. */
 typedef struct FrameParams {
   float mvp[16];     /* column-major, clip = mvp · (x, y, z, 1) */
   float lightDir[4]; /* world space, unit, towards the light */
@@ -62,10 +79,20 @@ typedef struct FrameParams {
   uint tilesY;
   uint numVerts;
   uint numTris;
-  uint cullBack;  /* 1: cull clockwise (back-facing) triangles */
-  uint shadeMode; /* CLR_SHADE_* */
+  uint cullBack;         /* 1: cull clockwise (back-facing) triangles */
+  uint shadeMode;        /* CLR_SHADE_* */
+  uint samples;          /* samples per pixel: 1, 2, 4, 8 or 16 */
+  uint shadeEverySample; /* 0: MSAA, shade once per pixel and triangle; 1: SSAA */
+  uint edgeMode;         /* CLR_EDGES_* */
+  uint interpMode;       /* CLR_INTERP_* */
+  uint traversal;        /* CLR_TRAVERSAL_* */
+  /* Extent of the sample offsets below, for bounds: min and max over k. */
+  int sampleMinX, sampleMaxX, sampleMinY, sampleMaxY;
   uint pad0;
-  uint pad1;
+  /* Sample k of a pixel lies at its centre + (sampleX[k], sampleY[k]) in
+   * fixed-point units (y up); the host fills them (host/aa.cpp). */
+  int sampleX[CLR_MAX_SAMPLES];
+  int sampleY[CLR_MAX_SAMPLES];
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
@@ -92,11 +119,13 @@ typedef struct ClipBary {
 } ClipBary;
 
 /* The visibility buffer: the nearest fragment of each pixel sample, stored
- * as planes so that a row of samples is one vector load or store:
- *  visIndex uint[width·height]     setup index, or CLR_NONE
- *  visAttr  float[3·width·height]  planes of window depth, b1, b2
- * Written by raster, read by resolve. Pixels of tiles with no binned
- * triangle are not written (resolve knows them from the tile offsets).
+ * as planes so that a row of samples is one vector load or store. With
+ * S = FrameParams.samples and P = width·height, sample k of pixel p is
+ *  visIndex uint[S·P]     at k·P + p: setup index, or CLR_NONE
+ *  visAttr  float[3·S·P]  at (3k + c)·P + p: c = 0 window depth, 1 b1, 2 b2
+ * Written by raster, read by resolve; memory follows S (4 + 12 bytes per
+ * sample). Pixels of tiles with no binned triangle are not written (resolve
+ * knows them from the tile offsets).
  * VisSample is one sample as Pipeline::readVis() returns it. */
 typedef struct VisSample {
   uint setupIndex; /* index into TriSetup, or CLR_NONE */
@@ -108,6 +137,8 @@ typedef struct VisSample {
 /* The remaining buffers of a frame, all typed:
  *  positions  float[3·numVerts]   host upload;  read by transform
  *  normals    float[3·numVerts]   host upload;  read by resolve
+ *  uvs        float[2·numVerts]   host upload (zeros when the mesh has
+ *                                 none); read by resolve
  *  indices    uint[3·numTris]     host upload;  read by setup, resolve
  *  clipPos    float4[numVerts]    transform;    read by setup, resolve
  *  triCount   uint[numTris + 1]   setup_count writes counts, the scan turns
@@ -126,7 +157,7 @@ typedef struct VisSample {
  */
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 144, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 304, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 64, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
