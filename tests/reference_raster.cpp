@@ -95,16 +95,17 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
     std::swap(Z[1], Z[2]);
     area2 = -area2;
   }
-  const int x0 = std::max(0, ceilDiv(std::min({X[0], X[1], X[2]}) - CLR_FIXED_HALF));
-  const int x1 = std::min(int(o.width) - 1, floorDiv(std::max({X[0], X[1], X[2]}) - CLR_FIXED_HALF));
-  const int y0 = std::max(0, ceilDiv(std::min({Y[0], Y[1], Y[2]}) - CLR_FIXED_HALF));
-  const int y1 = std::min(int(o.height) - 1, floorDiv(std::max({Y[0], Y[1], Y[2]}) - CLR_FIXED_HALF));
+  const int centreX = CLR_FIXED_HALF + o.sampleX, centreY = CLR_FIXED_HALF + o.sampleY;
+  const int x0 = std::max(0, ceilDiv(std::min({X[0], X[1], X[2]}) - centreX));
+  const int x1 = std::min(int(o.width) - 1, floorDiv(std::max({X[0], X[1], X[2]}) - centreX));
+  const int y0 = std::max(0, ceilDiv(std::min({Y[0], Y[1], Y[2]}) - centreY));
+  const int y1 = std::min(int(o.height) - 1, floorDiv(std::max({Y[0], Y[1], Y[2]}) - centreY));
   if (x0 > x1 || y0 > y1) return false;
-  // Step 3: every pixel centre of the bounding box, z-buffered.
+  // Step 3: every sample of the bounding box, z-buffered.
   const float invArea2 = 1.0f / float(area2);
   for (int py = y0; py <= y1; ++py)
     for (int px = x0; px <= x1; ++px) {
-      const int sx = px * CLR_FIXED_ONE + CLR_FIXED_HALF, sy = py * CLR_FIXED_ONE + CLR_FIXED_HALF;
+      const int sx = px * CLR_FIXED_ONE + centreX, sy = py * CLR_FIXED_ONE + centreY;
       const int64_t e[3] = {edge(X[1], Y[1], X[2], Y[2], sx, sy), edge(X[2], Y[2], X[0], Y[0], sx, sy),
                             edge(X[0], Y[0], X[1], Y[1], sx, sy)};
       bool inside = true;

@@ -23,6 +23,9 @@ constexpr uint32_t kNone = 0xFFFFFFFFu;
 struct Options {
   uint32_t width = 64, height = 64;
   bool cullBack = false;
+  // The sample position of every pixel: its centre plus this offset, in
+  // fixed-point units (one sample plane of an anti-aliased frame).
+  int sampleX = 0, sampleY = 0;
 };
 
 struct Result {

@@ -39,6 +39,9 @@ clr::FrameSettings idSettings(uint32_t width, uint32_t height, const glm::mat4& 
 // input triangle index of the visible fragment or ref::kNone.
 std::vector<uint32_t> renderTriIds(clr::Pipeline& pipeline, const clr::FrameSettings& settings);
 
+// The input triangle index per pixel of one sample plane of the last frame.
+std::vector<uint32_t> readTriIds(const clr::Pipeline& pipeline, uint32_t sample = 0);
+
 // Same, for a fresh pipeline on the shared context.
 std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSettings& settings);
 
