@@ -72,7 +72,7 @@ uint32_t parseChoice(const std::string& flag, const std::string& text, std::init
 void applyMethods(const RenderArgs& args, FrameSettings& settings)
 {
   if (args.aa != "auto") {
-    const AaMode& mode = findAaMode(args.aa);
+    const AaMode& mode = findAaMode(args.aa.empty() ? "none" : args.aa);
     settings.samples = mode.samples;
     settings.shadeEverySample = mode.shadeEverySample;
   }

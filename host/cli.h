@@ -22,7 +22,7 @@ struct RenderArgs {
   uint32_t frames = 1;
   bool stats = false;
   // Methods (see README, "Methods"): --aa, --edges, --interp, --traversal.
-  std::string aa = "none";  // an aa.h mode name, or "auto"
+  std::string aa;  // an aa.h mode name, "auto", or empty (none; --quality auto chooses)
   uint32_t edgeMode = CLR_EDGES_FIXED;
   uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
   uint32_t traversal = CLR_TRAVERSAL_BBOX;

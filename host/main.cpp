@@ -7,6 +7,7 @@
 #include "device.h"
 #include "image_io.h"
 #include "pipeline.h"
+#include "quality.h"
 
 #include <algorithm>
 #include <chrono>
@@ -26,8 +27,9 @@ int listDevicesCommand()
   return 0;
 }
 
-void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline, double firstFrameMs,
-                const std::vector<double>& frameMs, const std::vector<FrameStats>& frames)
+void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline, const FrameSettings& settings,
+                const std::string& autoJson, double firstFrameMs, const std::vector<double>& frameMs,
+                const std::vector<FrameStats>& frames)
 {
   std::printf(
       "{\"device\":\"%s\",\"width\":%u,\"height\":%u,\"frames\":%zu,\"frame_ms\":%.3f,"
@@ -45,9 +47,16 @@ void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pip
   const FrameStats& s = frames.back();
   std::printf(
       "},\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
-      "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu}\n",
+      "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu,"
+      "\"aa\":\"%s\",\"samples\":%u,\"bytes_per_pixel\":%.1f,\"edges\":\"%s\",\"interp\":\"%s\","
+      "\"traversal\":\"%s\"%s%s}\n",
       (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped, (unsigned long long)s.trianglesCulled,
-      (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries, pipeline.deviceBytes());
+      (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries, pipeline.deviceBytes(),
+      aaModeName(settings.samples, settings.shadeEverySample).c_str(), settings.samples, pipeline.bytesPerPixel(),
+      settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
+      settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective",
+      settings.traversal == CLR_TRAVERSAL_HIERARCHICAL ? "hierarchical" : "bbox",
+      autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
 }
 
 int renderCommand(const std::vector<std::string>& argList)
@@ -67,6 +76,10 @@ int renderCommand(const std::vector<std::string>& argList)
   pipeline.uploadScene(mesh);
   FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
   applyMethods(args, settings);
+  // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
+  std::string autoJson;
+  if (args.aa == "auto" || args.qualityAuto)
+    autoJson = chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto).json();
 
   // Step 3: frames, timed from parameter upload to the image in host memory.
   // With --stats, one untimed frame first: PoCL finishes compiling each
@@ -89,7 +102,7 @@ int renderCommand(const std::vector<std::string>& argList)
 
   // Step 4: output.
   writePng(args.outPath, args.width, args.height, image);
-  if (args.stats) printStats(args, cl, pipeline, firstFrameMs, frameMs, frames);
+  if (args.stats) printStats(args, cl, pipeline, settings, autoJson, firstFrameMs, frameMs, frames);
   return 0;
 }
 

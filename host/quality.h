@@ -1,0 +1,64 @@
+// quality.h — `--aa auto` and `--quality auto`: the cheapest method whose
+// predicted error stays within a stated target, per scene.
+//
+// The prediction is a model fitted to the figures bench/accuracy measures
+// (docs/accuracy.md). A probe frame without anti-aliasing is rendered first;
+// every pixel whose right or upper neighbour shows another triangle (or
+// background) is an edge pixel, and its contrast Δ is the largest colour
+// difference, per channel in [0, 1], to those neighbours. With c(mode) the
+// RMS coverage error of an edge pixel that the mode leaves, measured on a
+// scene of disjoint triangles against the exact area, the image's RMSE
+// against a converged reference is predicted as
+//     RMSE(mode) ≈ c(mode) · sqrt(Σ_edge pixels Σ_channels Δ² / (3 · pixels)).
+// The model covers geometric edges only: aliasing inside triangles (a fine
+// texture) is what SSAA addresses and is not predicted.
+#pragma once
+
+#include "aa.h"
+#include "pipeline.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clr {
+
+// Image RMSE target of --aa auto: 0.01 of full scale, PSNR 40 dB.
+constexpr double kAutoTargetRmse = 0.01;
+
+// Tiles per setup triangle above which --quality auto takes hierarchical
+// traversal (bench/accuracy measures the crossover, docs/accuracy.md).
+constexpr double kHierarchicalTilesPerTriangle = 4.0;
+
+struct EdgeContrast {
+  uint64_t pixels = 0, edgePixels = 0;
+  double sumSquared = 0;  // Σ over edge pixels and channels of Δ²
+};
+
+// rgba: an RGBA8 image, top row first (as Pipeline::readImage); setupIndex:
+// the visible setup triangle per pixel, bottom row first (Pipeline::readVis).
+EdgeContrast measureEdgeContrast(const std::vector<uint32_t>& rgba, const std::vector<VisSample>& vis, uint32_t width,
+                                 uint32_t height);
+
+// The measured RMS coverage error per edge pixel of a mode (see above).
+double edgeCoverageError(const AaMode& mode);
+
+double predictRmse(const AaMode& mode, const EdgeContrast& contrast);
+
+struct AutoChoice {
+  std::string aa;  // the chosen aa.h mode
+  double predictedRmse = 0;
+  double targetRmse = kAutoTargetRmse;
+  EdgeContrast contrast;
+  bool hierarchical = false;  // chosen traversal (when chosen)
+  double tilesPerTriangle = 0;
+  std::string reason;
+  std::string json() const;  // for --stats
+};
+
+// Renders the probe frame with `settings` (anti-aliasing off) and sets, with
+// chooseAa, the cheapest anti-aliasing mode whose predicted error meets the
+// target and, with chooseTraversal, the traversal.
+AutoChoice chooseAutomatically(Pipeline& pipeline, FrameSettings& settings, bool chooseAa, bool chooseTraversal);
+
+}  // namespace clr
