@@ -3,6 +3,7 @@
 #pragma once
 
 #include "camera.h"
+#include "views.h"
 
 #include <functional>
 #include <string>
@@ -20,6 +21,8 @@ struct RenderArgs {
   std::string device;
   uint32_t frames = 1;
   bool stats = false;
+  std::string viewsPath;  // --views: outPath is then a pattern (views.h)
+  Shard shard;            // --shard K/N, with --views only
 };
 
 // args: everything after "render".
