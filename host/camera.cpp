@@ -36,10 +36,10 @@ FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t sh
   return s;
 }
 
-Camera frameCamera(const CameraArgs& args, const Bounds& bounds)
+Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::string& prefix)
 {
   // Step 1: the field of view comes first, everything else may depend on it.
-  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f)) throw Error("--fov must lie in (0, 180) degrees");
+  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f)) throw Error(prefix + "fov must lie in (0, 180) degrees");
   Camera cam;
   cam.fovDegrees = args.fovDegrees;
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
@@ -58,12 +58,13 @@ Camera frameCamera(const CameraArgs& args, const Bounds& bounds)
   cam.zNear = args.zNear.value_or(std::max(cam.zFar * 1e-4f, (eyeDistance - 1.5f * radius) * 0.9f));
 
   // Step 4: validate.
-  if (!(cam.zNear > 0.0f) || !std::isfinite(cam.zNear)) throw Error("--near must be > 0");
-  if (!(cam.zFar > cam.zNear) || !std::isfinite(cam.zFar)) throw Error("--far must be greater than --near");
+  if (!(cam.zNear > 0.0f) || !std::isfinite(cam.zNear)) throw Error(prefix + "near must be > 0");
+  if (!(cam.zFar > cam.zNear) || !std::isfinite(cam.zFar))
+    throw Error(prefix + "far must be greater than " + prefix + "near");
   const glm::vec3 view = cam.target - cam.eye;
-  if (!(glm::length(view) > 0.0f)) throw Error("--eye and --target must differ");
+  if (!(glm::length(view) > 0.0f)) throw Error(prefix + "eye and " + prefix + "target must differ");
   if (!(glm::length(glm::cross(view, cam.up)) > 1e-6f * glm::length(view) * glm::length(cam.up)))
-    throw Error("--up must not be parallel to the view direction");
+    throw Error(prefix + "up must not be parallel to the view direction");
   return cam;
 }
 

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <optional>
+#include <string>
 
 namespace clr {
 
@@ -32,7 +33,8 @@ struct Camera {
 };
 
 // Fills unset fields so the scene's bounding sphere is in view, then
-// validates the result.
-Camera frameCamera(const CameraArgs& args, const Bounds& bounds);
+// validates the result. Error messages name each field with `prefix` before
+// it: "--fov" for the command line, "fov" for a views file (views.h).
+Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::string& prefix = "--");
 
 }  // namespace clr

@@ -25,9 +25,16 @@ const char* usageText()
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
          "                  [--traversal bbox|hierarchical] [--quality auto]\n"
          "                  [--device SEL] [--frames N] [--stats]\n"
+         "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
+         "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
+         "                  [--device SEL] [--stats]\n"
          "  clraster devices\n"
          "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
-         "built-in scene is rendered. SEL is a device index or a name substring.\n";
+         "built-in scene is rendered. SEL is a device index or a name substring.\n"
+         "VIEWS.json is {\"views\": [{\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z],\n"
+         "\"fov\": DEG, \"near\": N, \"far\": F, \"size\": [W,H]}, ...]}, every key optional; the\n"
+         "output pattern's one integer conversion is the view's index in the list, and\n"
+         "--shard K/N renders the views K, K+N, K+2N, ...\n";
 }
 
 namespace {
@@ -102,6 +109,7 @@ void parseSize(const std::string& flag, const std::string& text, uint32_t& width
 RenderArgs parseRenderArgs(const std::vector<std::string>& args)
 {
   RenderArgs r;
+  bool framesGiven = false, shardGiven = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     // Step 1: flags that take a value.
@@ -161,6 +169,13 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       r.device = value();
     } else if (a == "--frames") {
       r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
+      framesGiven = true;
+    } else if (a == "--views") {
+      r.viewsPath = value();
+      if (r.viewsPath.empty()) throw Error("--views: empty path");
+    } else if (a == "--shard") {
+      r.shard = parseShard(value());
+      shardGiven = true;
       // Step 2: switches and the scene path.
     } else if (a == "--stats") {
       r.stats = true;
@@ -172,7 +187,10 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       throw Error("unexpected argument '" + a + "' (only one SCENE)");
     }
   }
-  if (r.outPath.empty()) throw Error("missing -o OUT.png");
+  if (r.outPath.empty()) throw Error(r.viewsPath.empty() ? "missing -o OUT.png" : "missing -o OUT_%04d.png");
+  if (shardGiven && r.viewsPath.empty()) throw Error("--shard needs --views");
+  if (framesGiven && !r.viewsPath.empty()) throw Error("--frames cannot be combined with --views");
+  if (!r.viewsPath.empty()) checkOutputPattern(r.outPath);
   // Check the camera now, before any file is read.
   if (!(r.camera.fovDegrees > 0.0f && r.camera.fovDegrees < 180.0f)) throw Error("--fov must lie in (0, 180) degrees");
   if (r.camera.zNear && !(*r.camera.zNear > 0.0f)) throw Error("--near must be > 0");

@@ -4,6 +4,7 @@
 
 #include "camera.h"
 #include "pipeline.h"
+#include "views.h"
 
 #include <functional>
 #include <string>
@@ -27,6 +28,8 @@ struct RenderArgs {
   uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
   uint32_t traversal = CLR_TRAVERSAL_BBOX;
   bool qualityAuto = false;  // --quality auto
+  std::string viewsPath;     // --views: outPath is then a pattern (views.h)
+  Shard shard;               // --shard K/N, with --views only
 };
 
 // Copies the chosen methods (not "auto") into a frame's settings.

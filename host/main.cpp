@@ -1,18 +1,23 @@
-// main.cpp — the clraster command line: `render` and `devices`.
+// main.cpp — the clraster command line: `render` (one camera, or a views
+// file of many, views.h) and `devices`.
 //
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
 // half-written (image_io.h).
 #include "cli.h"
 #include "device.h"
+#include "frame_writer.h"
 #include "image_io.h"
 #include "pipeline.h"
 #include "quality.h"
+#include "views.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
+#include <set>
 
 using namespace clr;
 
@@ -59,16 +64,103 @@ void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pip
       autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
 }
 
+double msSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+Mesh loadMesh(const RenderArgs& args)
+{
+  Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  if (args.shadeMode == CLR_SHADE_ID && mesh.numTris() >= (1u << 24) - 1)
+    std::fprintf(stderr, "clraster: warning: %zu triangles; --shade id encodes only 24 bits, ids wrap\n",
+                 mesh.numTris());
+  return mesh;
+}
+
+// `render --views`: one scene upload, then the shard's views in order, each
+// image handed to the writer thread while the next one renders.
+int renderViewsCommand(const RenderArgs& args)
+{
+  // Step 1: views file, scene, cameras and output folders, before any device
+  // work or any output: a bad view writes nothing.
+  const auto commandStart = std::chrono::steady_clock::now();
+  const std::vector<ViewSpec> views = loadViews(args.viewsPath, args.camera, args.width, args.height);
+  const Mesh mesh = loadMesh(args);
+  const std::vector<Camera> cameras = frameViews(args.viewsPath, views, meshBounds(mesh));
+  const std::vector<size_t> selected = shardViews(views.size(), args.shard);
+  std::set<std::string> folders;
+  for (size_t v : selected) {
+    const std::string name = outputName(args.outPath, v);
+    const std::string folder = name.find('/') == std::string::npos ? "." : name.substr(0, name.rfind('/') + 1);
+    if (folders.insert(folder).second) checkWritable(name);
+  }
+
+  // Step 2: device, program, scene upload, once.
+  ClContext cl(args.device);
+  Pipeline pipeline(cl);
+  pipeline.uploadScene(mesh);
+
+  // Step 3: frames, rendered here and written by the writer thread. frame_ms
+  // is camera upload to image in host memory, as for a single view.
+  const double startupMs = msSince(commandStart);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> frameMs, writeMs;
+  {
+    ProgressBar progress(selected.size(), ProgressBar::stderrIsTerminal());
+    FrameWriter writer(2, [&](size_t written) { progress.update(written); });
+    progress.update(0);
+    // --aa auto / --quality auto choose once, on the first view of the shard.
+    std::optional<FrameSettings> chosen;
+    for (size_t v : selected) {
+      const auto frameStart = std::chrono::steady_clock::now();
+      Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
+      FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack);
+      applyMethods(args, settings);
+      if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
+        chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
+        chosen = settings;
+      }
+      if (chosen) {
+        settings.samples = chosen->samples;
+        settings.shadeEverySample = chosen->shadeEverySample;
+        settings.traversal = chosen->traversal;
+      }
+      pipeline.render(settings, frame.rgba);
+      frameMs.push_back(msSince(frameStart));
+      writer.push(std::move(frame));
+    }
+    writer.finish();
+    writeMs = writer.writeMs();
+  }
+  const double totalMs = msSince(start);
+
+  // Step 4: one JSON line for the run.
+  if (args.stats) {
+    auto stat = [](const std::vector<double>& ms, double (*pick)(std::vector<double>)) {
+      return ms.empty() ? 0.0 : pick(ms);
+    };
+    auto lo = [](std::vector<double> ms) { return *std::min_element(ms.begin(), ms.end()); };
+    auto hi = [](std::vector<double> ms) { return *std::max_element(ms.begin(), ms.end()); };
+    std::printf(
+        "{\"device\":\"%s\",\"views\":%zu,\"shard\":\"%u/%u\",\"frames\":%zu,\"startup_ms\":%.3f,"
+        "\"total_ms\":%.3f,\"frames_per_s\":%.3f,\"frame_ms\":%.3f,\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,"
+        "\"write_ms\":%.3f}\n",
+        jsonEscape(cl.info.name).c_str(), views.size(), args.shard.index, args.shard.count, selected.size(), startupMs,
+        totalMs, totalMs > 0.0 ? selected.size() * 1000.0 / totalMs : 0.0, stat(frameMs, median), stat(frameMs, lo),
+        stat(frameMs, hi), stat(writeMs, median));
+  }
+  return 0;
+}
+
 int renderCommand(const std::vector<std::string>& argList)
 {
   // Step 1: arguments, output path, scene and camera, before any device work.
   const RenderArgs args = parseRenderArgs(argList);
+  if (!args.viewsPath.empty()) return renderViewsCommand(args);
   checkWritable(args.outPath);
-  const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  const Mesh mesh = loadMesh(args);
   const Camera camera = frameCamera(args.camera, meshBounds(mesh));
-  if (args.shadeMode == CLR_SHADE_ID && mesh.numTris() >= (1u << 24) - 1)
-    std::fprintf(stderr, "clraster: warning: %zu triangles; --shade id encodes only 24 bits, ids wrap\n",
-                 mesh.numTris());
 
   // Step 2: device, program, scene upload (not part of the frame time).
   ClContext cl(args.device);

@@ -1,84 +1,27 @@
 // test_cli.cpp — the command line's error paths and its output guarantees:
 // every bad input gets a one-line message naming the problem and a non-zero
 // exit, and no failure leaves a half-written or clobbered output file.
+#include "cli_support.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
 
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <dirent.h>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
+using test::expectError;
+using test::leftoverTemps;
+using test::Run;
+using test::run;
+using test::slurp;
+using test::writeFile;
 
 std::string tmpDir()
 {
   return test::tempDir();
-}
-
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-Run run(const std::string& args)
-{
-  // One stderr file per test process: CTest runs test cases in parallel.
-  const std::string errPath = tmpDir() + "/stderr-" + std::to_string(getpid()) + ".txt";
-  const std::string cmd = std::string("'") + CLRASTER_BIN + "' " + args + " 2>'" + errPath + "' </dev/null";
-  Run r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(errPath);
-  return r;
-}
-
-std::string writeFile(const std::string& name, const std::string& content)
-{
-  const std::string path = tmpDir() + "/" + name;
-  std::ofstream(path, std::ios::binary) << content;
-  return path;
-}
-
-// A failing run: exit 1, exactly one line on stderr containing `needle`.
-void expectError(const std::string& args, const std::string& needle)
-{
-  const Run r = run(args);
-  INFO("clraster " << args << "\nstderr: " << r.err);
-  CHECK(r.status == 1);
-  CHECK(r.err.find(needle) != std::string::npos);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-}
-
-// Temporary files left beside `target` (its name followed by ".tmp-").
-size_t leftoverTemps(const std::string& target)
-{
-  const std::string prefix = target.substr(target.rfind('/') + 1) + ".tmp-";
-  size_t n = 0;
-  DIR* dir = opendir(tmpDir().c_str());
-  while (dirent* e = readdir(dir)) n += std::string(e->d_name).rfind(prefix, 0) == 0;
-  closedir(dir);
-  return n;
 }
 
 const std::string kSmallObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";

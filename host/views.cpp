@@ -1,0 +1,225 @@
+// views.cpp — the views file, shards and output names (see views.h). JSON is
+// parsed with nlohmann::json; every error is one line naming the file, the
+// view and the key.
+#include "views.h"
+
+#include "cl.h"
+#include "cli.h"
+
+#include "../kernels/shared.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace clr {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// A JSON number as a finite float; `what` names the key in errors.
+float finiteFloat(const Json& value, const std::string& what)
+{
+  if (!value.is_number()) throw Error(what + " must be a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v) || std::fabs(v) > 3.0e38) throw Error(what + " must be a finite number");
+  return float(v);
+}
+
+glm::vec3 vec3Field(const Json& value, const std::string& what)
+{
+  if (!value.is_array() || value.size() != 3) throw Error(what + " must be an array of 3 numbers");
+  glm::vec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = finiteFloat(value[k], what + "[" + std::to_string(k) + "]");
+  return v;
+}
+
+uint32_t sizeSide(const Json& value, const std::string& what)
+{
+  if (!value.is_number_integer() || value.get<int64_t>() < 1 || value.get<int64_t>() > CLR_MAX_VIEWPORT)
+    throw Error(what + " must be an integer in 1.." + std::to_string(CLR_MAX_VIEWPORT));
+  return uint32_t(value.get<int64_t>());
+}
+
+// One element of "views", merged over the defaults.
+ViewSpec parseView(const Json& view, ViewSpec spec)
+{
+  if (!view.is_object()) throw Error("must be an object {\"eye\": [x, y, z], ...}");
+  for (const auto& [key, value] : view.items()) {
+    const std::string what = "\"" + key + "\"";
+    if (key == "eye") {
+      spec.camera.eye = vec3Field(value, what);
+    } else if (key == "target") {
+      spec.camera.target = vec3Field(value, what);
+    } else if (key == "up") {
+      spec.camera.up = vec3Field(value, what);
+    } else if (key == "fov") {
+      spec.camera.fovDegrees = finiteFloat(value, what);
+      if (!(spec.camera.fovDegrees > 0.0f && spec.camera.fovDegrees < 180.0f))
+        throw Error(what + " must lie in (0, 180) degrees");
+    } else if (key == "near") {
+      spec.camera.zNear = finiteFloat(value, what);
+      if (!(*spec.camera.zNear > 0.0f)) throw Error(what + " must be > 0");
+    } else if (key == "far") {
+      spec.camera.zFar = finiteFloat(value, what);
+      if (!(*spec.camera.zFar > 0.0f)) throw Error(what + " must be > 0");
+    } else if (key == "size") {
+      if (!value.is_array() || value.size() != 2) throw Error(what + " must be [W, H]");
+      spec.width = sizeSide(value[0], what + "[0]");
+      spec.height = sizeSide(value[1], what + "[1]");
+    } else {
+      throw Error("unknown key " + what + " (eye, target, up, fov, near, far, size)");
+    }
+  }
+  if (spec.camera.zNear && spec.camera.zFar && !(*spec.camera.zFar > *spec.camera.zNear))
+    throw Error("\"far\" must be greater than \"near\"");
+  return spec;
+}
+
+// Length of the conversion starting at pattern[i] == '%' when it is an
+// integer one (%[-+ 0#]*[0-9]*(.[0-9]*)?[diu]), else 0.
+size_t integerConversion(const std::string& pattern, size_t i)
+{
+  size_t j = i + 1;
+  while (j < pattern.size() && std::strchr("-+ 0#", pattern[j])) ++j;
+  while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+  if (j < pattern.size() && pattern[j] == '.') {
+    ++j;
+    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+  }
+  if (j < pattern.size() && (pattern[j] == 'd' || pattern[j] == 'i' || pattern[j] == 'u')) return j + 1 - i;
+  return 0;
+}
+
+}  // namespace
+
+std::vector<ViewSpec> parseViews(const std::string& path, const std::string& text, const CameraArgs& defaults,
+                                 uint32_t width, uint32_t height)
+{
+  // Step 1: the JSON itself (nlohmann's message names line and column); a
+  // key repeated in one object is an error, not "the last one wins".
+  Json doc;
+  std::vector<std::set<std::string>> keys;  // per open object
+  auto uniqueKeys = [&](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) keys.emplace_back();
+    if (event == Json::parse_event_t::object_end) keys.pop_back();
+    if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second)
+      throw Error(path + ": duplicate key \"" + parsed.get<std::string>() + "\"");
+    return true;
+  };
+  try {
+    doc = Json::parse(text, uniqueKeys);
+  } catch (const Json::exception& e) {
+    std::string message = e.what();
+    if (message.rfind("[json.exception.", 0) == 0 && message.find("] ") != std::string::npos)
+      message = message.substr(message.find("] ") + 2);
+    throw Error(path + ": " + message);
+  }
+
+  // Step 2: the top level, {"views": [...]}.
+  if (!doc.is_object()) throw Error(path + ": must be a JSON object {\"views\": [...]}");
+  for (const auto& item : doc.items())
+    if (item.key() != "views") throw Error(path + ": unknown key \"" + item.key() + "\" (only \"views\")");
+  if (!doc.contains("views")) throw Error(path + ": missing \"views\"");
+  const Json& list = doc["views"];
+  if (!list.is_array()) throw Error(path + ": \"views\" must be an array");
+  if (list.empty()) throw Error(path + ": \"views\" is empty");
+  if (list.size() > size_t(INT_MAX)) throw Error(path + ": too many views");
+
+  // Step 3: each view, merged over the command line's values.
+  ViewSpec base;
+  base.camera = defaults;
+  base.width = width;
+  base.height = height;
+  std::vector<ViewSpec> views;
+  views.reserve(list.size());
+  for (size_t i = 0; i < list.size(); ++i) {
+    try {
+      views.push_back(parseView(list[i], base));
+    } catch (const Error& e) {
+      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  return views;
+}
+
+std::vector<ViewSpec> loadViews(const std::string& path, const CameraArgs& defaults, uint32_t width, uint32_t height)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::stringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(path + ": cannot read");
+  if (text.str().empty()) throw Error(path + ": file is empty");
+  return parseViews(path, text.str(), defaults, width, height);
+}
+
+std::vector<Camera> frameViews(const std::string& path, const std::vector<ViewSpec>& views, const Bounds& bounds)
+{
+  std::vector<Camera> cameras;
+  cameras.reserve(views.size());
+  for (size_t i = 0; i < views.size(); ++i) {
+    try {
+      cameras.push_back(frameCamera(views[i].camera, bounds, ""));
+    } catch (const Error& e) {
+      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  return cameras;
+}
+
+Shard parseShard(const std::string& text)
+{
+  const size_t slash = text.find('/');
+  if (slash == std::string::npos) throw Error("--shard: '" + text + "' is not K/N");
+  Shard s;
+  s.index = uint32_t(parseUnsigned("--shard K", text.substr(0, slash), 0, UINT32_MAX));
+  s.count = uint32_t(parseUnsigned("--shard N", text.substr(slash + 1), 1, UINT32_MAX));
+  if (s.index >= s.count) throw Error("--shard: K must be less than N in K/N (K counts from 0), got '" + text + "'");
+  return s;
+}
+
+std::vector<size_t> shardViews(size_t numViews, const Shard& shard)
+{
+  std::vector<size_t> indices;
+  for (size_t i = shard.index; i < numViews; i += shard.count) indices.push_back(i);
+  return indices;
+}
+
+void checkOutputPattern(const std::string& pattern)
+{
+  size_t conversions = 0;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    const size_t length = integerConversion(pattern, i);
+    if (length == 0) throw Error("-o: '" + pattern + "' has a conversion other than %d, %i or %u");
+    ++conversions;
+    i += length - 1;
+  }
+  if (conversions != 1)
+    throw Error("-o: with --views, '" + pattern +
+                "' needs exactly one integer conversion for the view index (e.g. out_%04d.png)");
+}
+
+std::string outputName(const std::string& pattern, size_t index)
+{
+  const int n = std::snprintf(nullptr, 0, pattern.c_str(), int(index));
+  if (n < 0) throw Error("-o: cannot format '" + pattern + "'");
+  std::vector<char> name(size_t(n) + 1);
+  std::snprintf(name.data(), name.size(), pattern.c_str(), int(index));
+  return std::string(name.data(), size_t(n));
+}
+
+}  // namespace clr
