@@ -22,8 +22,9 @@
 //                   on a C×C crop at the image centre: RMSE of all channels
 //                   in [0, 1], max, PSNR; with the --aa auto model's
 //                   prediction beside it (lambert scenes)
-//   checker scene   also (u, v) from --shade uv (aa none) against the
-//                   analytic value at each pixel centre: RMSE and max
+//   checker scene   also (u, v) from --shade uv and eye depth from --shade
+//                   depth (aa none) against the analytic values at each
+//                   pixel centre: RMSE and max
 // Writes the CSV (one row per scene and method), the Pareto front per scene
 // (methods no other method beats in both time and error), and a Markdown
 // table. Every failure is one line on stderr and exit status 1.
@@ -97,6 +98,7 @@ struct Row {
   uint32_t samples = 1;
   double frameMs = 0, frameMsMin = 0, frameMsMax = 0;
   double rmse = 0, maxError = 0, psnr = 0, edgeRmse = -1, predictedRmse = -1, uvRmse = -1, uvMax = -1;
+  double depthRmse = -1, depthMax = -1;
   uint64_t binEntries = 0, setupTriangles = 0;
   double bytesPerPixel = 0;
   bool pareto = false;
@@ -313,37 +315,62 @@ void imageError(const std::vector<uint32_t>& rgba, const FrameSettings& f, const
   row.psnr = row.rmse > 0 ? -20 * std::log10(row.rmse) : 999;
 }
 
-// (u, v) of the checker plane from --shade uv against the ray-plane value.
-void uvError(Pipeline& pipeline, FrameSettings f, Row& row)
+// The analytic point of the checker plane (y = 0) seen through the centre
+// of pixel (x, y).
+glm::dvec3 planePoint(const glm::dmat4& inverseMvp, const FrameSettings& f, uint32_t x, uint32_t y)
 {
-  f.shadeMode = CLR_SHADE_UV;
+  const glm::dvec2 ndc((x + 0.5) / f.width * 2 - 1, (y + 0.5) / f.height * 2 - 1);
+  const glm::dvec4 a = inverseMvp * glm::dvec4(ndc, -1, 1), b = inverseMvp * glm::dvec4(ndc, 1, 1);
+  const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+  return p0 + (p1 - p0) * (p0.y / (p0.y - p1.y));
+}
+
+// Attributes of the checker plane against their analytic values at each
+// pixel centre: (u, v) from --shade uv, and eye depth from --shade depth
+// (grey = 1 − (depth − near) / (far − near), so its error is in units of the
+// near–far range). Both 8-bit, so half a step (0.002) is the floor.
+void attributeError(Pipeline& pipeline, FrameSettings f, const glm::vec3& eye, Row& row)
+{
   f.samples = 1;
   f.shadeEverySample = false;
-  std::vector<uint32_t> rgba;
-  pipeline.render(f, rgba);
-  const std::vector<VisSample> vis = pipeline.readVis();
   const glm::dmat4 inv = glm::inverse(glm::dmat4(f.mvp));
-  double sum = 0, worst = 0;
-  size_t n = 0;
-  for (uint32_t y = 0; y < f.height; ++y)
-    for (uint32_t x = 0; x < f.width; ++x) {
-      if (vis[size_t(y) * f.width + x].setupIndex == CLR_NONE) continue;
-      const glm::dvec2 ndc((x + 0.5) / f.width * 2 - 1, (y + 0.5) / f.height * 2 - 1);
-      const glm::dvec4 a = inv * glm::dvec4(ndc, -1, 1), b = inv * glm::dvec4(ndc, 1, 1);
-      const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
-      const glm::dvec2 uv = checkerUv(p0 + (p1 - p0) * (p0.y / (p0.y - p1.y)));
-      const glm::dvec3 c = unpack(rgba[size_t(f.height - 1 - y) * f.width + x]);
-      // --shade uv shows the fractional parts; compare on the circle of [0, 1).
-      for (int k = 0; k < 2; ++k) {
-        double d = std::abs(c[k] - (uv[k] - std::floor(uv[k])));
-        d = std::min(d, 1.0 - d);
-        sum += d * d;
-        worst = std::max(worst, d);
-        ++n;
+  for (uint32_t mode : {CLR_SHADE_UV, CLR_SHADE_DEPTH}) {
+    f.shadeMode = mode;
+    std::vector<uint32_t> rgba;
+    pipeline.render(f, rgba);
+    const std::vector<VisSample> vis = pipeline.readVis();
+    double sum = 0, worst = 0;
+    size_t n = 0;
+    for (uint32_t y = 0; y < f.height; ++y)
+      for (uint32_t x = 0; x < f.width; ++x) {
+        if (vis[size_t(y) * f.width + x].setupIndex == CLR_NONE) continue;
+        const glm::dvec3 p = planePoint(inv, f, x, y);
+        const glm::dvec3 c = unpack(rgba[size_t(f.height - 1 - y) * f.width + x]);
+        if (mode == CLR_SHADE_UV) {
+          // --shade uv shows the fractional parts; compare on the circle of [0, 1).
+          const glm::dvec2 uv = checkerUv(p);
+          for (int k = 0; k < 2; ++k) {
+            double d = std::abs(c[k] - (uv[k] - std::floor(uv[k])));
+            d = std::min(d, 1.0 - d);
+            sum += d * d;
+            worst = std::max(worst, d);
+            ++n;
+          }
+        } else {
+          // Eye depth is the distance along the view direction.
+          const glm::dvec3 forward = glm::normalize(glm::dvec3(0, 0.75, -1) - glm::dvec3(eye));
+          const double depth = glm::dot(p - glm::dvec3(eye), forward);
+          const double grey = 1.0 - (depth - f.zNear) / (f.zFar - f.zNear);
+          const double d = std::abs(c.x - std::clamp(grey, 0.0, 1.0));
+          sum += d * d;
+          worst = std::max(worst, d);
+          ++n;
+        }
       }
-    }
-  row.uvRmse = n ? std::sqrt(sum / double(n)) : 0.0;
-  row.uvMax = worst;
+    const double rmse = n ? std::sqrt(sum / double(n)) : 0.0;
+    (mode == CLR_SHADE_UV ? row.uvRmse : row.depthRmse) = rmse;
+    (mode == CLR_SHADE_UV ? row.uvMax : row.depthMax) = worst;
+  }
 }
 
 void markPareto(std::vector<Row>& rows)
@@ -372,21 +399,23 @@ void writeOutputs(std::vector<Row> rows, const Args& args, const std::string& de
     throw Error("cannot write " + args.csvPath + ", " + args.paretoPath + " or " + args.markdownPath);
   const char* header =
       "scene,method,samples,frame_ms,frame_ms_min,frame_ms_max,metric,rmse,max_error,psnr_db,edge_rmse,"
-      "predicted_rmse,uv_rmse,uv_max,bin_entries,setup_triangles,bytes_per_pixel,pareto\n";
+      "predicted_rmse,uv_rmse,uv_max,depth_rmse,depth_max,bin_entries,setup_triangles,bytes_per_pixel,pareto\n";
   csv << header;
   pareto << header;
   md << "Device: " << deviceName << ", " << args.width << "x" << args.height << ", median of " << args.frames
      << " frames after " << args.warmup << " warm-up; reference " << args.refSamples << "x" << args.refSamples
      << " samples per pixel on a " << args.crop << "x" << args.crop << " centre crop.\n\n"
-     << "| scene | method | frame ms | error (RMSE) | max | PSNR dB | edge RMSE | predicted | uv RMSE | Pareto |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+     << "| scene | method | frame ms | error (RMSE) | max | PSNR dB | edge RMSE | predicted | uv RMSE | depth RMSE | "
+        "Pareto |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     char line[512];
     std::snprintf(line, sizeof line,
-                  "%s,%s,%u,%.3f,%.3f,%.3f,%s,%.6f,%.6f,%.2f,%.6f,%.6f,%.6f,%.6f,%llu,%llu,%.1f,%d\n", r.scene.c_str(),
-                  r.method.c_str(), r.samples, r.frameMs, r.frameMsMin, r.frameMsMax, r.metric.c_str(), r.rmse,
-                  r.maxError, r.psnr, r.edgeRmse, r.predictedRmse, r.uvRmse, r.uvMax, (unsigned long long)r.binEntries,
-                  (unsigned long long)r.setupTriangles, r.bytesPerPixel, r.pareto ? 1 : 0);
+                  "%s,%s,%u,%.3f,%.3f,%.3f,%s,%.6f,%.6f,%.2f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%llu,%llu,%.1f,%d\n",
+                  r.scene.c_str(), r.method.c_str(), r.samples, r.frameMs, r.frameMsMin, r.frameMsMax, r.metric.c_str(),
+                  r.rmse, r.maxError, r.psnr, r.edgeRmse, r.predictedRmse, r.uvRmse, r.uvMax, r.depthRmse, r.depthMax,
+                  (unsigned long long)r.binEntries, (unsigned long long)r.setupTriangles, r.bytesPerPixel,
+                  r.pareto ? 1 : 0);
     csv << line;
     if (r.pareto) pareto << line;
     auto opt = [](double v, const char* fmt) {
@@ -497,7 +526,7 @@ int main(int argc, char** argv)
               method.interp == CLR_INTERP_PERSPECTIVE)
             row.predictedRmse = predictRmse(findAaMode(method.aa), contrast);
         }
-        if (scene.analyticUv && method.aa == "none") uvError(pipeline, f, row);
+        if (scene.analyticUv && method.aa == "none") attributeError(pipeline, f, glm::vec3(0, 1, 0), row);
         std::fprintf(stderr, "clraster_accuracy: %-9s %-19s %8.2f ms  rmse %.5f\n", row.scene.c_str(),
                      row.method.c_str(), row.frameMs, row.rmse);
         rows.push_back(row);
