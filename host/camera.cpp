@@ -2,6 +2,7 @@
 #include "camera.h"
 
 #include "cl.h"
+#include "depth.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -9,9 +10,12 @@
 
 namespace clr {
 
-glm::mat4 Camera::viewProjection(uint32_t width, uint32_t height) const
+glm::mat4 Camera::viewProjection(uint32_t width, uint32_t height, uint32_t depthMode) const
 {
-  return glm::perspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar) * glm::lookAt(eye, target, up);
+  const glm::mat4 projection = depthMode == CLR_DEPTH_REVERSED
+                                   ? reversedPerspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar)
+                                   : glm::perspective(glm::radians(fovDegrees), width / (float)height, zNear, zFar);
+  return projection * glm::lookAt(eye, target, up);
 }
 
 glm::vec3 Camera::lightDirection() const
@@ -22,14 +26,16 @@ glm::vec3 Camera::lightDirection() const
   return glm::normalize(back + 0.6f * trueUp + 0.4f * right);
 }
 
-FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack) const
+FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack,
+                                    uint32_t depthMode) const
 {
   FrameSettings s;
   s.width = width;
   s.height = height;
   s.shadeMode = shadeMode;
   s.cullBack = cullBack;
-  s.mvp = viewProjection(width, height);
+  s.depthMode = depthMode;
+  s.mvp = viewProjection(width, height, depthMode);
   s.lightDir = lightDirection();
   s.zNear = zNear;
   s.zFar = zFar;

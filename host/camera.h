@@ -1,7 +1,9 @@
 // camera.h — the camera of the CLI, exactly as the brief states it:
 //   mvp = glm::perspective(glm::radians(fov), W / (float)H, near, far)
 //       * glm::lookAt(eye, target, up),
-// vertical fov, GL clip conventions, model matrix the identity. Missing
+// vertical fov, GL clip conventions, model matrix the identity (with the
+// reversed depth format the projection is depth.h's reversedPerspective,
+// the same x and y rows). Missing
 // values are chosen to frame the scene's bounds. validate() rejects an
 // impossible camera with a clr::Error.
 #pragma once
@@ -25,11 +27,12 @@ struct CameraArgs {
 struct Camera {
   glm::vec3 eye, target, up;
   float fovDegrees, zNear, zFar;
-  glm::mat4 viewProjection(uint32_t width, uint32_t height) const;
+  glm::mat4 viewProjection(uint32_t width, uint32_t height, uint32_t depthMode = CLR_DEPTH_FLOAT32) const;
   // Towards the light: above, right of and behind the eye.
   glm::vec3 lightDirection() const;
   // The frame settings of this camera for a viewport and a shading mode.
-  FrameSettings frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack = false) const;
+  FrameSettings frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack = false,
+                              uint32_t depthMode = CLR_DEPTH_FLOAT32) const;
 };
 
 // Fills unset fields so the scene's bounding sphere is in view, then

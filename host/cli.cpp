@@ -24,6 +24,7 @@ const char* usageText()
          "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
          "                  [--traversal bbox|hierarchical] [--quality auto]\n"
+         "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
          "                  [--device SEL] [--frames N] [--stats]\n"
          "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
          "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
@@ -86,6 +87,16 @@ void applyMethods(const RenderArgs& args, FrameSettings& settings)
   settings.edgeMode = args.edgeMode;
   settings.interpMode = args.interpMode;
   settings.traversal = args.traversal;
+  settings.visibility = args.visibility;
+}
+
+DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera)
+{
+  if (args.depthAuto) return chooseDepthFormat(camera.zNear, camera.zFar);
+  DepthChoice c;
+  c.mode = args.depthMode;
+  c.reason = "--depth";
+  return c;
 }
 
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
@@ -158,6 +169,12 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       r.interpMode = parseChoice(a, value(), {"perspective", "affine"});
     } else if (a == "--traversal") {
       r.traversal = parseChoice(a, value(), {"bbox", "hierarchical"});
+    } else if (a == "--depth") {
+      const uint32_t choice = parseChoice(a, value(), {"float32", "unorm24", "reversed", "auto"});
+      r.depthAuto = choice == 3;
+      r.depthMode = r.depthAuto ? CLR_DEPTH_FLOAT32 : choice;
+    } else if (a == "--visibility") {
+      r.visibility = parseChoice(a, value(), {"zbuffer", "painter"});
     } else if (a == "--quality") {
       parseChoice(a, value(), {"auto"});
       r.qualityAuto = true;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "camera.h"
+#include "depth.h"
 #include "pipeline.h"
 #include "views.h"
 
@@ -27,13 +28,19 @@ struct RenderArgs {
   uint32_t edgeMode = CLR_EDGES_FIXED;
   uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
   uint32_t traversal = CLR_TRAVERSAL_BBOX;
-  bool qualityAuto = false;  // --quality auto
-  std::string viewsPath;     // --views: outPath is then a pattern (views.h)
-  Shard shard;               // --shard K/N, with --views only
+  bool qualityAuto = false;                      // --quality auto
+  uint32_t depthMode = CLR_DEPTH_FLOAT32;        // --depth (CLR_DEPTH_*)
+  bool depthAuto = false;                        // --depth auto (depth.h)
+  uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // --visibility
+  std::string viewsPath;                         // --views: outPath is then a pattern (views.h)
+  Shard shard;                                   // --shard K/N, with --views only
 };
 
 // Copies the chosen methods (not "auto") into a frame's settings.
 void applyMethods(const RenderArgs& args, FrameSettings& settings);
+
+// The depth format of a camera: --depth as given, or the auto rule (depth.h).
+DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera);
 
 // args: everything after "render".
 RenderArgs parseRenderArgs(const std::vector<std::string>& args);

@@ -33,8 +33,8 @@ int listDevicesCommand()
 }
 
 void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline, const FrameSettings& settings,
-                const std::string& autoJson, double firstFrameMs, const std::vector<double>& frameMs,
-                const std::vector<FrameStats>& frames)
+                const DepthChoice& depth, const std::string& autoJson, double firstFrameMs,
+                const std::vector<double>& frameMs, const std::vector<FrameStats>& frames)
 {
   std::printf(
       "{\"device\":\"%s\",\"width\":%u,\"height\":%u,\"frames\":%zu,\"frame_ms\":%.3f,"
@@ -54,13 +54,14 @@ void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pip
       "},\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
       "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu,"
       "\"aa\":\"%s\",\"samples\":%u,\"bytes_per_pixel\":%.1f,\"edges\":\"%s\",\"interp\":\"%s\","
-      "\"traversal\":\"%s\"%s%s}\n",
+      "\"traversal\":\"%s\",\"depth\":\"%s\",\"depth_reason\":\"%s\",\"visibility\":\"%s\"%s%s}\n",
       (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped, (unsigned long long)s.trianglesCulled,
       (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries, pipeline.deviceBytes(),
       aaModeName(settings.samples, settings.shadeEverySample).c_str(), settings.samples, pipeline.bytesPerPixel(),
       settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
       settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective",
-      settings.traversal == CLR_TRAVERSAL_HIERARCHICAL ? "hierarchical" : "bbox",
+      settings.traversal == CLR_TRAVERSAL_HIERARCHICAL ? "hierarchical" : "bbox", depthModeName(depth.mode),
+      jsonEscape(depth.reason).c_str(), settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer",
       autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
 }
 
@@ -115,7 +116,8 @@ int renderViewsCommand(const RenderArgs& args)
     for (size_t v : selected) {
       const auto frameStart = std::chrono::steady_clock::now();
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
-      FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack);
+      FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack,
+                                                        chooseDepth(args, cameras[v]).mode);
       applyMethods(args, settings);
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
@@ -166,7 +168,8 @@ int renderCommand(const std::vector<std::string>& argList)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
+  const DepthChoice depth = chooseDepth(args, camera);
+  FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
   applyMethods(args, settings);
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
@@ -194,7 +197,7 @@ int renderCommand(const std::vector<std::string>& argList)
 
   // Step 4: output.
   writePng(args.outPath, args.width, args.height, image);
-  if (args.stats) printStats(args, cl, pipeline, settings, autoJson, firstFrameMs, frameMs, frames);
+  if (args.stats) printStats(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames);
   return 0;
 }
 

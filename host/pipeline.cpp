@@ -57,6 +57,10 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.edgeMode = s.edgeMode;
   p.interpMode = s.interpMode;
   p.traversal = s.traversal;
+  if (s.depthMode > CLR_DEPTH_REVERSED || s.visibility > CLR_VISIBILITY_PAINTER)
+    throw Error("unknown depth format or visibility method");
+  p.depthMode = s.depthMode;
+  p.visibility = s.visibility;
   return p;
 }
 
@@ -80,7 +84,8 @@ Pipeline::Pipeline(ClContext& cl)
       scanPartials_(memory_, "scan partial sums"),
       visIndex_(memory_, "visibility buffer (triangles)"),
       visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
-      image_(memory_, "image")
+      image_(memory_, "image"),
+      paintRank_(memory_, "paint ranks")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
@@ -108,6 +113,8 @@ void Pipeline::uploadScene(const Mesh& mesh)
   // Meshes without texture coordinates read (0, 0).
   uvs_.upload(mesh.uvs.empty() ? std::vector<float>(2 * mesh.numVerts(), 0.0f) : mesh.uvs);
   indices_.upload(mesh.indices);
+  hostIndices_.clear();
+  paintOrder_.clear();
   clipPos_.reserve(mesh.numVerts());
   triCount_.reserve(mesh.numTris() + 1);
   params_.numVerts = uint32_t(mesh.numVerts());
@@ -195,7 +202,8 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
     for (uint32_t x = 0; x < params_.width; ++x) {
       const size_t p = size_t(y) * params_.width + x;
       const uint32_t tile = (y / CLR_TILE_SIZE) * params_.tilesX + x / CLR_TILE_SIZE;
-      vis[p] = offsets[tile] == offsets[tile + 1] ? VisSample{CLR_NONE, 1.0f, 0.0f, 0.0f}
+      const float clearDepth = params_.depthMode == CLR_DEPTH_REVERSED ? 0.0f : 1.0f;
+      vis[p] = offsets[tile] == offsets[tile + 1] ? VisSample{CLR_NONE, clearDepth, 0.0f, 0.0f}
                                                   : VisSample{index[p], attr[p], attr[n + p], attr[2 * n + p]};
     }
   return vis;

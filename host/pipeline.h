@@ -33,6 +33,10 @@ struct FrameSettings {
   uint32_t edgeMode = CLR_EDGES_FIXED;
   uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
   uint32_t traversal = CLR_TRAVERSAL_BBOX;
+  // Depth format (CLR_DEPTH_*); CLR_DEPTH_REVERSED needs a reversed
+  // projection in mvp (Camera::viewProjection builds one, depth.h).
+  uint32_t depthMode = CLR_DEPTH_FLOAT32;
+  uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // CLR_VISIBILITY_*
   glm::mat4 mvp{1.0f};
   glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
   float zNear = 0.1f, zFar = 100.0f;     // for depth shading only
@@ -65,7 +69,7 @@ class Pipeline {
   void transform();
   void setup();
   void bin();
-  void raster();
+  void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)
   void resolve();
   FrameStats finishFrame();  // waits, gathers profiling times and counters
 
@@ -77,6 +81,9 @@ class Pipeline {
   std::vector<uint32_t> readBinEntries() const;
   std::vector<VisSample> readVis(uint32_t sample = 0) const;  // one sample plane; empty tiles read as CLR_NONE
   std::vector<uint32_t> readImage() const;
+  // The painter's draw order of the last painter frame: input triangle
+  // indices, farthest first (empty after a z-buffer frame).
+  const std::vector<uint32_t>& paintOrder() const { return paintOrder_; }
 
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
@@ -96,6 +103,9 @@ class Pipeline {
     (kernel.setArg(index++, args), ...);
   }
   cl::NDRange linear(uint64_t n) const;
+  // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
+  // and uploads each triangle's rank to paintRank_.
+  void sortForPainter();
 
   ClContext& cl_;
   DeviceMemory memory_;
@@ -123,6 +133,9 @@ class Pipeline {
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
+  DeviceBuffer<uint32_t> paintRank_;   // see shared.h
+  std::vector<uint32_t> hostIndices_;  // the scene's indices, read back at the first painter frame
+  std::vector<uint32_t> paintOrder_;
 };
 
 }  // namespace clr

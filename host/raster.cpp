@@ -1,18 +1,59 @@
 // raster.cpp — host side of kernels/raster.cl: one work-group per tile and
 // sample index, with one work-item per pixel sample (GPU) or per tile (CPU),
-// writing one visibility plane per sample.
+// writing one visibility plane per sample. With the painter's algorithm
+// (CLR_VISIBILITY_PAINTER) it first sorts the triangles on the host, far to
+// near by each triangle's farthest vertex: the largest window-depth
+// direction z/w over its vertices with w > 0 (−z/w with the reversed
+// projection), read back from the transform stage. Equal keys put the later
+// input triangle first, so the earlier one is drawn last and wins, as an
+// exact tie does in the z-buffer. The ranks go to the kernel, which keeps
+// the fragment of the latest-drawn triangle.
 #include "pipeline.h"
 
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
 namespace clr {
+
+void Pipeline::sortForPainter()
+{
+  // Step 1: the scene's indices (once) and this frame's clip positions.
+  const uint32_t numTris = params_.numTris;
+  if (hostIndices_.size() != 3 * size_t(numTris)) hostIndices_ = indices_.download(3 * uint64_t(numTris));
+  const std::vector<cl_float4> clip = clipPos_.download(params_.numVerts);
+  // Step 2: each triangle's farthest vertex depth (−inf when all w <= 0).
+  const float sign = params_.depthMode == CLR_DEPTH_REVERSED ? -1.0f : 1.0f;
+  std::vector<float> key(numTris, -std::numeric_limits<float>::infinity());
+  for (uint32_t t = 0; t < numTris; ++t)
+    for (int v = 0; v < 3; ++v) {
+      const cl_float4& c = clip[hostIndices_[3 * size_t(t) + v]];
+      if (c.s[3] > 0.0f) key[t] = std::max(key[t], sign * c.s[2] / c.s[3]);
+    }
+  // Step 3: far to near; ties: the later input triangle first.
+  paintOrder_.resize(numTris);
+  std::iota(paintOrder_.begin(), paintOrder_.end(), 0u);
+  std::sort(paintOrder_.begin(), paintOrder_.end(),
+            [&](uint32_t a, uint32_t b) { return key[a] != key[b] ? key[a] > key[b] : a > b; });
+  std::vector<uint32_t> rank(numTris);
+  for (uint32_t i = 0; i < numTris; ++i) rank[paintOrder_[i]] = i;
+  paintRank_.upload(rank);
+}
 
 void Pipeline::raster()
 {
   const uint64_t samples = uint64_t(params_.width) * params_.height * params_.samples;
   visIndex_.reserve(samples);
   visAttr_.reserve(3 * samples);
+  if (params_.visibility == CLR_VISIBILITY_PAINTER)
+    sortForPainter();
+  else {
+    paintOrder_.clear();
+    paintRank_.reserve(1);
+  }
   cl::Event event;
   setArgs(rasterKernel_, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(),
-          visAttr_.get());
+          visAttr_.get(), paintRank_.get());
   // One work-item per pixel sample (GPU shape) or per tile and sample index
   // (CPU shape, see raster.cl).
   const bool perPixel = cl_.lanes == 1;

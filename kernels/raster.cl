@@ -17,9 +17,16 @@
  * inside for a left edge (dy < 0 on a counter-clockwise triangle) or a
  * horizontal bottom edge (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
  * b_i = E_i / (2·area) and window depth z = z0 + b1·(z1 − z0) + b2·(z2 − z0);
- * the nearest is kept (GL LESS against the far value 1, ties to the lower
- * setup index, i.e. the earlier input triangle) and written to the
- * visibility buffer. Both shapes compute bit-identical results. Tiles with
+ * the nearest is kept and written to the visibility buffer. The depth test
+ * follows FrameParams.depthMode (shared.h), as a LESS compare of a key:
+ * float32 key z (GL LESS against the clear value 1), unorm24 key
+ * rint(clamp(z, 0, 1)·(2^24 − 1)) in float (LESS against 2^24 − 1), reversed
+ * key −z (so GREATER against the clear value 0); equal keys go to the lower
+ * setup index, i.e. the earlier input triangle. With
+ * CLR_VISIBILITY_PAINTER there is no test between triangles: a fragment
+ * that passes the test against the clear value replaces the kept one when
+ * its triangle comes later in the host's far-to-near order (paintRank, by
+ * input triangle). Both shapes compute bit-identical results. Tiles with
  * no binned triangle are skipped; resolve fills them. With hierarchical
  * traversal the CPU shape accepts a tile that lies inside all three edges
  * without testing its samples (bin.cl rejects the tiles outside one).
@@ -45,18 +52,60 @@ CLR_INLINE long edge_bias(int ax, int ay, int bx, int by)
   return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
 }
 
-/* The nearest fragment so far of one row segment. */
+/* The nearest fragment so far of one row segment. depth holds the compare
+ * key of raster_depth_key (the paint rank's bits with the painter's
+ * algorithm) until raster_write_row turns it back into window depth. */
 typedef struct RowBest {
   uintL index;
   floatL depth, b1, b2;
 } RowBest;
 
-CLR_INLINE void row_best_init(RowBest* b)
+/* The depth test's key of window depth z: smaller is nearer. */
+CLR_INLINE floatL raster_depth_key(floatL z, uint depthMode)
+{
+  if (depthMode == CLR_DEPTH_UNORM24) {
+    const floatL lo = 0.0f, hi = 1.0f;
+    return rint(clamp(z, lo, hi) * CLR_DEPTH_UNORM24_MAX);
+  }
+  return depthMode == CLR_DEPTH_REVERSED ? -z : z;
+}
+
+/* The key of the cleared depth buffer: 1 (float32), 2^24 − 1 (unorm24),
+ * −0 (reversed; −0 < −0 is false, as 0 > 0 is). */
+CLR_INLINE float raster_clear_key(uint depthMode)
+{
+  return depthMode == CLR_DEPTH_UNORM24 ? CLR_DEPTH_UNORM24_MAX : depthMode == CLR_DEPTH_REVERSED ? -0.0f : 1.0f;
+}
+
+/* A kept key back as the depth format stores it (shared.h, visAttr). */
+CLR_INLINE floatL raster_key_depth(floatL key, uint depthMode, uint visibility)
+{
+  if (visibility == CLR_VISIBILITY_PAINTER) return key;
+  if (depthMode == CLR_DEPTH_UNORM24) return key / CLR_DEPTH_UNORM24_MAX;
+  return depthMode == CLR_DEPTH_REVERSED ? -key : key;
+}
+
+CLR_INLINE void row_best_init(RowBest* b, float clearKey)
 {
   b->index = CLR_NONE;
-  b->depth = 1.0f;
+  b->depth = clearKey;
   b->b1 = 0.0f;
   b->b2 = 0.0f;
+}
+
+/* How raster_depth_test decides, constant over a frame. */
+typedef struct DepthRule {
+  uint depthMode, visibility;
+  float clearKey;
+} DepthRule;
+
+CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params)
+{
+  DepthRule r;
+  r.depthMode = params->depthMode;
+  r.visibility = params->visibility;
+  r.clearKey = raster_clear_key(r.depthMode);
+  return r;
 }
 
 /* The float edge function, the weaker method: the same formula on float
@@ -70,16 +119,29 @@ CLR_INLINE floatL edge_function_float(int ax, int ay, int bx, int by, intL px, i
   return (fbx - fax) * (fpy - fay) - (fby - fay) * (fpx - fax);
 }
 
-/* Keeps the nearer of the samples' fragments of triangle s and *best. */
-CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL inside, floatL b1, floatL b2, RowBest* best)
+/* Keeps the nearer of the samples' fragments of triangle s and *best
+ * (rank: the triangle's paint rank, read only by the painter's algorithm). */
+CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL inside, floatL b1, floatL b2, RowBest* best,
+                                  const DepthRule* rule, uint rank)
 {
   const floatL z = t->z[0] + b1 * (t->z[1] - t->z[0]) + b2 * (t->z[2] - t->z[0]);
-  // LESS, ties to the earlier triangle.
-  const intL nearer = z < best->depth;
-  const intL tieWin = (z == best->depth) & (best->index != CLR_NONE) & (s < best->index);
-  const intL take = inside & (nearer | tieWin);
+  const floatL key = raster_depth_key(z, rule->depthMode);
+  intL take;
+  floatL kept = key;
+  if (rule->visibility == CLR_VISIBILITY_PAINTER) {
+    // Step 1 (painter): in front of the far plane, and later in paint order.
+    const intL later = (best->index == CLR_NONE) | ((uintL)rank > as_uintL(best->depth));
+    take = inside & (key < rule->clearKey) & later;
+    kept = as_floatL((uintL)rank);
+  } else {
+    // Step 1 (z-buffer): LESS on the key, ties to the earlier triangle.
+    const intL nearer = key < best->depth;
+    const intL tieWin = (key == best->depth) & (best->index != CLR_NONE) & (s < best->index);
+    take = inside & (nearer | tieWin);
+  }
+  // Step 2: keep the fragment.
   best->index = select(best->index, (uintL)s, take);
-  best->depth = select(best->depth, z, take);
+  best->depth = select(best->depth, kept, take);
   best->b1 = select(best->b1, b1, take);
   best->b2 = select(best->b2, b2, take);
 }
@@ -88,8 +150,8 @@ CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL insid
  * keeps the nearest fragment in *best. edgeMode and acceptAll are constant
  * at every call site, so each combination compiles to its own loop body;
  * acceptAll skips the inside test for a tile inside all three edges. */
-CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best, const uint edgeMode,
-                           const bool acceptAll)
+CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best, const DepthRule* rule,
+                           uint rank, const uint edgeMode, const bool acceptAll)
 {
   if (edgeMode == CLR_EDGES_FLOAT) {
     // Coverage and barycentrics from float edge functions; a sample on an
@@ -105,7 +167,7 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
                         ((e2 > 0.0f) | ((e2 == 0.0f) & on2));
     if (!CLR_ANY(inside)) return;
     const float invArea2 = t->invArea2 * (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
-    raster_depth_test(t, s, inside, e1 * invArea2, e2 * invArea2, best);
+    raster_depth_test(t, s, inside, e1 * invArea2, e2 * invArea2, best, rule, rank);
     return;
   }
   // Step 1: coverage by the three edge functions and the fill rule.
@@ -120,7 +182,7 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
     if (!CLR_ANY(inside)) return;
   }
   // Step 2: barycentrics, then the depth test.
-  raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best);
+  raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
 }
 
 /* Writes the samples of a row segment that lie inside the viewport into
@@ -136,9 +198,10 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint k, uint fi
   __global float* depth = &visAttr[3 * k * plane + p];
   __global float* b1 = depth + plane;
   __global float* b2 = depth + 2 * plane;
+  const floatL windowDepth = raster_key_depth(best->depth, params->depthMode, params->visibility);
   if (firstX + CLR_LANES <= params->width) {
     CLR_STORE_LANES(best->index, index);
-    CLR_STORE_LANES(best->depth, depth);
+    CLR_STORE_LANES(windowDepth, depth);
     CLR_STORE_LANES(best->b1, b1);
     CLR_STORE_LANES(best->b2, b2);
     return;
@@ -146,7 +209,7 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint k, uint fi
   uint laneIndex[CLR_LANES];
   float laneDepth[CLR_LANES], laneB1[CLR_LANES], laneB2[CLR_LANES];
   CLR_STORE_LANES(best->index, laneIndex);
-  CLR_STORE_LANES(best->depth, laneDepth);
+  CLR_STORE_LANES(windowDepth, laneDepth);
   CLR_STORE_LANES(best->b1, laneB1);
   CLR_STORE_LANES(best->b2, laneB2);
   for (uint lane = 0; firstX + lane < params->width; ++lane) {
@@ -164,8 +227,9 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
     __constant FrameParams* params, __global const TriSetup* setup,
     __global const uint* tileOffset,  // tiles + 1
     __global const uint* binEntries,
-    __global uint* visIndex,  // samples · width · height
-    __global float* visAttr)  // 3 · samples planes of width · height
+    __global uint* visIndex,         // samples · width · height
+    __global float* visAttr,         // 3 · samples planes of width · height
+    __global const uint* paintRank)  // numTris with the painter's algorithm, else 1
 {
   const uint px = get_global_id(0), py = get_global_id(1), k = get_global_id(2);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
@@ -174,14 +238,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   const uint edgeMode = params->edgeMode;
+  const DepthRule rule = raster_depth_rule(params);
+  const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   RowBest best;
-  row_best_init(&best);
+  row_best_init(&best, rule.clearKey);
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
+    const uint rank = painter ? paintRank[setup[s].triId] : 0u;
     if (edgeMode == CLR_EDGES_FLOAT)
-      raster_row(&setup[s], s, sx, sy, &best, CLR_EDGES_FLOAT, false);
+      raster_row(&setup[s], s, sx, sy, &best, &rule, rank, CLR_EDGES_FLOAT, false);
     else
-      raster_row(&setup[s], s, sx, sy, &best, CLR_EDGES_FIXED, false);
+      raster_row(&setup[s], s, sx, sy, &best, &rule, rank, CLR_EDGES_FIXED, false);
   }
   raster_write_row(params, k, px, py, &best, visIndex, visAttr);
 }
@@ -195,7 +262,8 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
                                                                     __global const uint* tileOffset,  // tiles + 1
                                                                     __global const uint* binEntries,
                                                                     __global uint* visIndex,  // samples · pixels
-                                                                    __global float* visAttr)  // 3 · samples planes
+                                                                    __global float* visAttr,  // 3 · samples planes
+                                                                    __global const uint* paintRank)  // numTris, or 1
 {
   const uint tileX = get_global_id(0), tileY = get_global_id(1), k = get_global_id(2);
   const uint tile = tileY * params->tilesX + tileX;
@@ -206,17 +274,20 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
   const uint edgeMode = params->edgeMode;
   const bool hierarchical = params->traversal == CLR_TRAVERSAL_HIERARCHICAL;
+  const DepthRule rule = raster_depth_rule(params);
+  const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
     const int firstX = (int)tileX * CLR_TILE_SIZE + col * CLR_LANES;
     sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX + CLR_LANE_INDEX * CLR_FIXED_ONE;
-    for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row]);
+    for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row], rule.clearKey);
   }
   // Step 2: each binned triangle, on the rows and row segments its bounds span.
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
     __global const TriSetup* t = &setup[s];
+    const uint rank = painter ? paintRank[t->triId] : 0u;
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
     const int centreY = CLR_FIXED_HALF + offsetY;
@@ -234,11 +305,11 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
       for (int row = rowBegin; row <= rowEnd; ++row) {
         const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
         if (edgeMode == CLR_EDGES_FLOAT)
-          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FLOAT, false);
+          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FLOAT, false);
         else if (acceptAll)
-          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FIXED, true);
+          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FIXED, true);
         else
-          raster_row(t, s, sx[col], sy, &best[col][row], CLR_EDGES_FIXED, false);
+          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FIXED, false);
       }
     }
   }

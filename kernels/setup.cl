@@ -110,14 +110,15 @@ CLR_INLINE void setup_broadcast(const float4* c, ClipBatch* b)
 }
 
 /* clip_outcode (clip.cl) of one vertex per lane, the same expressions. */
-CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx, float gy)
+CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx, float gy, float nearSign)
 {
   const uintL zero = 0;
-  return select(zero, (uintL)1u, z + w < 0.0f) | select(zero, (uintL)2u, x + gx * w < 0.0f) |
+  const intL beyondFar = nearSign < 0.0f ? (intL)(z < 0.0f) : (intL)(z > w);
+  return select(zero, (uintL)1u, nearSign * z + w < 0.0f) | select(zero, (uintL)2u, x + gx * w < 0.0f) |
          select(zero, (uintL)4u, gx * w - x < 0.0f) | select(zero, (uintL)8u, y + gy * w < 0.0f) |
          select(zero, (uintL)16u, gy * w - y < 0.0f) | select(zero, (uintL)32u, x < -w) |
          select(zero, (uintL)64u, x > w) | select(zero, (uintL)128u, y < -w) | select(zero, (uintL)256u, y > w) |
-         select(zero, (uintL)512u, z > w);
+         select(zero, (uintL)512u, beyondFar);
 }
 
 /* Classifies each lane's triangle: CLR_SETUP_CULLED (non-finite, or wholly
@@ -129,7 +130,8 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
   uintL all = ~(uintL)0, any = 0;
   for (int v = 0; v < 3; ++v) {
     finite = finite & isfinite(c->x[v]) & isfinite(c->y[v]) & isfinite(c->z[v]) & isfinite(c->w[v]);
-    const uintL code = setup_outcode(c->x[v], c->y[v], c->z[v], c->w[v], params->guardX, params->guardY);
+    const uintL code = setup_outcode(c->x[v], c->y[v], c->z[v], c->w[v], params->guardX, params->guardY,
+                                     clip_near_sign(params->depthMode));
     all &= code;
     any |= code;
   }
@@ -144,13 +146,16 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
  * inside the bounds). */
 CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out)
 {
-  // Step 1: viewport transform of the notes and snapping.
+  // Step 1: viewport transform of the notes and snapping. Window depth is
+  // z_ndc/2 + 1/2 (GL), or z_ndc itself with the reversed projection, whose
+  // clip z already spans [0, w].
   intL valid = (c->w[0] > 0.0f) & (c->w[1] > 0.0f) & (c->w[2] > 0.0f);
+  const bool reversed = params->depthMode == CLR_DEPTH_REVERSED;
   for (int v = 0; v < 3; ++v) {
     const floatL invW = 1.0f / c->w[v];
     const floatL xs = c->x[v] * invW * params->halfWidth + params->halfWidth;
     const floatL ys = c->y[v] * invW * params->halfHeight + params->halfHeight;
-    out->z[v] = c->z[v] * invW * 0.5f + 0.5f;
+    out->z[v] = reversed ? c->z[v] * invW : c->z[v] * invW * 0.5f + 0.5f;
     out->x[v] = convert_intL_rte(xs * (float)CLR_FIXED_ONE);
     out->y[v] = convert_intL_rte(ys * (float)CLR_FIXED_ONE);
     out->invW[v] = invW;
@@ -304,12 +309,13 @@ __kernel void setup_clip(__constant FrameParams* params,
   // Step 1: clip in homogeneous space against the planes a vertex is outside.
   ClipVertex poly[CLR_MAX_CLIP_VERTS];
   uint planes = 0;
+  const float nearSign = clip_near_sign(params->depthMode);
   for (int v = 0; v < 3; ++v) {
     poly[v].pos = clipPos[indices[3 * tri + v]];
     poly[v].bary = (float3)((float)(v == 0), (float)(v == 1), (float)(v == 2));
-    planes |= clip_outcode(poly[v].pos, params->guardX, params->guardY) & 0x1Fu;
+    planes |= clip_outcode(poly[v].pos, params->guardX, params->guardY, nearSign) & 0x1Fu;
   }
-  const int n = clip_polygon(poly, 3, planes, params->guardX, params->guardY);
+  const int n = clip_polygon(poly, 3, planes, params->guardX, params->guardY, nearSign);
   // Step 2: fan the polygon; set up and write each surviving triangle.
   const uint base = triOffset[tri];
   uint count = 0;

@@ -55,6 +55,22 @@ typedef uint32_t uint;
 #define CLR_TRAVERSAL_BBOX 0u         /* every tile and row of its bounding box */
 #define CLR_TRAVERSAL_HIERARCHICAL 1u /* tiles outside an edge rejected, tiles inside all edges accepted */
 
+/* FrameParams.depthMode: the depth buffer's format and compare. Every mode
+ * keeps the earlier triangle on an exact tie. */
+#define CLR_DEPTH_FLOAT32 0u /* window z = z_ndc/2 + 1/2 in [0, 1], LESS, clear 1 */
+#define CLR_DEPTH_UNORM24 1u /* the same z quantised to rint(z·(2^24 − 1)) before the compare, as GL depth24 */
+#define CLR_DEPTH_REVERSED                                                                                             \
+  2u                                      /* reversed-Z float: window z = z_ndc (near 1, far 0), GREATER, clear 0; the \
+                                           * host builds a reversed projection and the near plane is z <= w */
+#define CLR_DEPTH_UNORM24_MAX 16777215.0f /* 2^24 − 1 */
+
+/* FrameParams.visibility: how raster picks the visible fragment. */
+#define CLR_VISIBILITY_ZBUFFER 0u /* the depth test of depthMode */
+#define CLR_VISIBILITY_PAINTER                                                     \
+  1u /* no depth test between triangles: the one latest in the host's far-to-near  \
+      * order (the paintRank buffer) wins; fragments beyond the far plane (failing \
+      * the test against the clear value) are still dropped */
+
 /* Indices into the stats counter buffer. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* input triangles that produced nothing */
@@ -63,7 +79,7 @@ typedef uint32_t uint;
 #define CLR_NUM_COUNTERS 4
 
 /* Per-frame constants. Written by the host once per frame; read by every
- * kernel. One struct, 304 bytes. */
+ * kernel. One struct, 320 bytes. */
 typedef struct FrameParams {
   float mvp[16];     /* column-major, clip = mvp · (x, y, z, 1) */
   float lightDir[4]; /* world space, unit, towards the light */
@@ -88,11 +104,13 @@ typedef struct FrameParams {
   uint traversal;        /* CLR_TRAVERSAL_* */
   /* Extent of the sample offsets below, for bounds: min and max over k. */
   int sampleMinX, sampleMaxX, sampleMinY, sampleMaxY;
-  uint pad0;
+  uint depthMode; /* CLR_DEPTH_* */
   /* Sample k of a pixel lies at its centre + (sampleX[k], sampleY[k]) in
    * fixed-point units (y up); the host fills them (host/aa.cpp). */
   int sampleX[CLR_MAX_SAMPLES];
   int sampleY[CLR_MAX_SAMPLES];
+  uint visibility; /* CLR_VISIBILITY_* */
+  uint pad1[3];
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
@@ -102,7 +120,7 @@ typedef struct FrameParams {
 typedef struct TriSetup {
   int x[3];       /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
   int y[3];       /* snapped fixed-point screen y */
-  float z[3];     /* window depth in [0, 1] */
+  float z[3];     /* window depth in [0, 1] (reversed with CLR_DEPTH_REVERSED) */
   float invW[3];  /* 1 / w_clip, for the perspective correction */
   float invArea2; /* 1 / (2·signed area) in fixed units², area > 0 */
   uint triId;     /* index of the input triangle it came from */
@@ -123,13 +141,16 @@ typedef struct ClipBary {
  * S = FrameParams.samples and P = width·height, sample k of pixel p is
  *  visIndex uint[S·P]     at k·P + p: setup index, or CLR_NONE
  *  visAttr  float[3·S·P]  at (3k + c)·P + p: c = 0 window depth, 1 b1, 2 b2
+ * (the depth plane holds the depth as its format stores it: unorm24 reads
+ * back as q / (2^24 − 1); with CLR_VISIBILITY_PAINTER it holds the paint
+ * rank of the visible triangle, as uint bits)
  * Written by raster, read by resolve; memory follows S (4 + 12 bytes per
  * sample). Pixels of tiles with no binned triangle are not written (resolve
  * knows them from the tile offsets).
  * VisSample is one sample as Pipeline::readVis() returns it. */
 typedef struct VisSample {
   uint setupIndex; /* index into TriSetup, or CLR_NONE */
-  float depth;     /* window depth of the fragment */
+  float depth;     /* window depth of the fragment (see visAttr) */
   float b1;        /* screen-space barycentric of vertex 1 */
   float b2;        /* screen-space barycentric of vertex 2 */
 } VisSample;
@@ -152,12 +173,16 @@ typedef struct VisSample {
  *  tileCursor uint[tiles]         bin_fill (atomic cursors)
  *  binEntries uint[total]         bin_fill writes setup indices; raster reads
  *  scanPartials ulong[chunks + 1] scan internals (at most 4097)
+ *  paintRank  uint[numTris]       host upload with CLR_VISIBILITY_PAINTER
+ *                                 (position of each input triangle in the
+ *                                 far-to-near order; one unused element
+ *                                 otherwise); read by raster
  *  counters   uint[CLR_NUM_COUNTERS] setup kernels; host reads for stats
  *  image      uint[width·height]  resolve writes RGBA8, top row first
  */
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 304, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 320, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 64, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");

@@ -3,6 +3,7 @@
 #include "reference_raster.h"
 
 #include "fixed.h"
+#include "shared.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +17,11 @@ struct Vertex {
 };
 
 // Plane distances: 0 near, 1..4 guard band (left, right, bottom, top).
-float distance(const glm::vec4& c, int plane, float gx, float gy)
+// nearSign: the near plane is z + w (GL, 1) or w − z (reversed, −1).
+float distance(const glm::vec4& c, int plane, float gx, float gy, float nearSign)
 {
   switch (plane) {
-    case 0: return c.z + c.w;
+    case 0: return nearSign * c.z + c.w;
     case 1: return c.x + gx * c.w;
     case 2: return gx * c.w - c.x;
     case 3: return c.y + gy * c.w;
@@ -27,25 +29,32 @@ float distance(const glm::vec4& c, int plane, float gx, float gy)
   }
 }
 
-glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float gx, float gy)
+glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float gx, float gy, float nearSign)
 {
-  const float dIn = distance(in, plane, gx, gy), dOut = distance(out, plane, gx, gy);
+  const float dIn = distance(in, plane, gx, gy, nearSign), dOut = distance(out, plane, gx, gy, nearSign);
   const float t = dIn / (dIn - dOut);
   glm::vec4 r;
   for (int k = 0; k < 4; ++k) r[k] = in[k] + t * (out[k] - in[k]);
   return r;
 }
 
-bool outsideViewport(const glm::vec4& c, int plane)
+bool outsideViewport(const glm::vec4& c, int plane, float nearSign)
 {
   switch (plane) {
-    case 0: return c.z + c.w < 0.0f;
+    case 0: return nearSign * c.z + c.w < 0.0f;
     case 1: return c.x < -c.w;
     case 2: return c.x > c.w;
     case 3: return c.y < -c.w;
     case 4: return c.y > c.w;
-    default: return c.z > c.w;
+    default: return nearSign < 0.0f ? c.z < 0.0f : c.z > c.w;
   }
+}
+
+// The compare key of window depth z (smaller is nearer), as raster.cl.
+float depthKey(float z, uint32_t depthMode)
+{
+  if (depthMode == CLR_DEPTH_UNORM24) return std::nearbyint(std::clamp(z, 0.0f, 1.0f) * CLR_DEPTH_UNORM24_MAX);
+  return depthMode == CLR_DEPTH_REVERSED ? -z : z;
 }
 
 int64_t edge(int ax, int ay, int bx, int by, int px, int py)
@@ -81,7 +90,7 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
     const float invW = 1.0f / c[i].w;
     const float xs = c[i].x * invW * halfW + halfW;
     const float ys = c[i].y * invW * halfH + halfH;
-    Z[i] = c[i].z * invW * 0.5f + 0.5f;
+    Z[i] = o.depthMode == CLR_DEPTH_REVERSED ? c[i].z * invW : c[i].z * invW * 0.5f + 0.5f;
     X[i] = int(std::nearbyint(xs * float(CLR_FIXED_ONE)));
     Y[i] = int(std::nearbyint(ys * float(CLR_FIXED_ONE)));
   }
@@ -117,7 +126,7 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
       const float b1 = float(e[1]) * invArea2, b2 = float(e[2]) * invArea2;
       const float z = Z[0] + b1 * (Z[1] - Z[0]) + b2 * (Z[2] - Z[0]);
       const size_t p = size_t(py) * o.width + px;
-      if (!(z < r.depth[p])) continue;
+      if (!(depthKey(z, o.depthMode) < depthKey(r.depth[p], o.depthMode))) continue;
       r.depth[p] = z;
       r.triId[p] = triId;
       r.bary[p] = glm::dvec3(double(e[0]), double(e[1]), double(e[2])) / double(area2);
@@ -141,7 +150,8 @@ Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t
   r.width = o.width;
   r.height = o.height;
   r.triId.assign(size_t(o.width) * o.height, kNone);
-  r.depth.assign(size_t(o.width) * o.height, 1.0f);
+  r.depth.assign(size_t(o.width) * o.height, o.depthMode == CLR_DEPTH_REVERSED ? 0.0f : 1.0f);
+  const float ns = o.depthMode == CLR_DEPTH_REVERSED ? -1.0f : 1.0f;
   r.bary.assign(size_t(o.width) * o.height, glm::dvec3(0.0));
   const float gx = 2.0f * CLR_GUARD_BAND_PIXELS / float(o.width) - 1.0f;
   const float gy = 2.0f * CLR_GUARD_BAND_PIXELS / float(o.height) - 1.0f;
@@ -156,7 +166,8 @@ Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t
     }
     bool rejected = !finite;
     for (int plane = 0; plane < 6 && !rejected; ++plane)
-      rejected = outsideViewport(c[0], plane) && outsideViewport(c[1], plane) && outsideViewport(c[2], plane);
+      rejected =
+          outsideViewport(c[0], plane, ns) && outsideViewport(c[1], plane, ns) && outsideViewport(c[2], plane, ns);
     if (rejected) {
       ++r.culledTriangles;
       continue;
@@ -167,15 +178,15 @@ Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t
     // Planes are chosen from the input vertices, as the kernel does.
     for (int plane = 0; plane < 5; ++plane) {
       bool anyOut = false;
-      for (int i = 0; i < 3; ++i) anyOut = anyOut || distance(c[i], plane, gx, gy) < 0.0f;
+      for (int i = 0; i < 3; ++i) anyOut = anyOut || distance(c[i], plane, gx, gy, ns) < 0.0f;
       if (!anyOut) continue;
       clipped = true;
       std::vector<glm::vec4> next;
       for (size_t i = 0; i < poly.size(); ++i) {
         const glm::vec4 &a = poly[i], &b = poly[(i + 1) % poly.size()];
-        const bool aIn = distance(a, plane, gx, gy) >= 0.0f, bIn = distance(b, plane, gx, gy) >= 0.0f;
+        const bool aIn = distance(a, plane, gx, gy, ns) >= 0.0f, bIn = distance(b, plane, gx, gy, ns) >= 0.0f;
         if (aIn) next.push_back(a);
-        if (aIn != bIn) next.push_back(aIn ? intersect(a, b, plane, gx, gy) : intersect(b, a, plane, gx, gy));
+        if (aIn != bIn) next.push_back(aIn ? intersect(a, b, plane, gx, gy, ns) : intersect(b, a, plane, gx, gy, ns));
       }
       poly.swap(next);
     }

@@ -6,7 +6,10 @@
 // 8-bit subpixel snapping, 64-bit integer edge functions with the GL/llvmpipe
 // fill rule (left and bottom edges inclusive, y up), window depth
 // interpolated from screen barycentrics, LESS against far = 1, triangles in
-// input order (so an earlier triangle keeps a tie). Its float operations are
+// input order (so an earlier triangle keeps a tie). Options.depthMode picks
+// the other depth formats of kernels/shared.h: unorm24 compares
+// rint(z·(2^24 − 1)), reversed uses window z = z_ndc, the near plane
+// z <= w, GREATER against 0. Its float operations are
 // written in the same order as the kernels', so on a device that rounds
 // IEEE-correctly the triangle-ID images agree bit for bit.
 #pragma once
@@ -26,12 +29,13 @@ struct Options {
   // The sample position of every pixel: its centre plus this offset, in
   // fixed-point units (one sample plane of an anti-aliased frame).
   int sampleX = 0, sampleY = 0;
+  uint32_t depthMode = 0;  // CLR_DEPTH_*
 };
 
 struct Result {
   uint32_t width = 0, height = 0;
   std::vector<uint32_t> triId;   // per pixel, bottom row first; kNone = empty
-  std::vector<float> depth;      // window depth of the visible fragment (1 = far)
+  std::vector<float> depth;      // window depth of the visible fragment (1 = far; 0 when reversed)
   std::vector<glm::dvec3> bary;  // screen barycentrics of the visible (sub-)triangle, exact (double)
   uint64_t setupTriangles = 0;   // screen triangles after clipping and culling
   uint64_t clippedTriangles = 0;
