@@ -92,7 +92,8 @@ void applyMethods(const RenderArgs& args, FrameSettings& settings)
 
 DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera)
 {
-  if (args.depthAuto) return chooseDepthFormat(camera.zNear, camera.zFar);
+  // --quality auto chooses the depth format too, unless --depth names one.
+  if (args.depthAuto || (args.qualityAuto && !args.depthGiven)) return chooseDepthFormat(camera.zNear, camera.zFar);
   DepthChoice c;
   c.mode = args.depthMode;
   c.reason = "--depth";
@@ -173,6 +174,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       const uint32_t choice = parseChoice(a, value(), {"float32", "unorm24", "reversed", "auto"});
       r.depthAuto = choice == 3;
       r.depthMode = r.depthAuto ? CLR_DEPTH_FLOAT32 : choice;
+      r.depthGiven = true;
     } else if (a == "--visibility") {
       r.visibility = parseChoice(a, value(), {"zbuffer", "painter"});
     } else if (a == "--quality") {

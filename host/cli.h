@@ -31,6 +31,7 @@ struct RenderArgs {
   bool qualityAuto = false;                      // --quality auto
   uint32_t depthMode = CLR_DEPTH_FLOAT32;        // --depth (CLR_DEPTH_*)
   bool depthAuto = false;                        // --depth auto (depth.h)
+  bool depthGiven = false;                       // --depth on the command line
   uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // --visibility
   std::string viewsPath;                         // --views: outPath is then a pattern (views.h)
   Shard shard;                                   // --shard K/N, with --views only
