@@ -97,6 +97,8 @@ Pipeline::Pipeline(ClContext& cl)
   binCountKernel_ = cl::Kernel(cl.program, "bin_count");
   binFillKernel_ = cl::Kernel(cl.program, "bin_fill");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
+  rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
+  rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   paramsBuf_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);

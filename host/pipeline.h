@@ -117,7 +117,8 @@ class Pipeline {
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, resolveKernel_;
+      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, rasterHierarchicalKernel_,
+      rasterFloatKernel_, resolveKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_;

@@ -51,9 +51,13 @@ void Pipeline::raster()
     paintOrder_.clear();
     paintRank_.reserve(1);
   }
+  // The method's variant (float edges take the bounding-box scan).
+  cl::Kernel& kernel = params_.edgeMode == CLR_EDGES_FLOAT               ? rasterFloatKernel_
+                       : params_.traversal == CLR_TRAVERSAL_HIERARCHICAL ? rasterHierarchicalKernel_
+                                                                         : rasterKernel_;
   cl::Event event;
-  setArgs(rasterKernel_, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(),
-          visAttr_.get(), paintRank_.get());
+  setArgs(kernel, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(), visAttr_.get(),
+          paintRank_.get());
   // One work-item per pixel sample (GPU shape) or per tile and sample index
   // (CPU shape, see raster.cl).
   const bool perPixel = cl_.lanes == 1;
@@ -61,7 +65,7 @@ void Pipeline::raster()
       perPixel ? cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE, params_.samples)
                : cl::NDRange(params_.tilesX, params_.tilesY, params_.samples);
   const cl::NDRange local = perPixel ? cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE, 1) : cl::NDRange(1, 1, 1);
-  cl_.queue.enqueueNDRangeKernel(rasterKernel_, cl::NullRange, global, local, nullptr, &event);
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
   record("raster", event);
 }
 

@@ -220,16 +220,24 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint k, uint fi
   }
 }
 
+/* The raster kernels' parameters, the same for every variant below:
+ *   params, setup, tileOffset (tiles + 1), binEntries,
+ *   visIndex (samples · width · height), visAttr (3 · samples planes),
+ *   paintRank (numTris with the painter's algorithm, else 1). */
+#define CLR_RASTER_PARAMS                                                                          \
+  __constant FrameParams *params, __global const TriSetup *setup, __global const uint *tileOffset, \
+      __global const uint *binEntries, __global uint *visIndex, __global float *visAttr,           \
+      __global const uint *paintRank
+#define CLR_RASTER_ARGS params, setup, tileOffset, binEntries, visIndex, visAttr, paintRank
+
+/* The method variants are separate kernels (raster, raster_hierarchical,
+ * raster_float) rather than branches of one, so that a device compiles only
+ * the variant a frame launches (PoCL compiles each kernel at its first
+ * launch), and each loop body has its method fixed at compile time. */
 #if CLR_LANES == 1
 /* GPU shape: one work-item per pixel sample, one work-group per tile and
- * sample index. */
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(
-    __constant FrameParams* params, __global const TriSetup* setup,
-    __global const uint* tileOffset,  // tiles + 1
-    __global const uint* binEntries,
-    __global uint* visIndex,         // samples · width · height
-    __global float* visAttr,         // 3 · samples planes of width · height
-    __global const uint* paintRank)  // numTris with the painter's algorithm, else 1
+ * sample index. Hierarchical traversal needs nothing here beyond binning. */
+CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode)
 {
   const uint px = get_global_id(0), py = get_global_id(1), k = get_global_id(2);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
@@ -237,7 +245,6 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
-  const uint edgeMode = params->edgeMode;
   const DepthRule rule = raster_depth_rule(params);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   RowBest best;
@@ -245,25 +252,30 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
     const uint rank = painter ? paintRank[setup[s].triId] : 0u;
-    if (edgeMode == CLR_EDGES_FLOAT)
-      raster_row(&setup[s], s, sx, sy, &best, &rule, rank, CLR_EDGES_FLOAT, false);
-    else
-      raster_row(&setup[s], s, sx, sy, &best, &rule, rank, CLR_EDGES_FIXED, false);
+    raster_row(&setup[s], s, sx, sy, &best, &rule, rank, edgeMode, false);
   }
   raster_write_row(params, k, px, py, &best, visIndex, visAttr);
+}
+
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(CLR_RASTER_PARAMS)
+{
+  raster_pixel(CLR_RASTER_ARGS, CLR_EDGES_FIXED);
+}
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster_hierarchical(
+    CLR_RASTER_PARAMS)
+{
+  raster_pixel(CLR_RASTER_ARGS, CLR_EDGES_FIXED);
+}
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster_float(CLR_RASTER_PARAMS)
+{
+  raster_pixel(CLR_RASTER_ARGS, CLR_EDGES_FLOAT);
 }
 #else
 /* CPU shape: one work-item per tile and sample index, as llvmpipe's
  * per-tile threads. Each triangle is tested only on the rows its bounds
  * span, a 16-pixel vector row at a time; the tile's nearest fragments stay
  * in private memory. */
-__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant FrameParams* params,
-                                                                    __global const TriSetup* setup,
-                                                                    __global const uint* tileOffset,  // tiles + 1
-                                                                    __global const uint* binEntries,
-                                                                    __global uint* visIndex,  // samples · pixels
-                                                                    __global float* visAttr,  // 3 · samples planes
-                                                                    __global const uint* paintRank)  // numTris, or 1
+CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool hierarchical)
 {
   const uint tileX = get_global_id(0), tileY = get_global_id(1), k = get_global_id(2);
   const uint tile = tileY * params->tilesX + tileX;
@@ -272,8 +284,6 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   // Step 1: the tile's sample positions and its nearest fragments so far.
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
-  const uint edgeMode = params->edgeMode;
-  const bool hierarchical = params->traversal == CLR_TRAVERSAL_HIERARCHICAL;
   const DepthRule rule = raster_depth_rule(params);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
@@ -295,7 +305,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
     const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - centreY) >> CLR_SUBPIXEL_BITS) - firstY);
     // Hierarchical: a tile inside all three edges needs no inside test.
     bool acceptAll = false;
-    if (hierarchical && edgeMode == CLR_EDGES_FIXED) {
+    if (hierarchical) {
       const TriSetup tri = *t;
       acceptAll = bin_tile_class(&tri, params, (int)tileX, (int)tileY) > 0;
     }
@@ -304,12 +314,10 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
       if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
       for (int row = rowBegin; row <= rowEnd; ++row) {
         const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
-        if (edgeMode == CLR_EDGES_FLOAT)
-          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FLOAT, false);
-        else if (acceptAll)
-          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FIXED, true);
+        if (hierarchical && acceptAll)
+          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, true);
         else
-          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, CLR_EDGES_FIXED, false);
+          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, false);
       }
     }
   }
@@ -318,5 +326,18 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(__constant F
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
       raster_write_row(params, k, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], visIndex,
                        visAttr);
+}
+
+__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(CLR_RASTER_PARAMS)
+{
+  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, false);
+}
+__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_hierarchical(CLR_RASTER_PARAMS)
+{
+  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, true);
+}
+__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_float(CLR_RASTER_PARAMS)
+{
+  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FLOAT, false);
 }
 #endif
