@@ -31,6 +31,7 @@ FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t sh
   s.cullBack = cullBack;
   s.mvp = viewProjection(width, height);
   s.lightDir = lightDirection();
+  s.eye = eye;
   s.zNear = zNear;
   s.zFar = zFar;
   return s;

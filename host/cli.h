@@ -7,6 +7,7 @@
 #include "views.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,13 +28,19 @@ struct RenderArgs {
   uint32_t edgeMode = CLR_EDGES_FIXED;
   uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
   uint32_t traversal = CLR_TRAVERSAL_BBOX;
-  bool qualityAuto = false;  // --quality auto
-  std::string viewsPath;     // --views: outPath is then a pattern (views.h)
-  Shard shard;               // --shard K/N, with --views only
+  bool qualityAuto = false;                   // --quality auto
+  std::string viewsPath;                      // --views: outPath is then a pattern (views.h)
+  Shard shard;                                // --shard K/N, with --views only
+  uint32_t texFilter = CLR_FILTER_TRILINEAR;  // --filter
+  bool pointLightOn = false;                  // --light-point x,y,z[,r]
+  glm::vec3 pointLight{0.0f};
+  std::optional<float> pointLightRange;  // r; default: the scene's bounding radius
 };
 
-// Copies the chosen methods (not "auto") into a frame's settings.
-void applyMethods(const RenderArgs& args, FrameSettings& settings);
+// Copies the chosen methods (not "auto"), the texture filter and the point
+// light into a frame's settings. sceneRadius: the point light's range when
+// --light-point gives none.
+void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius = 1.0f);
 
 // args: everything after "render".
 RenderArgs parseRenderArgs(const std::vector<std::string>& args);

@@ -78,6 +78,13 @@ Mesh loadMesh(const RenderArgs& args)
   return mesh;
 }
 
+// Half the bounding box diagonal: the point light's default range.
+float sceneRadius(const Mesh& mesh)
+{
+  const Bounds b = meshBounds(mesh);
+  return b.empty ? 1.0f : 0.5f * glm::length(b.max - b.min);
+}
+
 // `render --views`: one scene upload, then the shard's views in order, each
 // image handed to the writer thread while the next one renders.
 int renderViewsCommand(const RenderArgs& args)
@@ -116,7 +123,7 @@ int renderViewsCommand(const RenderArgs& args)
       const auto frameStart = std::chrono::steady_clock::now();
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
       FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack);
-      applyMethods(args, settings);
+      applyMethods(args, settings, sceneRadius(mesh));
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
         chosen = settings;
@@ -167,7 +174,7 @@ int renderCommand(const std::vector<std::string>& argList)
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
   FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack);
-  applyMethods(args, settings);
+  applyMethods(args, settings, sceneRadius(mesh));
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)

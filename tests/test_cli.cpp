@@ -51,7 +51,7 @@ TEST_CASE("cli: bad flags and values", "[cli]")
   expectError("render --size 100000x10" + out, "--size");
   expectError("render --size 64" + out, "is not WxH");
   expectError("render --size 64xabc" + out, "--size");
-  expectError("render --shade fancy" + out, "--shade: unknown mode 'fancy'");
+  expectError("render --shade fancy" + out, "--shade: unknown value 'fancy'");
   expectError("render --cull front" + out, "--cull: unknown mode");
   expectError("render --frames 0" + out, "--frames");
   expectError("render --eye 1,2" + out, "--eye");
