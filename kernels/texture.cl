@@ -14,7 +14,8 @@
  *              ρ = max(|(∂u/∂x·w, ∂v/∂x·h)|, |(∂u/∂y·w, ∂v/∂y·h)|)
  *              from the screen-space derivatives resolve computes (w, h of
  *              level 0). Level l is max(1, w >> l) × max(1, h >> l).
- * Texel values are returned in [0, 1] as stored (no sRGB decoding).
+ * Texel values are returned in [0, 1] as stored (no sRGB decoding), t / 255
+ * correctly rounded, so an 8-bit texel written back unchanged is exact.
  * Texel coordinates are clamped to ±2^24 first, so NaN or huge (u, v) stay
  * inside the texture. OpenCL only (follows lanes.h).
  */
@@ -36,8 +37,7 @@ CLR_INLINE int tex_wrap(int i, int n, uint mode)
 CLR_INLINE float4 tex_fetch(__global const uint* texels, uint offset, uint width, int x, int y)
 {
   const uint t = texels[offset + (uint)y * width + (uint)x];
-  return (float4)((float)(t & 0xFFu), (float)((t >> 8) & 0xFFu), (float)((t >> 16) & 0xFFu), (float)(t >> 24)) *
-         (1.0f / 255.0f);
+  return (float4)((float)(t & 0xFFu), (float)((t >> 8) & 0xFFu), (float)((t >> 16) & 0xFFu), (float)(t >> 24)) / 255.0f;
 }
 
 /* Texel-space coordinate, finite and bounded. */
