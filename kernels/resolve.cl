@@ -9,14 +9,29 @@
  * CLR_INTERP_AFFINE, the weaker method), maps them to the input triangle's
  * vertices (through ClipBary when the triangle was clipped, through the
  * vertex swap when it was back-facing), interpolates what the shading reads
- * and shades:
- *   lambert: grey albedo, ambient + diffuse from FrameParams.lightDir,
- *            two-sided (back faces use the flipped normal)
+ * (only that: FrameParams.sceneFlags says what the host bound) and shades
+ * (lighting and albedo in shade.cl, textures in texture.cl):
+ *   lambert: albedo · (ambient + diffuse), two-sided (back faces use the
+ *            flipped normal), per pixel
+ *   flat:    Blinn-Phong with the face normal, lit at the centroid: one
+ *            light value per triangle
+ *   gouraud: Blinn-Phong at the three vertices, diffuse and specular
+ *            interpolated with the 1/w rule like any attribute
+ *   phong:   Blinn-Phong per pixel with the interpolated (renormalised)
+ *            normal and world position
+ *   texture: the unlit albedo (base colour factor × texture × vertex colour)
+ *   color:   the interpolated vertex colour (white without one)
  *   normal:  the interpolated world normal mapped from [−1, 1] to [0, 1]
  *   depth:   1 − (eye depth − near) / (far − near), eye depth = 1 / Σ b_i/w_i
  *   uv:      (u, v) as red and green, wrapped to [0, 1)
  *   checker: white and grey squares of 1/8 in u and v
  *   id:      input triangle index + 1 as 24-bit RGB, background black
+ * The albedo of the lit modes is the material's base colour (the built-in
+ * grey without materials). For trilinear texture filtering the screen
+ * derivatives of (u, v) are analytic: with screen barycentrics b_i (affine
+ * in x, y: ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area)), q_i = 1/w_i, w = 1 / Σ b_j q_j
+ * and a_i an attribute at setup vertex i, a = Σ b_i q_i a_i · w, so
+ *   ∂a/∂x = w · Σ_i (∂b_i/∂x) · q_i · (a_i − a),   likewise for y.
  * Anti-aliasing (FrameParams.samples > 1): every sample's colour, clamped to
  * [0, 1], is averaged with equal weights (the box filter of the notes) and
  * rounded to RGBA8 (R in the low byte), top row first. With MSAA
@@ -216,7 +231,7 @@ CLR_INLINE ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
 #define CLR_PER_LANE(array, type) (g->uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
   const uint mode = params->shadeMode;
   // Step 1: barycentrics of the setup vertices: the 1/w rule, or affine.
-  // qd_i = ∂λ_i/∂b_i·(…) below: q_i·w with q_i = 1/w_i (1 when affine).
+  // Afterwards q_i holds q_i·w with q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL q[3], lambda[3], eyeDepth;
   for (int i = 0; i < 3; ++i) q[i] = CLR_PER_LANE(g->invW[i], floatL);

@@ -11,6 +11,7 @@
 #include <stb/stb_image_write.h>
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <fstream>
@@ -278,4 +279,70 @@ TEST_CASE("missing and corrupt textures are one-line errors naming the file", "[
   const std::string corrupt = test::writeFile("corrupt_tex.obj", "mtllib corrupt_tex.mtl\nusemtl m\n" + tri);
   test::expectError("render " + corrupt + out, "corrupt.png: cannot decode image");
   CHECK_FALSE(test::exists(test::tempDir() + "/never.png"));
+}
+
+TEST_CASE("trilinear on a perspective plane: the level follows the analytic derivatives of the 1/w rule", "[texture]")
+{
+  // A ground plane seen at a grazing angle, textured with a 1-texel checker
+  // of 128×128 (levels from 1 on: uniform 128), (u, v) = (x, −z) / 8. The
+  // host casts each pixel's ray for the exact (u, v) and takes ρ from
+  // central differences of the ray hits at ±1e-3 pixel.
+  const uint32_t W = 96, H = 64;
+  clr::Texture t;
+  t.name = "checker";
+  t.width = t.height = 128;
+  for (uint32_t y = 0; y < 128; ++y)
+    for (uint32_t x = 0; x < 128; ++x) t.rgba.push_back((x + y) % 2 ? 0xFFFFFFFFu : 0xFF000000u);
+  clr::Mesh mesh = quad(t, 0, 0, 1, 1);
+  mesh.positions = {-4, 0, 0, 4, 0, 0, 4, 0, -8, -4, 0, -8};
+  mesh.uvs = {-0.5f, 0, 0.5f, 0, 0.5f, 1, -0.5f, 1};
+  const glm::mat4 mvp = glm::perspective(glm::radians(60.0f), float(W) / H, 0.5f, 50.0f) *
+                        glm::lookAt(glm::vec3(0, 1, 1), glm::vec3(0, 0, -3), glm::vec3(0, 1, 0));
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(mesh);
+  clr::FrameSettings s = test::idSettings(W, H, mvp);
+  s.shadeMode = CLR_SHADE_TEXTURE;
+  s.texFilter = CLR_FILTER_TRILINEAR;
+  std::vector<uint32_t> rgba;
+  pipeline.render(s, rgba);
+  const glm::dmat4 inv = glm::inverse(glm::dmat4(mvp));
+  auto uvAt = [&](double px, double py, bool& onPlane) {
+    const glm::dvec2 ndc(px / W * 2 - 1, py / H * 2 - 1);
+    const glm::dvec4 a = inv * glm::dvec4(ndc, -1, 1), b = inv * glm::dvec4(ndc, 1, 1);
+    const glm::dvec3 from = glm::dvec3(a) / a.w, to = glm::dvec3(b) / b.w;
+    const glm::dvec3 hit = from + (to - from) * (-from.y / (to.y - from.y));
+    onPlane = to.y < from.y && std::abs(hit.x) < 3.9 && hit.z < -0.1 && hit.z > -7.9;
+    return glm::dvec2(hit.x / 8.0, -hit.z / 8.0);
+  };
+  double worst = 0;
+  size_t magnified = 0, minified = 0;
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      bool on = false, ok = true;
+      const glm::dvec2 uv = uvAt(x + 0.5, y + 0.5, on);
+      if (!on) continue;
+      const double h = 1e-3;
+      const glm::dvec2 dx = (uvAt(x + 0.5 + h, y + 0.5, ok) - uvAt(x + 0.5 - h, y + 0.5, ok)) / (2 * h) * 128.0;
+      const glm::dvec2 dy = (uvAt(x + 0.5, y + 0.5 + h, ok) - uvAt(x + 0.5, y + 0.5 - h, ok)) / (2 * h) * 128.0;
+      const double lambda = std::clamp(0.5 * std::log2(std::max(glm::dot(dx, dx), glm::dot(dy, dy))), 0.0, 7.0);
+      const double mix = std::min(lambda, 1.0);
+      (lambda < 1.0 ? magnified : minified)++;
+      // Near λ = 0..1 the level-0 checker changes by 510 levels per texel:
+      // compare there only where a sample's position error (vertex snapping
+      // to 1/256 pixel, ~1e-2 texel) cannot matter, i.e. λ ≥ 1 (pure grey),
+      // and check the mix weight where λ < 1 on the texel centres' plateau.
+      if (lambda >= 1.0 + 1e-3) {
+        worst = std::max(worst, worstDifference(at(rgba, W, H, x, y), glm::dvec3(128.0)));
+      } else {
+        const glm::dvec3 base = bilinear(t.rgba, 128, 128, uv.x, uv.y, CLR_WRAP_REPEAT, CLR_WRAP_REPEAT);
+        const glm::dvec3 want = base * (1 - mix) + glm::dvec3(128.0) * mix;
+        const double slack = 510.0 * (1 - mix) * 0.02;  // 0.02 texel of position error
+        worst = std::max(worst, worstDifference(at(rgba, W, H, x, y), want) - slack);
+      }
+    }
+  INFO(magnified << " pixels with λ < 1, " << minified << " with λ ≥ 1");
+  CHECK(magnified > 200);
+  CHECK(minified > 200);
+  // Tolerance: 0.5 level of rounding, plus float error in λ near λ = 1.
+  CHECK(worst <= 1.0);
 }
