@@ -20,7 +20,7 @@
 #define CLR_AMBIENT 0.12f
 #define CLR_DIFFUSE 0.88f
 #define CLR_SPECULAR 0.4f
-#define CLR_SHININESS 32.0f
+#define CLR_SHININESS 32 /* = 2^5: computed by squaring */
 #define CLR_GREY_R 0.80f
 #define CLR_GREY_G 0.78f
 #define CLR_GREY_B 0.74f
@@ -35,9 +35,12 @@ CLR_INLINE void shade_one_light(const floatL n[3], const floatL v[3], floatL lx,
   // Step 1: the half vector (a zero sum, light opposite the eye, gives none).
   const floatL hx = lx + v[0], hy = ly + v[1], hz = lz + v[2];
   const floatL hlen = sqrt(hx * hx + hy * hy + hz * hz);
-  const floatL ndoth = (n[0] * hx + n[1] * hy + n[2] * hz) / select(hlen, (floatL)1.0f, CLR_NOT(hlen > 0.0f));
-  const floatL s = pow(max(ndoth, (floatL)0.0f), (floatL)CLR_SHININESS);
-  *spec += select((floatL)0.0f, atten * s, (ndotl > 0.0f) & (hlen > 0.0f));
+  const floatL ndoth = (n[0] * hx + n[1] * hy + n[2] * hz) / max(hlen, (floatL)1e-30f);
+  // x^32 by five squarings (exact enough, and vector pow is wrong under Oclgrind).
+  floatL s = max(ndoth, (floatL)0.0f);
+  for (int k = 0; k < 5; ++k) s = s * s;
+  const intL lit = (ndotl > 0.0f) & (hlen > 0.0f);
+  *spec += select((floatL)0.0f, atten * s, lit);
 }
 
 /* Diffuse and specular sums at point p with unit normal n (see above). */
@@ -49,9 +52,9 @@ CLR_INLINE void shade_lights(__constant FrameParams* params, const floatL n[3], 
   // Step 1: the unit view vector (only Blinn-Phong reads it).
   floatL v[3] = {0.0f, 0.0f, 0.0f};
   if (specular) {
-    for (int k = 0; k < 3; ++k) v[k] = params->eye[k] - p[k];
+    for (int k = 0; k < 3; ++k) v[k] = (floatL)params->eye[k] - p[k];
     const floatL len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    const floatL inv = 1.0f / select(len, (floatL)1.0f, CLR_NOT(len > 0.0f));
+    const floatL inv = 1.0f / max(len, (floatL)1e-30f);
     for (int k = 0; k < 3; ++k) v[k] *= inv;
   }
   // Step 2: the directional light.
@@ -62,7 +65,7 @@ CLR_INLINE void shade_lights(__constant FrameParams* params, const floatL n[3], 
     const floatL lx = params->pointLight[0] - p[0], ly = params->pointLight[1] - p[1],
                  lz = params->pointLight[2] - p[2];
     const floatL d2 = lx * lx + ly * ly + lz * lz, d = sqrt(d2);
-    const floatL inv = 1.0f / select(d, (floatL)1.0f, CLR_NOT(d > 0.0f));
+    const floatL inv = 1.0f / max(d, (floatL)1e-30f);
     const float r = params->pointLight[3];
     const floatL atten = 1.0f / (1.0f + d2 / (r * r));
     shade_one_light(n, v, lx * inv, ly * inv, lz * inv, atten, specular, diffuse, spec);
