@@ -94,7 +94,8 @@ uint32_t wrapMode(int mode)
 
 // The scene's materials: base colour factor (glTF's baseColorFactor, else
 // the diffuse colour) and base-colour texture (else the diffuse texture).
-// Materials assimp invents for formats without any keep the built-in grey.
+// Materials assimp invents for formats without any (no name, or
+// AI_DEFAULT_MATERIAL_NAME) keep the built-in grey.
 void loadMaterials(ImportState& state)
 {
   const aiScene* scene = state.scene;
@@ -106,8 +107,11 @@ void loadMaterials(ImportState& state)
     // Step 1: the colour factor.
     Material out{};
     aiColor4D colour(1, 1, 1, 1);
-    if (mat->GetName() == aiString(AI_DEFAULT_MATERIAL_NAME)) {
-      colour = aiColor4D(0.80f, 0.78f, 0.74f, 1.0f);
+    const aiString matName = mat->GetName();
+    if (matName.length == 0 || matName == aiString(AI_DEFAULT_MATERIAL_NAME)) {
+      // Invented by assimp (PLY, STL, OFF, OBJ without MTL): the built-in
+      // grey, or white under the file's vertex colours.
+      colour = state.anyColors ? aiColor4D(1, 1, 1, 1) : aiColor4D(0.80f, 0.78f, 0.74f, 1.0f);
     } else if (mat->Get(AI_MATKEY_BASE_COLOR, colour) != AI_SUCCESS) {
       if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) colour = aiColor4D(1, 1, 1, 1);
     }

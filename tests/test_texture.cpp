@@ -346,3 +346,43 @@ TEST_CASE("trilinear on a perspective plane: the level follows the analytic deri
   // Tolerance: 0.5 level of rounding, plus float error in λ near λ = 1.
   CHECK(worst <= 1.0);
 }
+
+TEST_CASE("Debian's textured test models load their textures; invented materials stay grey", "[texture][models]")
+{
+  const std::string models = "/usr/share/assimp/models/";
+  // Step 1: embedded (GLB), beside the file (glTF 1.0, OBJ + MTL with JPEGs).
+  const clr::Mesh box = clr::loadScene(models + "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb");
+  REQUIRE(box.textures.size() == 1);
+  CHECK((box.textures[0].width == 211 && box.textures[0].height == 211));
+  const clr::Mesh truck = clr::loadScene(models + "glTF/CesiumMilkTruck/CesiumMilkTruck.gltf");
+  CHECK(truck.textures.size() == 1);
+  const clr::Mesh spider = clr::loadScene(models + "OBJ/spider.obj");
+  CHECK(spider.textures.size() == 5);
+  // Step 2: PLY and OFF materials are assimp's inventions: the built-in grey.
+  for (const char* file : {"PLY/cube.ply", "OFF/Wuson.off", "STL/Wuson.stl"}) {
+    const clr::Mesh m = clr::loadScene(models + file);
+    INFO(file);
+    for (const Material& material : m.materials) {
+      CHECK(material.baseColor[0] == 0.80f);
+      CHECK(material.baseColor[2] == 0.74f);
+      CHECK(material.texture == -1);
+    }
+  }
+  // Step 3: the box renders its logo: sky blue and grass green pixels.
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(box);
+  clr::FrameSettings s = test::idSettings(64, 64,
+                                          glm::perspective(glm::radians(45.0f), 1.0f, 0.5f, 10.0f) *
+                                              glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0)));
+  s.shadeMode = CLR_SHADE_TEXTURE;
+  std::vector<uint32_t> rgba;
+  pipeline.render(s, rgba);
+  size_t blue = 0, green = 0;
+  for (uint32_t c : rgba) {
+    const int r = channel(c, 0), g = channel(c, 1), b = channel(c, 2);
+    blue += b > r + 60 && b > g;
+    green += g > r + 30 && g > b + 30;
+  }
+  CHECK(blue > 200);
+  CHECK(green > 200);
+}
