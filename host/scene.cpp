@@ -94,8 +94,8 @@ uint32_t wrapMode(int mode)
 
 // The scene's materials: base colour factor (glTF's baseColorFactor, else
 // the diffuse colour) and base-colour texture (else the diffuse texture).
-// Materials assimp invents for formats without any (no name, or
-// AI_DEFAULT_MATERIAL_NAME) keep the built-in grey.
+// Materials assimp invents for formats without any (no name or
+// AI_DEFAULT_MATERIAL_NAME, no base colour, no texture) keep the built-in grey.
 void loadMaterials(ImportState& state)
 {
   const aiScene* scene = state.scene;
@@ -108,12 +108,17 @@ void loadMaterials(ImportState& state)
     Material out{};
     aiColor4D colour(1, 1, 1, 1);
     const aiString matName = mat->GetName();
-    if (matName.length == 0 || matName == aiString(AI_DEFAULT_MATERIAL_NAME)) {
+    const bool invented = (matName.length == 0 || matName == aiString(AI_DEFAULT_MATERIAL_NAME)) &&
+                          mat->GetTextureCount(aiTextureType_DIFFUSE) == 0 &&
+                          mat->GetTextureCount(aiTextureType_BASE_COLOR) == 0;
+    if (mat->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS) {
+      // glTF's baseColorFactor.
+    } else if (invented) {
       // Invented by assimp (PLY, STL, OFF, OBJ without MTL): the built-in
       // grey, or white under the file's vertex colours.
       colour = state.anyColors ? aiColor4D(1, 1, 1, 1) : aiColor4D(0.80f, 0.78f, 0.74f, 1.0f);
-    } else if (mat->Get(AI_MATKEY_BASE_COLOR, colour) != AI_SUCCESS) {
-      if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) colour = aiColor4D(1, 1, 1, 1);
+    } else if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) {
+      colour = aiColor4D(1, 1, 1, 1);
     }
     out.baseColor[0] = colour.r;
     out.baseColor[1] = colour.g;

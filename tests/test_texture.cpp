@@ -347,7 +347,7 @@ TEST_CASE("trilinear on a perspective plane: the level follows the analytic deri
   CHECK(worst <= 1.0);
 }
 
-TEST_CASE("Debian's textured test models load their textures; invented materials stay grey", "[texture][models]")
+TEST_CASE("Debian's textured test models load their textures, invented materials stay grey", "[texture][models]")
 {
   const std::string models = "/usr/share/assimp/models/";
   // Step 1: embedded (GLB), beside the file (glTF 1.0, OBJ + MTL with JPEGs).
