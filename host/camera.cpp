@@ -37,6 +37,7 @@ FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t sh
   s.depthMode = depthMode;
   s.mvp = viewProjection(width, height, depthMode);
   s.lightDir = lightDirection();
+  s.eye = eye;
   s.zNear = zNear;
   s.zFar = zFar;
   return s;

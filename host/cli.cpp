@@ -20,7 +20,9 @@ const char* usageText()
   return "usage:\n"
          "  clraster render [SCENE] -o OUT.png [--size WxH] [--eye x,y,z] [--target x,y,z]\n"
          "                  [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
-         "                  [--shade lambert|normal|depth|uv|checker|id] [--cull none|back]\n"
+         "                  [--shade lambert|flat|gouraud|phong|texture|color|normal|depth|uv|checker|id]\n"
+         "                  [--filter nearest|bilinear|trilinear] [--light-point x,y,z[,r]]\n"
+         "                  [--cull none|back]\n"
          "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
          "                  [--traversal bbox|hierarchical] [--quality auto]\n"
@@ -77,8 +79,12 @@ uint32_t parseChoice(const std::string& flag, const std::string& text, std::init
 
 }  // namespace
 
-void applyMethods(const RenderArgs& args, FrameSettings& settings)
+void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius)
 {
+  settings.texFilter = args.texFilter;
+  settings.pointLightOn = args.pointLightOn;
+  settings.pointLight = args.pointLight;
+  settings.pointLightRange = args.pointLightRange.value_or(sceneRadius > 0.0f ? sceneRadius : 1.0f);
   if (args.aa != "auto") {
     const AaMode& mode = findAaMode(args.aa.empty() ? "none" : args.aa);
     settings.samples = mode.samples;
@@ -146,21 +152,26 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--far") {
       r.camera.zFar = parseFloat(a, value());
     } else if (a == "--shade") {
-      const std::string& s = value();
-      if (s == "lambert")
-        r.shadeMode = CLR_SHADE_LAMBERT;
-      else if (s == "normal")
-        r.shadeMode = CLR_SHADE_NORMAL;
-      else if (s == "depth")
-        r.shadeMode = CLR_SHADE_DEPTH;
-      else if (s == "id")
-        r.shadeMode = CLR_SHADE_ID;
-      else if (s == "uv")
-        r.shadeMode = CLR_SHADE_UV;
-      else if (s == "checker")
-        r.shadeMode = CLR_SHADE_CHECKER;
-      else
-        throw Error("--shade: unknown mode '" + s + "' (lambert, normal, depth, uv, checker, id)");
+      // The order is the CLR_SHADE_* numbering.
+      r.shadeMode = parseChoice(
+          a, value(),
+          {"lambert", "normal", "depth", "id", "uv", "checker", "color", "flat", "gouraud", "phong", "texture"});
+    } else if (a == "--filter") {
+      r.texFilter = parseChoice(a, value(), {"nearest", "bilinear", "trilinear"});
+    } else if (a == "--light-point") {
+      // x,y,z or x,y,z,r.
+      const std::string& text = value();
+      const size_t commas = size_t(std::count(text.begin(), text.end(), ','));
+      if (commas == 3) {
+        const size_t last = text.rfind(',');
+        r.pointLight = parseVec3(a, text.substr(0, last));
+        const float range = parseFloat(a, text.substr(last + 1));
+        if (!(range > 0.0f)) throw Error(a + ": range r must be > 0 in '" + text + "'");
+        r.pointLightRange = range;
+      } else {
+        r.pointLight = parseVec3(a, text);
+      }
+      r.pointLightOn = true;
     } else if (a == "--aa") {
       r.aa = value();
       if (r.aa != "auto") findAaMode(r.aa);  // throws for an unknown name

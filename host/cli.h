@@ -8,6 +8,7 @@
 #include "views.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,16 @@ struct RenderArgs {
   uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // --visibility
   std::string viewsPath;                         // --views: outPath is then a pattern (views.h)
   Shard shard;                                   // --shard K/N, with --views only
+  uint32_t texFilter = CLR_FILTER_TRILINEAR;     // --filter
+  bool pointLightOn = false;                     // --light-point x,y,z[,r]
+  glm::vec3 pointLight{0.0f};
+  std::optional<float> pointLightRange;  // r; default: the scene's bounding radius
 };
 
-// Copies the chosen methods (not "auto") into a frame's settings.
-void applyMethods(const RenderArgs& args, FrameSettings& settings);
+// Copies the chosen methods (not "auto"), the texture filter and the point
+// light into a frame's settings. sceneRadius: the point light's range when
+// --light-point gives none.
+void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius = 1.0f);
 
 // The depth format of a camera: --depth as given, or the auto rule (depth.h).
 DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera);

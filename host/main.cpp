@@ -79,6 +79,13 @@ Mesh loadMesh(const RenderArgs& args)
   return mesh;
 }
 
+// Half the bounding box diagonal: the point light's default range.
+float sceneRadius(const Mesh& mesh)
+{
+  const Bounds b = meshBounds(mesh);
+  return b.empty ? 1.0f : 0.5f * glm::length(b.max - b.min);
+}
+
 // `render --views`: one scene upload, then the shard's views in order, each
 // image handed to the writer thread while the next one renders.
 int renderViewsCommand(const RenderArgs& args)
@@ -118,7 +125,7 @@ int renderViewsCommand(const RenderArgs& args)
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
       FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack,
                                                         chooseDepth(args, cameras[v]).mode);
-      applyMethods(args, settings);
+      applyMethods(args, settings, sceneRadius(mesh));
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
         chosen = settings;
@@ -170,7 +177,7 @@ int renderCommand(const std::vector<std::string>& argList)
   pipeline.uploadScene(mesh);
   const DepthChoice depth = chooseDepth(args, camera);
   FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
-  applyMethods(args, settings);
+  applyMethods(args, settings, sceneRadius(mesh));
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)

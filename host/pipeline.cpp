@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace clr {
@@ -37,7 +38,18 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.numVerts = uint32_t(numVerts);
   p.numTris = uint32_t(numTris);
   p.cullBack = s.cullBack ? 1u : 0u;
+  if (s.shadeMode >= CLR_NUM_SHADE_MODES || s.texFilter > CLR_FILTER_TRILINEAR)
+    throw Error("unknown shading mode or texture filter");
   p.shadeMode = s.shadeMode;
+  p.texFilter = s.texFilter;
+  for (int k = 0; k < 3; ++k) {
+    p.eye[k] = s.eye[k];
+    p.pointLight[k] = s.pointLight[k];
+  }
+  if (s.pointLightOn && !(s.pointLightRange > 0.0f && std::isfinite(s.pointLightRange)))
+    throw Error("point light range must be a positive finite number");
+  p.pointLightOn = s.pointLightOn ? 1u : 0u;
+  p.pointLight[3] = s.pointLightRange;
   // Samples: the standard positions, in fixed-point units.
   const std::vector<SampleOffset>& offsets = samplePositions(s.samples);
   p.samples = s.samples;
@@ -71,7 +83,12 @@ Pipeline::Pipeline(ClContext& cl)
       positions_(memory_, "vertex positions"),
       normals_(memory_, "vertex normals"),
       uvs_(memory_, "vertex texture coordinates"),
+      colors_(memory_, "vertex colours"),
       indices_(memory_, "triangle indices"),
+      triMaterial_(memory_, "triangle materials"),
+      materials_(memory_, "materials"),
+      texDescs_(memory_, "texture descriptors"),
+      texels_(memory_, "texels"),
       clipPos_(memory_, "clip-space positions"),
       triCount_(memory_, "setup counts"),
       counters_(memory_, "counters"),
@@ -101,26 +118,79 @@ Pipeline::Pipeline(ClContext& cl)
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   paramsBuf_.reserve(1);
+  // Attributes a frame does not read are bound as 1-element dummies.
+  normals_.reserve(1);
+  uvs_.reserve(1);
+  colors_.reserve(1);
+  triMaterial_.reserve(1);
+  materials_.reserve(1);
+  texDescs_.reserve(1);
+  texels_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);
   clipList_.reserve(1024);
 }
 
 void Pipeline::uploadScene(const Mesh& mesh)
 {
+  // Step 1: validate the optional attributes against the vertices.
   if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
-  if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.numVerts()))
-    throw Error("scene's normals or texture coordinates do not match its vertices");
+  if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.numVerts()) ||
+      (!mesh.colors.empty() && mesh.colors.size() != 4 * mesh.numVerts()))
+    throw Error("scene's normals, texture coordinates or colours do not match its vertices");
+  if (!mesh.triMaterial.empty() && mesh.triMaterial.size() != mesh.numTris())
+    throw Error("scene's triangle materials do not match its triangles");
+  for (uint32_t m : mesh.triMaterial)
+    if (m >= mesh.materials.size()) throw Error("scene's triangle material " + std::to_string(m) + " out of range");
+  for (const Material& m : mesh.materials)
+    if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
+  // Step 2: what every mode reads, now; the rest when a frame reads it.
   positions_.upload(mesh.positions);
-  normals_.upload(mesh.normals);
-  // Meshes without texture coordinates read (0, 0).
-  uvs_.upload(mesh.uvs.empty() ? std::vector<float>(2 * mesh.numVerts(), 0.0f) : mesh.uvs);
   indices_.upload(mesh.indices);
   hostIndices_.clear();
   paintOrder_.clear();
+  scene_ = mesh;
+  resident_ = 0;
   clipPos_.reserve(mesh.numVerts());
   triCount_.reserve(mesh.numTris() + 1);
   params_.numVerts = uint32_t(mesh.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
+}
+
+uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
+{
+  const uint32_t mode = settings.shadeMode;
+  const bool albedo = CLR_USES_ALBEDO(mode);
+  const bool materials = albedo && !scene_.materials.empty() && !scene_.triMaterial.empty();
+  const bool textures = materials && scene_.hasTextures();
+  const bool colors = CLR_NEEDS_COLORS(mode) && !scene_.colors.empty();
+  // Step 1: upload what is missing, once.
+  if (CLR_NEEDS_NORMALS(mode) && !(resident_ & kResidentNormals)) {
+    normals_.upload(scene_.normals);
+    resident_ |= kResidentNormals;
+  }
+  if ((CLR_NEEDS_UVS(mode) || textures) && !(resident_ & kResidentUvs)) {
+    // Meshes without texture coordinates read (0, 0).
+    uvs_.upload(scene_.uvs.empty() ? std::vector<float>(2 * scene_.numVerts(), 0.0f) : scene_.uvs);
+    resident_ |= kResidentUvs;
+  }
+  if (colors && !(resident_ & kResidentColors)) {
+    colors_.upload(scene_.colors);
+    resident_ |= kResidentColors;
+  }
+  if (materials && !(resident_ & kResidentMaterials)) {
+    triMaterial_.upload(scene_.triMaterial);
+    materials_.upload(scene_.materials);
+    resident_ |= kResidentMaterials;
+  }
+  if (textures && !(resident_ & kResidentTextures)) {
+    const TexturePack pack = packTextures(scene_.textures);
+    texDescs_.upload(pack.descs);
+    texels_.upload(pack.texels);
+    resident_ |= kResidentTextures;
+  }
+  // Step 2: the flags resolve follows.
+  return (colors ? CLR_SCENE_COLORS : 0u) | (materials ? CLR_SCENE_MATERIALS : 0u) |
+         (textures ? CLR_SCENE_TEXTURES : 0u);
 }
 
 cl::NDRange Pipeline::linear(uint64_t n) const
@@ -132,6 +202,7 @@ cl::NDRange Pipeline::linear(uint64_t n) const
 void Pipeline::beginFrame(const FrameSettings& settings)
 {
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
+  params_.sceneFlags = bindAttributes(settings);
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
   cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, 0, sizeof params_, &params_);

@@ -39,7 +39,12 @@ struct FrameSettings {
   uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // CLR_VISIBILITY_*
   glm::mat4 mvp{1.0f};
   glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
-  float zNear = 0.1f, zFar = 100.0f;     // for depth shading only
+  glm::vec3 eye{0.0f, 0.0f, 0.0f};       // world space, for specular highlights
+  bool pointLightOn = false;             // a point light besides the directional one
+  glm::vec3 pointLight{0.0f};            // its position, world space
+  float pointLightRange = 1.0f;          // r of the attenuation 1 / (1 + (d / r)²), > 0
+  uint32_t texFilter = CLR_FILTER_TRILINEAR;
+  float zNear = 0.1f, zFar = 100.0f;  // for depth shading only
 };
 
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
@@ -58,8 +63,19 @@ class Pipeline {
  public:
   explicit Pipeline(ClContext& cl);
 
-  // Uploads positions, normals, texture coordinates and indices once per scene.
+  // Uploads positions and indices and keeps a copy of the scene; the other
+  // attributes are uploaded when a frame first reads them (bindAttributes).
   void uploadScene(const Mesh& mesh);
+
+  // What is on the device now, kResident* bits (for tests).
+  enum : uint32_t {
+    kResidentNormals = 1,
+    kResidentUvs = 2,
+    kResidentColors = 4,
+    kResidentMaterials = 8,  // triangle materials and the materials
+    kResidentTextures = 16,  // descriptors and texels, once per scene
+  };
+  uint32_t resident() const { return resident_; }
 
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
   FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
@@ -106,6 +122,9 @@ class Pipeline {
   // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
   // and uploads each triangle's rank to paintRank_.
   void sortForPainter();
+  // Uploads what this frame's shading reads and is not resident yet, and
+  // returns the FrameParams.sceneFlags it binds.
+  uint32_t bindAttributes(const FrameSettings& settings);
 
   ClContext& cl_;
   DeviceMemory memory_;
@@ -114,6 +133,8 @@ class Pipeline {
   uint32_t numSetup_ = 0;
   uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
+  Mesh scene_;             // host copy: lazy uploads read it
+  uint32_t resident_ = 0;  // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
@@ -121,8 +142,11 @@ class Pipeline {
       rasterFloatKernel_, resolveKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
-  DeviceBuffer<float> positions_, normals_, uvs_;
-  DeviceBuffer<uint32_t> indices_;
+  DeviceBuffer<float> positions_, normals_, uvs_, colors_;
+  DeviceBuffer<uint32_t> indices_, triMaterial_;
+  DeviceBuffer<Material> materials_;
+  DeviceBuffer<TextureDesc> texDescs_;
+  DeviceBuffer<uint32_t> texels_;
   DeviceBuffer<cl_float4> clipPos_;
   DeviceBuffer<uint32_t> triCount_;
   DeviceBuffer<uint32_t> counters_;

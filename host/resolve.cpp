@@ -9,7 +9,8 @@ void Pipeline::resolve()
   image_.reserve(uint64_t(params_.width) * params_.height);
   cl::Event event;
   setArgs(resolveKernel_, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(),
-          clipBary_.get(), indices_.get(), normals_.get(), uvs_.get(), image_.get());
+          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
+          triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get());
   const size_t row = size_t(cl_.lanes);
   cl_.queue.enqueueNDRangeKernel(resolveKernel_, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),

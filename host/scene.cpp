@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -30,6 +31,7 @@ struct ImportState {
   const aiScene* scene;
   Mesh mesh;
   bool allHaveNormals = true;
+  bool anyColors = false;
 };
 
 void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transform, unsigned meshIndex)
@@ -49,7 +51,11 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
     // Texture coordinates of the first channel, (0, 0) without one.
     const aiVector3D uv = src->mTextureCoords[0] ? src->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
     dst.uvs.insert(dst.uvs.end(), {uv.x, uv.y});
+    // Vertex colours of the first set, white without one.
+    const aiColor4D c = src->mColors[0] ? src->mColors[0][v] : aiColor4D(1, 1, 1, 1);
+    dst.colors.insert(dst.colors.end(), {c.r, c.g, c.b, c.a});
   }
+  if (src->mColors[0]) state.anyColors = true;
   // Step 2: faces, validated and fan-triangulated in file order.
   for (unsigned f = 0; f < src->mNumFaces; ++f) {
     const aiFace& face = src->mFaces[f];
@@ -58,9 +64,11 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
         throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " face " + std::to_string(f) +
                     " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
                     std::to_string(src->mNumVertices) + " vertices)");
-    for (unsigned k = 1; k + 1 < face.mNumIndices; ++k)
+    for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
       dst.indices.insert(dst.indices.end(), {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[k]),
                                              uint32_t(base + face.mIndices[k + 1])});
+      dst.triMaterial.push_back(src->mMaterialIndex);
+    }
   }
 }
 
@@ -75,6 +83,102 @@ void visitNode(ImportState& state, const aiNode* node, const aiMatrix4x4& parent
     appendMesh(state, state.scene->mMeshes[m], transform, m);
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c) visitNode(state, node->mChildren[c], transform, depth + 1);
+}
+
+uint32_t wrapMode(int mode)
+{
+  return mode == aiTextureMapMode_Mirror                                    ? CLR_WRAP_MIRROR
+         : mode == aiTextureMapMode_Clamp || mode == aiTextureMapMode_Decal ? CLR_WRAP_CLAMP
+                                                                            : CLR_WRAP_REPEAT;
+}
+
+// The scene's materials: base colour factor (glTF's baseColorFactor, else
+// the diffuse colour) and base-colour texture (else the diffuse texture).
+// Materials assimp invents for formats without any (no name or
+// AI_DEFAULT_MATERIAL_NAME, no base colour, no texture) keep the built-in grey.
+void loadMaterials(ImportState& state)
+{
+  const aiScene* scene = state.scene;
+  const std::string folder =
+      state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
+  std::map<std::string, int> byPath;
+  for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
+    const aiMaterial* mat = scene->mMaterials[m];
+    // Step 1: the colour factor.
+    Material out{};
+    aiColor4D colour(1, 1, 1, 1);
+    const aiString matName = mat->GetName();
+    const bool invented = (matName.length == 0 || matName == aiString(AI_DEFAULT_MATERIAL_NAME)) &&
+                          mat->GetTextureCount(aiTextureType_DIFFUSE) == 0 &&
+                          mat->GetTextureCount(aiTextureType_BASE_COLOR) == 0;
+    if (mat->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS) {
+      // glTF's baseColorFactor.
+    } else if (invented) {
+      // Invented by assimp (PLY, STL, OFF, OBJ without MTL): the built-in
+      // grey, or white under the file's vertex colours.
+      colour = state.anyColors ? aiColor4D(1, 1, 1, 1) : aiColor4D(0.80f, 0.78f, 0.74f, 1.0f);
+    } else if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, colour) != AI_SUCCESS) {
+      colour = aiColor4D(1, 1, 1, 1);
+    }
+    out.baseColor[0] = colour.r;
+    out.baseColor[1] = colour.g;
+    out.baseColor[2] = colour.b;
+    out.baseColor[3] = colour.a;
+    out.texture = -1;
+    // Step 2: the texture, decoded once per path.
+    aiTextureType type = aiTextureType_BASE_COLOR;
+    aiString texPath;
+    if (mat->GetTexture(type, 0, &texPath) != AI_SUCCESS) {
+      type = aiTextureType_DIFFUSE;
+      if (mat->GetTexture(type, 0, &texPath) != AI_SUCCESS) texPath.Clear();
+    }
+    const std::string name = texPath.C_Str();
+    if (!name.empty()) {
+      int wrapU = aiTextureMapMode_Wrap, wrapV = aiTextureMapMode_Wrap;
+      mat->Get(AI_MATKEY_MAPPINGMODE_U(type, 0), wrapU);
+      mat->Get(AI_MATKEY_MAPPINGMODE_V(type, 0), wrapV);
+      const std::string key = name + "|" + std::to_string(wrapU) + "|" + std::to_string(wrapV);
+      auto found = byPath.find(key);
+      if (found == byPath.end()) {
+        Texture t;
+        if (const aiTexture* embedded = scene->GetEmbeddedTexture(name.c_str())) {
+          const std::string what = state.path + ": embedded texture '" + name + "'";
+          if (embedded->mHeight == 0) {
+            t = decodeTexture(what, reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth);
+          } else {
+            t.name = what;
+            t.width = embedded->mWidth;
+            t.height = embedded->mHeight;
+            t.rgba.resize(size_t(t.width) * t.height);
+            for (uint32_t y = 0; y < t.height; ++y)
+              for (uint32_t x = 0; x < t.width; ++x) {
+                const aiTexel& p = embedded->pcData[size_t(t.height - 1 - y) * t.width + x];
+                t.rgba[size_t(y) * t.width + x] =
+                    uint32_t(p.r) | uint32_t(p.g) << 8 | uint32_t(p.b) << 16 | uint32_t(p.a) << 24;
+              }
+          }
+        } else if (name[0] == '*') {
+          throw Error(state.path + ": material " + std::to_string(m) + " names missing embedded texture '" + name +
+                      "'");
+        } else {
+          std::string file = name;
+          std::replace(file.begin(), file.end(), '\\', '/');
+          if (file[0] != '/') file = folder + file;
+          try {
+            t = loadTextureFile(file);
+          } catch (const Error& e) {
+            throw Error(state.path + ": material " + std::to_string(m) + ": " + e.what());
+          }
+        }
+        t.wrapS = wrapMode(wrapU);
+        t.wrapT = wrapMode(wrapV);
+        found = byPath.emplace(key, int(state.mesh.textures.size())).first;
+        state.mesh.textures.push_back(std::move(t));
+      }
+      out.texture = found->second;
+    }
+    state.mesh.materials.push_back(out);
+  }
 }
 
 // Assimp 5.2's PLY reader loops forever on some malformed headers (an
@@ -194,6 +298,11 @@ Mesh loadScene(const std::string& path)
   ImportState state{path, scene, {}};
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
   if (state.mesh.indices.empty()) throw Error(path + ": no triangles in file");
+  if (!state.anyColors) state.mesh.colors.clear();
+  // Step 4: materials and their textures.
+  loadMaterials(state);
+  for (uint32_t& m : state.mesh.triMaterial)
+    if (m >= state.mesh.materials.size()) throw Error(path + ": mesh refers to missing material " + std::to_string(m));
   if (meshBounds(state.mesh).empty) throw Error(path + ": no vertex has finite coordinates");
   if (!state.allHaveNormals) computeSmoothNormals(state.mesh);
   return std::move(state.mesh);

@@ -6,8 +6,13 @@
 // meshes in node order with node transforms applied, validates every index,
 // and throws clr::Error naming the file and the problem. Normals come from
 // the file when it has them, otherwise they are smoothed over vertices that
-// share a position.
+// share a position. Vertex colours come from mColors[0]; every triangle
+// keeps its mesh's material (base colour factor and base-colour texture,
+// see texture.h): embedded textures ("*N" paths, GLB) are decoded from the
+// file, others are read relative to the model's folder.
 #pragma once
+
+#include "texture.h"
 
 #include <cstdint>
 #include <string>
@@ -18,10 +23,15 @@
 namespace clr {
 
 struct Mesh {
-  std::vector<float> positions;   // 3 per vertex
-  std::vector<float> normals;     // 3 per vertex, unit or zero
-  std::vector<float> uvs;         // 2 per vertex (texture coordinates), or empty
-  std::vector<uint32_t> indices;  // 3 per triangle
+  std::vector<float> positions;       // 3 per vertex
+  std::vector<float> normals;         // 3 per vertex, unit or zero
+  std::vector<float> uvs;             // 2 per vertex (texture coordinates), or empty
+  std::vector<uint32_t> indices;      // 3 per triangle
+  std::vector<float> colors;          // 4 per vertex (RGBA in [0, 1]), or empty
+  std::vector<uint32_t> triMaterial;  // 1 per triangle, index into materials; or empty
+  std::vector<Material> materials;    // empty: the built-in grey albedo
+  std::vector<Texture> textures;      // base-colour textures the materials name
+  bool hasTextures() const { return !textures.empty(); }
   size_t numVerts() const { return positions.size() / 3; }
   size_t numTris() const { return indices.size() / 3; }
 };

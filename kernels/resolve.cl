@@ -9,14 +9,29 @@
  * CLR_INTERP_AFFINE, the weaker method), maps them to the input triangle's
  * vertices (through ClipBary when the triangle was clipped, through the
  * vertex swap when it was back-facing), interpolates what the shading reads
- * and shades:
- *   lambert: grey albedo, ambient + diffuse from FrameParams.lightDir,
- *            two-sided (back faces use the flipped normal)
+ * (only that: FrameParams.sceneFlags says what the host bound) and shades
+ * (lighting and albedo in shade.cl, textures in texture.cl):
+ *   lambert: albedo · (ambient + diffuse), two-sided (back faces use the
+ *            flipped normal), per pixel
+ *   flat:    Blinn-Phong with the face normal, lit at the centroid: one
+ *            light value per triangle
+ *   gouraud: Blinn-Phong at the three vertices, diffuse and specular
+ *            interpolated with the 1/w rule like any attribute
+ *   phong:   Blinn-Phong per pixel with the interpolated (renormalised)
+ *            normal and world position
+ *   texture: the unlit albedo (base colour factor × texture × vertex colour)
+ *   color:   the interpolated vertex colour (white without one)
  *   normal:  the interpolated world normal mapped from [−1, 1] to [0, 1]
  *   depth:   1 − (eye depth − near) / (far − near), eye depth = 1 / Σ b_i/w_i
  *   uv:      (u, v) as red and green, wrapped to [0, 1)
  *   checker: white and grey squares of 1/8 in u and v
  *   id:      input triangle index + 1 as 24-bit RGB, background black
+ * The albedo of the lit modes is the material's base colour (the built-in
+ * grey without materials). For trilinear texture filtering the screen
+ * derivatives of (u, v) are analytic: with screen barycentrics b_i (affine
+ * in x, y: ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area)), q_i = 1/w_i, w = 1 / Σ b_j q_j
+ * and a_i an attribute at setup vertex i, a = Σ b_i q_i a_i · w, so
+ *   ∂a/∂x = w · Σ_i (∂b_i/∂x) · q_i · (a_i − a),   likewise for y.
  * Anti-aliasing (FrameParams.samples > 1): every sample's colour, clamped to
  * [0, 1], is averaged with equal weights (the box filter of the notes) and
  * rounded to RGBA8 (R in the low byte), top row first. With MSAA
@@ -39,34 +54,64 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 }
 
 /* What resolve needs of the CLR_LANES pixels' fragments, gathered per lane:
- * screen barycentrics, the triangle's 1/w, the weights of the input
- * triangle's vertices in each setup vertex (identity, swapped or ClipBary)
- * and the input vertex normals. */
+ * screen barycentrics' gradients, the triangle's 1/w, the weights of the
+ * input triangle's vertices in each setup vertex (identity, swapped or
+ * ClipBary) and the input vertices' attributes that the shading reads. */
 typedef struct ResolveLanes {
   bool uniform;  // all lanes show one triangle: only lane 0 of the per-triangle arrays is filled
-  uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES];
+  bool needNormals, needUvs, needColours, needPositions, needGradients;
+  uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES], material[CLR_LANES];
   float invW[3][CLR_LANES];
   float weight[3][3][CLR_LANES];  // [setup vertex][input vertex][lane]
   float normal[3][3][CLR_LANES];  // [input vertex][component][lane]
   float uv[3][2][CLR_LANES];      // [input vertex][component][lane]
+  float colour[3][4][CLR_LANES];  // [input vertex][RGBA][lane]
+  float pos[3][3][CLR_LANES];     // [input vertex][component][lane], world space
+  float grad[3][2][CLR_LANES];    // [setup vertex][d/dx, d/dy][lane]: screen barycentric per pixel
 } ResolveLanes;
 
-/* What the shading mode reads of the input vertices. */
-#define CLR_NEEDS_NORMALS(mode) ((mode) == CLR_SHADE_LAMBERT || (mode) == CLR_SHADE_NORMAL)
-#define CLR_NEEDS_UVS(mode) ((mode) == CLR_SHADE_UV || (mode) == CLR_SHADE_CHECKER)
+/* Copies lane `from`'s per-triangle values to lane `to`. */
+CLR_INLINE void resolve_copy_lane(ResolveLanes* g, uint to, uint from)
+{
+  g->triId[to] = g->triId[from];
+  g->backfacing[to] = g->backfacing[from];
+  g->material[to] = g->material[from];
+  for (int i = 0; i < 3; ++i) {
+    g->invW[i][to] = g->invW[i][from];
+    for (int j = 0; j < 3; ++j) {
+      g->weight[i][j][to] = g->weight[i][j][from];
+      g->normal[i][j][to] = g->normal[i][j][from];
+      g->pos[i][j][to] = g->pos[i][j][from];
+    }
+    for (int j = 0; j < 4; ++j) g->colour[i][j][to] = g->colour[i][j][from];
+    for (int j = 0; j < 2; ++j) {
+      g->uv[i][j][to] = g->uv[i][j][from];
+      g->grad[i][j][to] = g->grad[i][j][from];
+    }
+  }
+}
 
 /* visIndex: the lanes' setup indices, CLR_NONE past the viewport's edge. */
-CLR_INLINE void resolve_gather(const uint* visIndex, __global const TriSetup* setup, __global const ClipBary* clipBary,
-                               __global const uint* indices, __global const float* normals, __global const float* uvs,
-                               uint mode, ResolveLanes* g)
+CLR_INLINE void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
+                               __global const ClipBary* clipBary, __global const uint* indices,
+                               __global const float* positions, __global const float* normals,
+                               __global const float* uvs, __global const float* colours,
+                               __global const uint* triMaterial, ResolveLanes* g)
 {
   // Step 0: a row inside one triangle (common for large triangles) needs one
-  // gather; its barycentrics still differ per lane.
+  // gather; its barycentrics still differ per lane. What to gather follows
+  // the shading mode and what the host bound (FrameParams.sceneFlags).
   g->uniform = true;
   for (uint lane = 1; lane < CLR_LANES && g->uniform; ++lane) g->uniform = visIndex[lane] == visIndex[0];
   if (g->uniform)
     for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
-  const bool needNormals = CLR_NEEDS_NORMALS(mode), needUvs = CLR_NEEDS_UVS(mode);
+  const uint mode = params->shadeMode, flags = params->sceneFlags;
+  g->needNormals = CLR_NEEDS_NORMALS(mode);
+  g->needUvs = CLR_NEEDS_UVS(mode) || (flags & CLR_SCENE_TEXTURES);
+  g->needColours = (flags & CLR_SCENE_COLORS) != 0;
+  g->needPositions = CLR_NEEDS_POSITIONS(mode, params->pointLightOn);
+  g->needGradients = (flags & CLR_SCENE_TEXTURES) && params->texFilter == CLR_FILTER_TRILINEAR;
+  const bool needMaterial = (flags & CLR_SCENE_MATERIALS) != 0;
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     // With every lane on one triangle, lane 0's gathers serve all (see uniform).
     if (g->uniform && lane > 0) break;
@@ -75,22 +120,14 @@ CLR_INLINE void resolve_gather(const uint* visIndex, __global const TriSetup* se
     g->setupIndex[lane] = index;
     // Neighbouring pixels mostly show the same triangle: reuse its gathers.
     if (lane > 0 && index == g->setupIndex[lane - 1]) {
-      g->triId[lane] = g->triId[lane - 1];
-      g->backfacing[lane] = g->backfacing[lane - 1];
-      for (int i = 0; i < 3; ++i) {
-        g->invW[i][lane] = g->invW[i][lane - 1];
-        for (int j = 0; j < 3; ++j) {
-          g->weight[i][j][lane] = g->weight[i][j][lane - 1];
-          g->normal[i][j][lane] = g->normal[i][j][lane - 1];
-        }
-        for (int j = 0; j < 2; ++j) g->uv[i][j][lane] = g->uv[i][j][lane - 1];
-      }
+      resolve_copy_lane(g, lane, lane - 1);
       continue;
     }
     const bool covered = index != CLR_NONE;
     const TriSetup t = setup[covered ? index : 0];
     g->triId[lane] = t.triId;
     g->backfacing[lane] = (t.flags & CLR_FLAG_BACKFACING) != 0;
+    g->material[lane] = covered && needMaterial ? triMaterial[t.triId] : 0;
     for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
     // Step 2: input-vertex weights of each setup vertex.
     const bool clipped = covered && t.clipSlot != CLR_NOT_CLIPPED;
@@ -100,16 +137,34 @@ CLR_INLINE void resolve_gather(const uint* visIndex, __global const TriSetup* se
         const int identity = swapped && i != 0 ? 3 - i : i;  // setup vertices 1, 2 are input 2, 1
         g->weight[i][j][lane] = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
       }
-    // Step 3: the input vertices' normals and texture coordinates.
+    // Step 3: gradients of the screen barycentrics per pixel, from the edge
+    // functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
+    // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
+    for (int i = 0; i < 3; ++i) {
+      const int a = (i + 1) % 3, b = (i + 2) % 3;
+      const float scale = covered && g->needGradients ? t.invArea2 * (float)CLR_FIXED_ONE : 0.0f;
+      g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
+      g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
+    }
+    // Step 4: the input vertices' attributes that the shading reads.
     for (int j = 0; j < 3; ++j) {
       const uint v = covered ? indices[3 * t.triId + j] : 0;
-      const float3 n = covered && needNormals ? vload3(v, normals) : (float3)(0.0f);
-      const float2 uv = covered && needUvs ? vload2(v, uvs) : (float2)(0.0f);
+      const float3 n = covered && g->needNormals ? vload3(v, normals) : (float3)(0.0f);
+      const float3 p = covered && g->needPositions ? vload3(v, positions) : (float3)(0.0f);
+      const float2 uv = covered && g->needUvs ? vload2(v, uvs) : (float2)(0.0f);
+      const float4 c = covered && g->needColours ? vload4(v, colours) : (float4)(1.0f);
       g->normal[j][0][lane] = n.x;
       g->normal[j][1][lane] = n.y;
       g->normal[j][2][lane] = n.z;
+      g->pos[j][0][lane] = p.x;
+      g->pos[j][1][lane] = p.y;
+      g->pos[j][2][lane] = p.z;
       g->uv[j][0][lane] = uv.x;
       g->uv[j][1][lane] = uv.y;
+      g->colour[j][0][lane] = c.x;
+      g->colour[j][1][lane] = c.y;
+      g->colour[j][2][lane] = c.z;
+      g->colour[j][3][lane] = c.w;
     }
   }
 }
@@ -149,66 +204,140 @@ CLR_INLINE floatL load_float_lanes(__global const float* row, uint count)
   return CLR_LOAD_LANES(lanes);
 }
 
+/* The unit normal of the lanes (two-sided: back faces flip it); a zero
+ * normal becomes the one facing the eye in window space. */
+CLR_INLINE void resolve_unit_normal(floatL n[3], floatL sign)
+{
+  const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const intL degenerate = CLR_NOT(len > 0.0f);
+  const floatL inv = sign / select(len, (floatL)1.0f, degenerate);
+  n[0] = select(n[0] * inv, (floatL)0.0f, degenerate);
+  n[1] = select(n[1] * inv, (floatL)0.0f, degenerate);
+  n[2] = select(n[2] * inv, sign, degenerate);
+}
+
+/* Everything a sample's shading reads: the buffers behind the gathers. */
+typedef struct ShadeInputs {
+  __global const Material* materials;
+  __global const TextureDesc* texDescs;
+  __global const uint* texels;
+} ShadeInputs;
+
 /* Shades the lanes of one sample plane from its gathered fragments. */
-CLR_INLINE ColourL resolve_shade(__constant FrameParams* params, const ResolveLanes* g, floatL b1, floatL b2)
+CLR_INLINE ColourL resolve_shade(__constant FrameParams* params, const ResolveLanes* g, const ShadeInputs* in,
+                                 floatL b1, floatL b2)
 {
   // A per-triangle value for every lane: broadcast when the row is uniform.
 #define CLR_PER_LANE(array, type) (g->uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
   const uint mode = params->shadeMode;
   // Step 1: barycentrics of the setup vertices: the 1/w rule, or affine.
-  const floatL b0 = 1.0f - b1 - b2;
-  const floatL invW0 = CLR_PER_LANE(g->invW[0], floatL), invW1 = CLR_PER_LANE(g->invW[1], floatL),
-               invW2 = CLR_PER_LANE(g->invW[2], floatL);
-  floatL lambda[3], eyeDepth;
+  // Afterwards q_i holds q_i·w with q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
+  const floatL b[3] = {1.0f - b1 - b2, b1, b2};
+  floatL q[3], lambda[3], eyeDepth;
+  for (int i = 0; i < 3; ++i) q[i] = CLR_PER_LANE(g->invW[i], floatL);
   if (params->interpMode == CLR_INTERP_AFFINE) {
-    lambda[0] = b0;
-    lambda[1] = b1;
-    lambda[2] = b2;
-    eyeDepth = b0 / invW0 + b1 / invW1 + b2 / invW2;  // w interpolated in screen space
+    eyeDepth = b[0] / q[0] + b[1] / q[1] + b[2] / q[2];  // w interpolated in screen space
+    for (int i = 0; i < 3; ++i) {
+      lambda[i] = b[i];
+      q[i] = 1.0f;
+    }
   } else {
-    const floatL q0 = b0 * invW0, q1 = b1 * invW1, q2 = b2 * invW2;
-    eyeDepth = 1.0f / (q0 + q1 + q2);  // w, interpolated as 1/w is
-    lambda[0] = q0 * eyeDepth;
-    lambda[1] = q1 * eyeDepth;
-    lambda[2] = q2 * eyeDepth;
+    eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);  // w, interpolated as 1/w is
+    for (int i = 0; i < 3; ++i) {
+      q[i] = q[i] * eyeDepth;
+      lambda[i] = b[i] * q[i];
+    }
   }
   if (mode == CLR_SHADE_DEPTH) {
     const floatL grey = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
     return colour_make(grey, grey, grey);
   }
-  // Step 2: weights of the input vertices.
+  // Step 2: weights of the input vertices, and an attribute's value.
   floatL mu[3];
   for (int j = 0; j < 3; ++j) {
     mu[j] = 0.0f;
     for (int i = 0; i < 3; ++i) mu[j] += lambda[i] * CLR_PER_LANE(g->weight[i][j], floatL);
   }
-  if (CLR_NEEDS_UVS(mode)) {
-    floatL uv[2] = {0.0f, 0.0f};
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 2; ++k) uv[k] += mu[j] * CLR_PER_LANE(g->uv[j][k], floatL);
-    if (mode == CLR_SHADE_UV) return colour_make(uv[0] - floor(uv[0]), uv[1] - floor(uv[1]), (floatL)0.0f);
+#define CLR_INTERPOLATE(out, array, components)                                           \
+  for (int k = 0; k < (components); ++k) {                                                \
+    (out)[k] = 0.0f;                                                                      \
+    for (int j = 0; j < 3; ++j) (out)[k] += mu[j] * CLR_PER_LANE(g->array[j][k], floatL); \
+  }
+  // Step 3: texture coordinates and, for trilinear filtering, their screen
+  // derivatives: with a_i the setup vertices' values and a the pixel's,
+  // ∂a/∂x = Σ_i ∂b_i/∂x · q_i · w · (a_i − a) (the derivative of the 1/w
+  // rule; affine: Σ_i ∂b_i/∂x · a_i), likewise for y.
+  floatL uv[2] = {0.0f, 0.0f}, duvdx[2] = {0.0f, 0.0f}, duvdy[2] = {0.0f, 0.0f};
+  if (g->needUvs) {
+    CLR_INTERPOLATE(uv, uv, 2)
+    if (g->needGradients)
+      for (int i = 0; i < 3; ++i) {
+        const floatL gx = CLR_PER_LANE(g->grad[i][0], floatL) * q[i], gy = CLR_PER_LANE(g->grad[i][1], floatL) * q[i];
+        for (int k = 0; k < 2; ++k) {
+          floatL ai = 0.0f;
+          for (int j = 0; j < 3; ++j) ai += CLR_PER_LANE(g->weight[i][j], floatL) * CLR_PER_LANE(g->uv[j][k], floatL);
+          duvdx[k] += gx * (ai - uv[k]);
+          duvdy[k] += gy * (ai - uv[k]);
+        }
+      }
+  }
+  if (mode == CLR_SHADE_UV) return colour_make(uv[0] - floor(uv[0]), uv[1] - floor(uv[1]), (floatL)0.0f);
+  if (mode == CLR_SHADE_CHECKER) {
     const intL odd = (convert_intL(floor(uv[0] * 8.0f)) + convert_intL(floor(uv[1] * 8.0f))) & 1;
     const floatL grey = select((floatL)0.9f, (floatL)0.25f, odd != 0);
     return colour_make(grey, grey, grey);
   }
-  // Step 3: the interpolated normal.
-  floatL n[3] = {0.0f, 0.0f, 0.0f};
-  for (int j = 0; j < 3; ++j)
-    for (int k = 0; k < 3; ++k) n[k] += mu[j] * CLR_PER_LANE(g->normal[j][k], floatL);
-  const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  const intL degenerate = CLR_NOT(len > 0.0f);
+  // Step 4: the vertex colour, the albedo.
+  floatL colour[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  if (g->needColours) CLR_INTERPOLATE(colour, colour, 4)
+  if (mode == CLR_SHADE_COLOR) return colour_make(colour[0], colour[1], colour[2]);
+  floatL albedo[3] = {0.0f, 0.0f, 0.0f};
+  if (mode != CLR_SHADE_NORMAL) {
+    shade_albedo(params, in->materials, in->texDescs, in->texels, g->material, g->uniform, uv, duvdx, duvdy, albedo);
+    for (int k = 0; k < 3; ++k) albedo[k] *= colour[k];
+  }
+  if (mode == CLR_SHADE_TEXTURE) return colour_make(albedo[0], albedo[1], albedo[2]);
+  // Step 5: the normal and the point: interpolated, or the face's for flat.
   // Two-sided: back faces use the flipped normal.
   const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_PER_LANE(g->backfacing, uintL) != 0u);
-  const floatL inv = sign / select(len, (floatL)1.0f, degenerate);
-  const floatL nx = select(n[0] * inv, (floatL)0.0f, degenerate);
-  const floatL ny = select(n[1] * inv, (floatL)0.0f, degenerate);
-  const floatL nz = select(n[2] * inv, sign, degenerate);
-  if (mode == CLR_SHADE_NORMAL) return colour_make(nx * 0.5f + 0.5f, ny * 0.5f + 0.5f, nz * 0.5f + 0.5f);
-  // Step 4: Lambert.
-  const floatL diffuse =
-      max(nx * params->lightDir[0] + ny * params->lightDir[1] + nz * params->lightDir[2], (floatL)0.0f);
-  const floatL light = 0.12f + 0.88f * diffuse;
-  return colour_make(0.80f * light, 0.78f * light, 0.74f * light);
+  floatL n[3], p[3] = {0.0f, 0.0f, 0.0f}, diffuse, specular;
+  if (mode == CLR_SHADE_FLAT) {
+    floatL v[3][3];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) v[j][k] = CLR_PER_LANE(g->pos[j][k], floatL);
+    const floatL e1[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
+    const floatL e2[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    for (int k = 0; k < 3; ++k) p[k] = (v[0][k] + v[1][k] + v[2][k]) * (1.0f / 3.0f);  // lit at the centroid
+  } else {
+    CLR_INTERPOLATE(n, normal, 3)
+    if (g->needPositions) CLR_INTERPOLATE(p, pos, 3)
+  }
+  resolve_unit_normal(n, sign);
+  if (mode == CLR_SHADE_NORMAL) return colour_make(n[0] * 0.5f + 0.5f, n[1] * 0.5f + 0.5f, n[2] * 0.5f + 0.5f);
+  // Step 6: the lights: per vertex and interpolated (Gouraud), or here.
+  if (mode == CLR_SHADE_GOURAUD) {
+    diffuse = 0.0f;
+    specular = 0.0f;
+    for (int j = 0; j < 3; ++j) {
+      floatL nj[3], pj[3], d, s;
+      for (int k = 0; k < 3; ++k) {
+        nj[k] = CLR_PER_LANE(g->normal[j][k], floatL);
+        pj[k] = CLR_PER_LANE(g->pos[j][k], floatL);
+      }
+      resolve_unit_normal(nj, sign);
+      shade_lights(params, nj, pj, true, &d, &s);
+      diffuse += mu[j] * d;
+      specular += mu[j] * s;
+    }
+  } else {
+    shade_lights(params, n, p, mode != CLR_SHADE_LAMBERT, &diffuse, &specular);
+  }
+  const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
+  return colour_make(albedo[0] * light + highlight, albedo[1] * light + highlight, albedo[2] * light + highlight);
+#undef CLR_INTERPOLATE
 #undef CLR_PER_LANE
 }
 
@@ -248,17 +377,24 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     __global const float* visAttr,    // 3 · samples planes of width · height: depth, b1, b2
     __global const uint* tileOffset,  // tiles + 1
     __global const TriSetup* setup, __global const ClipBary* clipBary,
-    __global const uint* indices,   // 3·numTris
-    __global const float* normals,  // 3·numVerts
-    __global const float* uvs,      // 2·numVerts
-    __global uint* image)           // width · height
+    __global const uint* indices,          // 3·numTris
+    __global const float* positions,       // 3·numVerts
+    __global const float* normals,         // 3·numVerts, or a dummy the mode does not read
+    __global const float* uvs,             // 2·numVerts, or a dummy
+    __global const float* colours,         // 4·numVerts, or a dummy
+    __global const uint* triMaterial,      // numTris, or a dummy
+    __global const Material* materials,    // the scene's, or a dummy
+    __global const TextureDesc* texDescs,  // the scene's, or a dummy
+    __global const uint* texels,           // every level of every texture, or a dummy
+    __global uint* image)                  // width · height
 {
   const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
   if (py >= params->height || firstX >= params->width) return;
   const uint count = min((uint)CLR_LANES, params->width - firstX);
   __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
   const uint mode = params->shadeMode;
-  const uint background = mode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;
+  const bool lit = CLR_USES_ALBEDO(mode) || mode == CLR_SHADE_COLOR;
+  const uint background = lit ? 0xFF261F1Au : 0xFF000000u;
   // Step 1: a tile without triangles is background; raster left it unwritten.
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
@@ -276,6 +412,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 8) & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
+    const ShadeInputs inputs = {materials, texDescs, texels};
     uintL sampleIndex[CLR_MAX_SAMPLES];
     ColourL sampleColour[CLR_MAX_SAMPLES];
     ColourL sum = {0.0f, 0.0f, 0.0f};
@@ -295,10 +432,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
         sampleColour[k] = c;
       } else {
         ResolveLanes g;
-        resolve_gather(index, setup, clipBary, indices, normals, uvs, mode, &g);
+        resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
         const floatL b1 = load_float_lanes(&visAttr[(3 * k + 1) * plane + p], count);
         const floatL b2 = load_float_lanes(&visAttr[(3 * k + 2) * plane + p], count);
-        sampleColour[k] = colour_select(resolve_shade(params, &g, b1, b2), c, done);
+        sampleColour[k] = colour_select(resolve_shade(params, &g, &inputs, b1, b2), c, done);
       }
       sum.r += sampleColour[k].r;
       sum.g += sampleColour[k].g;

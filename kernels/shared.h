@@ -37,8 +37,50 @@ typedef uint32_t uint;
 #define CLR_SHADE_NORMAL 1u
 #define CLR_SHADE_DEPTH 2u
 #define CLR_SHADE_ID 3u
-#define CLR_SHADE_UV 4u      /* texture coordinates (u, v) as red, green */
-#define CLR_SHADE_CHECKER 5u /* an 8×8 checkerboard per unit of (u, v) */
+#define CLR_SHADE_UV 4u       /* texture coordinates (u, v) as red, green */
+#define CLR_SHADE_CHECKER 5u  /* an 8×8 checkerboard per unit of (u, v) */
+#define CLR_SHADE_COLOR 6u    /* the vertex colour (mColors[0]), white without one */
+#define CLR_SHADE_FLAT 7u     /* Blinn-Phong with the face normal, lit once per triangle */
+#define CLR_SHADE_GOURAUD 8u  /* Blinn-Phong per vertex, the light interpolated */
+#define CLR_SHADE_PHONG 9u    /* Blinn-Phong per pixel (interpolated normal and position) */
+#define CLR_SHADE_TEXTURE 10u /* the unlit base colour: factor × texture × vertex colour */
+#define CLR_NUM_SHADE_MODES 11u
+
+/* What a shading mode reads of the input vertices (besides positions for
+ * transform). Host and kernel share these: the host uploads only what the
+ * frame's mode reads (Pipeline::bindAttributes). Modes that use the albedo
+ * also read materials, and texture coordinates with textures, and vertex
+ * colours when the scene has them. */
+#define CLR_USES_ALBEDO(mode)                                                                \
+  ((mode) == CLR_SHADE_LAMBERT || (mode) == CLR_SHADE_FLAT || (mode) == CLR_SHADE_GOURAUD || \
+   (mode) == CLR_SHADE_PHONG || (mode) == CLR_SHADE_TEXTURE)
+#define CLR_NEEDS_NORMALS(mode)                                                                \
+  ((mode) == CLR_SHADE_LAMBERT || (mode) == CLR_SHADE_NORMAL || (mode) == CLR_SHADE_GOURAUD || \
+   (mode) == CLR_SHADE_PHONG)
+#define CLR_NEEDS_UVS(mode) ((mode) == CLR_SHADE_UV || (mode) == CLR_SHADE_CHECKER)
+#define CLR_NEEDS_COLORS(mode) ((mode) == CLR_SHADE_COLOR || CLR_USES_ALBEDO(mode))
+/* World positions in resolve: face normals, view vectors, the point light. */
+#define CLR_NEEDS_POSITIONS(mode, pointLightOn)                                            \
+  ((mode) == CLR_SHADE_FLAT || (mode) == CLR_SHADE_GOURAUD || (mode) == CLR_SHADE_PHONG || \
+   ((mode) == CLR_SHADE_LAMBERT && (pointLightOn)))
+
+/* FrameParams.texFilter: how base-colour textures are sampled (texture.cl). */
+#define CLR_FILTER_NEAREST 0u
+#define CLR_FILTER_BILINEAR 1u
+#define CLR_FILTER_TRILINEAR 2u /* bilinear in the two nearest mip levels, blended */
+
+/* TextureDesc.wrapS/wrapT (assimp's aiTextureMapMode, glTF's sampler). */
+#define CLR_WRAP_REPEAT 0u
+#define CLR_WRAP_CLAMP 1u
+#define CLR_WRAP_MIRROR 2u
+
+/* Most mip levels of a texture: a 16384-texel side has 15. */
+#define CLR_MAX_MIP_LEVELS 16
+
+/* FrameParams.sceneFlags: which optional attributes the frame binds. */
+#define CLR_SCENE_COLORS 1u    /* the colours buffer holds vertex colours */
+#define CLR_SCENE_MATERIALS 2u /* triMaterial and materials hold the scene's materials */
+#define CLR_SCENE_TEXTURES 4u  /* texDescs, texels and uvs hold the base-colour textures */
 
 /* Most samples per pixel (FrameParams.samples). */
 #define CLR_MAX_SAMPLES 16
@@ -79,7 +121,7 @@ typedef uint32_t uint;
 #define CLR_NUM_COUNTERS 4
 
 /* Per-frame constants. Written by the host once per frame; read by every
- * kernel. One struct, 320 bytes. */
+ * kernel. One struct, 368 bytes. */
 typedef struct FrameParams {
   float mvp[16];     /* column-major, clip = mvp · (x, y, z, 1) */
   float lightDir[4]; /* world space, unit, towards the light */
@@ -105,6 +147,14 @@ typedef struct FrameParams {
   /* Extent of the sample offsets below, for bounds: min and max over k. */
   int sampleMinX, sampleMaxX, sampleMinY, sampleMaxY;
   uint depthMode; /* CLR_DEPTH_* */
+  /* Lighting (shade.cl): the eye for the view vector, an optional point
+   * light at pointLight.xyz with attenuation 1 / (1 + (d / pointLight.w)²). */
+  float eye[4];
+  float pointLight[4];
+  uint pointLightOn; /* 1: the point light shines (besides lightDir) */
+  uint texFilter;    /* CLR_FILTER_* */
+  uint sceneFlags;   /* CLR_SCENE_*: what the host bound for this frame */
+  uint pad2;
   /* Sample k of a pixel lies at its centre + (sampleX[k], sampleY[k]) in
    * fixed-point units (y up); the host fills them (host/aa.cpp). */
   int sampleX[CLR_MAX_SAMPLES];
@@ -136,6 +186,27 @@ typedef struct ClipBary {
   float w[3][3];
 } ClipBary;
 
+/* A material's base colour: factor (RGBA, linear in the 8-bit values) times
+ * the texture's texel when texture >= 0. Written by the host (scene upload),
+ * read by resolve. Array size: the scene's material count. */
+typedef struct Material {
+  float baseColor[4];
+  int texture; /* index into texDescs, or -1 */
+  uint pad[3];
+} Material;
+
+/* One texture in the texels buffer: level l (0 = full size) is
+ * max(1, width >> l) × max(1, height >> l) RGBA8 texels (R in the low byte),
+ * rows bottom first (v = 0 is row 0), from texels[levelOffset[l]]. Written
+ * by the host (host/texture.cpp), read by resolve. Array size: the scene's
+ * texture count. */
+typedef struct TextureDesc {
+  uint width, height, levels;
+  uint wrapS, wrapT; /* CLR_WRAP_* for u and v */
+  uint pad[3];
+  uint levelOffset[CLR_MAX_MIP_LEVELS];
+} TextureDesc;
+
 /* The visibility buffer: the nearest fragment of each pixel sample, stored
  * as planes so that a row of samples is one vector load or store. With
  * S = FrameParams.samples and P = width·height, sample k of pixel p is
@@ -156,10 +227,18 @@ typedef struct VisSample {
 } VisSample;
 
 /* The remaining buffers of a frame, all typed:
- *  positions  float[3·numVerts]   host upload;  read by transform
+ *  positions  float[3·numVerts]   host upload;  read by transform, resolve
+ * The next ones are uploaded only when a frame's shading reads them (host
+ * pipeline.cpp, Pipeline::bindAttributes); otherwise a 1-element dummy is
+ * bound and resolve never reads it:
  *  normals    float[3·numVerts]   host upload;  read by resolve
  *  uvs        float[2·numVerts]   host upload (zeros when the mesh has
  *                                 none); read by resolve
+ *  colors     float[4·numVerts]   host upload (vertex colours); resolve
+ *  triMaterial uint[numTris]      host upload (material per triangle); resolve
+ *  materials  Material[numMaterials] host upload; read by resolve
+ *  texDescs   TextureDesc[numTextures] host upload, once per scene; resolve
+ *  texels     uint[all levels of all textures] host upload, once; resolve
  *  indices    uint[3·numTris]     host upload;  read by setup, resolve
  *  clipPos    float4[numVerts]    transform;    read by setup, resolve
  *  triCount   uint[numTris + 1]   setup_count writes counts, the scan turns
@@ -182,10 +261,12 @@ typedef struct VisSample {
  */
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 320, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 368, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 64, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
+static_assert(sizeof(Material) == 32, "Material layout must match the kernels");
+static_assert(sizeof(TextureDesc) == 96, "TextureDesc layout must match the kernels");
 #endif
 
 #endif /* CLR_SHARED_H */

@@ -51,8 +51,12 @@ TEST_CASE("cli: bad flags and values", "[cli]")
   expectError("render --size 100000x10" + out, "--size");
   expectError("render --size 64" + out, "is not WxH");
   expectError("render --size 64xabc" + out, "--size");
-  expectError("render --shade fancy" + out, "--shade: unknown mode 'fancy'");
+  expectError("render --shade fancy" + out, "--shade: unknown value 'fancy'");
   expectError("render --cull front" + out, "--cull: unknown mode");
+  expectError("render --filter cubic" + out, "--filter: unknown value 'cubic'");
+  expectError("render --light-point 1,2" + out, "--light-point: '1,2' is not x,y,z");
+  expectError("render --light-point 1,2,3,0" + out, "--light-point: range r must be > 0");
+  expectError("render --light-point 1,2,3,x" + out, "--light-point: 'x' is not a finite number");
   expectError("render --frames 0" + out, "--frames");
   expectError("render --eye 1,2" + out, "--eye");
   expectError("render --eye 1,2,nan" + out, "--eye");

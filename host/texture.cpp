@@ -1,0 +1,104 @@
+// texture.cpp — image decoding and mip chains for base-colour textures
+// (texture.h). The sampling itself is kernels/texture.cl.
+#include "texture.h"
+
+#include "cl.h"
+
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // inside stb_image, a known false positive of GCC 12
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace clr {
+
+Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size)
+{
+  // Step 1: decode to RGBA8.
+  if (size == 0 || size > size_t(INT32_MAX)) throw Error(name + ": empty or oversized image");
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load_from_memory(data, int(size), &w, &h, &channels, 4);
+  if (!pixels) throw Error(name + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (w < 1 || h < 1 || w > CLR_MAX_VIEWPORT || h > CLR_MAX_VIEWPORT) {
+    stbi_image_free(pixels);
+    throw Error(name + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
+  }
+  // Step 2: pack, bottom row first.
+  Texture t;
+  t.name = name;
+  t.width = uint32_t(w);
+  t.height = uint32_t(h);
+  t.rgba.resize(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = pixels + 4 * (size_t(h - 1 - y) * w + x);
+      t.rgba[size_t(y) * w + x] = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+    }
+  stbi_image_free(pixels);
+  return t;
+}
+
+Texture loadTextureFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open texture (" + std::strerror(errno) + ")");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return decodeTexture(path, bytes.data(), bytes.size());
+}
+
+std::vector<uint32_t> downsample(const std::vector<uint32_t>& rgba, uint32_t width, uint32_t height)
+{
+  const uint32_t w = std::max(1u, width / 2), h = std::max(1u, height / 2);
+  std::vector<uint32_t> out(size_t(w) * h);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      // The 2×2 block; an odd last row or column is used twice.
+      const uint32_t x0 = std::min(2 * x, width - 1), x1 = std::min(2 * x + 1, width - 1);
+      const uint32_t y0 = std::min(2 * y, height - 1), y1 = std::min(2 * y + 1, height - 1);
+      const uint32_t q[4] = {rgba[size_t(y0) * width + x0], rgba[size_t(y0) * width + x1],
+                             rgba[size_t(y1) * width + x0], rgba[size_t(y1) * width + x1]};
+      uint32_t texel = 0;
+      for (int c = 0; c < 4; ++c) {
+        uint32_t sum = 2;  // round half up
+        for (uint32_t v : q) sum += (v >> (8 * c)) & 0xFFu;
+        texel |= (sum / 4) << (8 * c);
+      }
+      out[size_t(y) * w + x] = texel;
+    }
+  return out;
+}
+
+TexturePack packTextures(const std::vector<Texture>& textures)
+{
+  TexturePack pack;
+  for (const Texture& t : textures) {
+    TextureDesc d{};
+    d.width = t.width;
+    d.height = t.height;
+    d.wrapS = t.wrapS;
+    d.wrapT = t.wrapT;
+    std::vector<uint32_t> level = t.rgba;
+    uint32_t w = t.width, h = t.height;
+    for (uint32_t l = 0;; ++l) {
+      if (pack.texels.size() + level.size() > UINT32_MAX) throw Error(t.name + ": textures exceed 2^32 texels");
+      d.levelOffset[l] = uint32_t(pack.texels.size());
+      pack.texels.insert(pack.texels.end(), level.begin(), level.end());
+      d.levels = l + 1;
+      if ((w == 1 && h == 1) || l + 1 == CLR_MAX_MIP_LEVELS) break;
+      level = downsample(level, w, h);
+      w = std::max(1u, w / 2);
+      h = std::max(1u, h / 2);
+    }
+    pack.descs.push_back(d);
+  }
+  return pack;
+}
+
+}  // namespace clr

@@ -1,0 +1,43 @@
+// texture.h — base-colour textures on the host: decoding, mip chains and the
+// one packed upload the resolve kernel samples (kernels/texture.cl).
+//
+// Images are decoded with stb_image (Debian's libstb-dev) to RGBA8 and
+// flipped so that row 0 is the bottom (v = 0, assimp's convention). Texel
+// values are used as they are stored (no sRGB conversion anywhere in the
+// pipeline). packTextures() builds every texture's mip chain with a 2×2 box
+// filter (odd sides repeat their last row or column) down to 1×1 and puts
+// all levels of all textures into one texel array with one TextureDesc each
+// (shared.h). A file that cannot be opened or decoded is a clr::Error
+// naming the file.
+#pragma once
+
+#include "../kernels/shared.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clr {
+
+struct Texture {
+  std::string name;  // file path or "model.glb: embedded texture *N", for messages
+  uint32_t width = 0, height = 0;
+  uint32_t wrapS = CLR_WRAP_REPEAT, wrapT = CLR_WRAP_REPEAT;
+  std::vector<uint32_t> rgba;  // width·height, R in the low byte, bottom row first
+};
+
+// Decodes an image file (PNG, JPEG, BMP, TGA, ... as stb_image reads them).
+Texture loadTextureFile(const std::string& path);
+// Decodes an image held in memory; `name` is what errors call it.
+Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size);
+
+struct TexturePack {
+  std::vector<TextureDesc> descs;
+  std::vector<uint32_t> texels;  // every level of every texture
+};
+TexturePack packTextures(const std::vector<Texture>& textures);
+
+// Mip level `level` of a texture from the level above (exposed for tests).
+std::vector<uint32_t> downsample(const std::vector<uint32_t>& rgba, uint32_t width, uint32_t height);
+
+}  // namespace clr

@@ -1,0 +1,111 @@
+/* shade.cl — lighting and base colour for resolve, in lane types.
+ *
+ * Blinn-Phong with one directional light (FrameParams.lightDir, intensity
+ * 1) and an optional point light at FrameParams.pointLight.xyz whose
+ * intensity falls off as 1 / (1 + (d / r)²), d the distance to the shaded
+ * point, r = pointLight.w. For a unit normal n, a point p and the unit view
+ * vector v = (eye − p) / |eye − p|, each light with unit direction l and
+ * attenuation a adds
+ *   diffuse  D += a · max(n·l, 0)
+ *   specular S += a · max(n·h, 0)^CLR_SHININESS, h = (l + v) / |l + v|,
+ *                 only where n·l > 0
+ * and a lit colour is albedo · (CLR_AMBIENT + CLR_DIFFUSE · D) + CLR_SPECULAR · S
+ * (lambert: S = 0). The albedo is the material's base colour factor times its
+ * texture sample (texture.cl) times the interpolated vertex colour; without
+ * materials it is the built-in grey CLR_GREY_*. OpenCL only (follows
+ * texture.cl, precedes resolve.cl).
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+#define CLR_AMBIENT 0.12f
+#define CLR_DIFFUSE 0.88f
+#define CLR_SPECULAR 0.4f
+#define CLR_SHININESS 32 /* = 2^5: computed by squaring */
+#define CLR_GREY_R 0.80f
+#define CLR_GREY_G 0.78f
+#define CLR_GREY_B 0.74f
+
+/* One light's contribution, added to *diffuse and *specular. */
+CLR_INLINE void shade_one_light(const floatL n[3], const floatL v[3], floatL lx, floatL ly, floatL lz, floatL atten,
+                                bool specular, floatL* diffuse, floatL* spec)
+{
+  const floatL ndotl = n[0] * lx + n[1] * ly + n[2] * lz;
+  *diffuse += atten * max(ndotl, (floatL)0.0f);
+  if (!specular) return;
+  // Step 1: the half vector (a zero sum, light opposite the eye, gives none).
+  const floatL hx = lx + v[0], hy = ly + v[1], hz = lz + v[2];
+  const floatL hlen = sqrt(hx * hx + hy * hy + hz * hz);
+  const floatL ndoth = (n[0] * hx + n[1] * hy + n[2] * hz) / max(hlen, (floatL)1e-30f);
+  // x^32 by five squarings (exact enough, and vector pow is wrong under Oclgrind).
+  floatL s = max(ndoth, (floatL)0.0f);
+  for (int k = 0; k < 5; ++k) s = s * s;
+  const intL lit = (ndotl > 0.0f) & (hlen > 0.0f);
+  *spec += select((floatL)0.0f, atten * s, lit);
+}
+
+/* Diffuse and specular sums at point p with unit normal n (see above). */
+CLR_INLINE void shade_lights(__constant FrameParams* params, const floatL n[3], const floatL p[3], bool specular,
+                             floatL* diffuse, floatL* spec)
+{
+  *diffuse = 0.0f;
+  *spec = 0.0f;
+  // Step 1: the unit view vector (only Blinn-Phong reads it).
+  floatL v[3] = {0.0f, 0.0f, 0.0f};
+  if (specular) {
+    for (int k = 0; k < 3; ++k) v[k] = (floatL)params->eye[k] - p[k];
+    const floatL len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const floatL inv = 1.0f / max(len, (floatL)1e-30f);
+    for (int k = 0; k < 3; ++k) v[k] *= inv;
+  }
+  // Step 2: the directional light.
+  shade_one_light(n, v, (floatL)params->lightDir[0], (floatL)params->lightDir[1], (floatL)params->lightDir[2],
+                  (floatL)1.0f, specular, diffuse, spec);
+  // Step 3: the point light, attenuated.
+  if (params->pointLightOn) {
+    const floatL lx = params->pointLight[0] - p[0], ly = params->pointLight[1] - p[1],
+                 lz = params->pointLight[2] - p[2];
+    const floatL d2 = lx * lx + ly * ly + lz * lz, d = sqrt(d2);
+    const floatL inv = 1.0f / max(d, (floatL)1e-30f);
+    const float r = params->pointLight[3];
+    const floatL atten = 1.0f / (1.0f + d2 / (r * r));
+    shade_one_light(n, v, lx * inv, ly * inv, lz * inv, atten, specular, diffuse, spec);
+  }
+}
+
+/* The base colour of each lane: material factor × texture × vertex colour
+ * (the latter multiplied by the caller). material: per lane (only lane 0
+ * when uniform); uv and its screen derivatives per lane. */
+CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Material* materials,
+                             __global const TextureDesc* texDescs, __global const uint* texels, const uint* material,
+                             bool uniform, const floatL uv[2], const floatL duvdx[2], const floatL duvdy[2],
+                             floatL albedo[3])
+{
+  albedo[0] = CLR_GREY_R;
+  albedo[1] = CLR_GREY_G;
+  albedo[2] = CLR_GREY_B;
+  if (!(params->sceneFlags & CLR_SCENE_MATERIALS)) return;
+  // Step 1: the lanes' coordinates as scalars.
+  float u[CLR_LANES], v[CLR_LANES], ux[CLR_LANES], vx[CLR_LANES], uy[CLR_LANES], vy[CLR_LANES];
+  const bool textured = (params->sceneFlags & CLR_SCENE_TEXTURES) != 0;
+  if (textured) {
+    CLR_STORE_LANES(uv[0], u);
+    CLR_STORE_LANES(uv[1], v);
+    CLR_STORE_LANES(duvdx[0], ux);
+    CLR_STORE_LANES(duvdx[1], vx);
+    CLR_STORE_LANES(duvdy[0], uy);
+    CLR_STORE_LANES(duvdy[1], vy);
+  }
+  // Step 2: per lane, factor × texture.
+  float rgb[3][CLR_LANES];
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    const Material m = materials[material[uniform ? 0 : lane]];
+    float4 c = (float4)(m.baseColor[0], m.baseColor[1], m.baseColor[2], m.baseColor[3]);
+    if (textured && m.texture >= 0)
+      c *= tex_sample(&texDescs[m.texture], texels, params->texFilter, u[lane], v[lane], ux[lane], vx[lane], uy[lane],
+                      vy[lane]);
+    rgb[0][lane] = c.x;
+    rgb[1][lane] = c.y;
+    rgb[2][lane] = c.z;
+  }
+  for (int k = 0; k < 3; ++k) albedo[k] = CLR_LOAD_LANES(rgb[k]);
+}

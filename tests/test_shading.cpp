@@ -1,0 +1,303 @@
+// test_shading.cpp — the shading modes of resolve (kernels/shade.cl) against
+// the same formulas evaluated on the host in double precision, anti-aliasing
+// with every mode, and the lazy attribute uploads of Pipeline.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace {
+
+constexpr uint32_t W = 64, H = 64;
+
+// Lighting constants of kernels/shade.cl.
+constexpr double kAmbient = 0.12, kDiffuse = 0.88, kSpecular = 0.4, kShininess = 32.0;
+const glm::dvec3 kGrey(0.80, 0.78, 0.74);
+
+// One tilted triangle with distinct normals, colours and a material; the
+// camera looks at it in perspective.
+struct Scene {
+  glm::dvec3 v[3] = {{-1.2, -0.9, -0.3}, {1.3, -0.7, 0.2}, {-0.1, 1.1, -0.1}};
+  glm::dvec3 n[3] = {{-0.3, -0.2, 1.0}, {0.4, -0.1, 1.0}, {0.0, 0.5, 0.8}};
+  glm::dvec4 c[3] = {{1.0, 0.2, 0.1, 1}, {0.1, 0.9, 0.2, 1}, {0.2, 0.3, 1.0, 1}};
+  glm::dvec3 factor{0.9, 0.7, 0.5};
+  glm::dvec3 eye{0.3, 0.2, 3.0};
+  glm::dvec3 lightDir = glm::normalize(glm::dvec3(0.4, 0.6, 0.7));
+  glm::dvec3 point{-0.8, 0.9, 1.2};
+  double range = 1.5;
+  glm::mat4 mvp = glm::perspective(glm::radians(50.0f), 1.0f, 0.5f, 10.0f) *
+                  glm::lookAt(glm::vec3(eye), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+
+  clr::Mesh mesh() const
+  {
+    clr::Mesh m;
+    for (int i = 0; i < 3; ++i) {
+      m.positions.insert(m.positions.end(), {float(v[i].x), float(v[i].y), float(v[i].z)});
+      m.normals.insert(m.normals.end(), {float(n[i].x), float(n[i].y), float(n[i].z)});
+      m.colors.insert(m.colors.end(), {float(c[i].r), float(c[i].g), float(c[i].b), float(c[i].a)});
+    }
+    m.uvs = {0.0f, 0.0f, 0.95f, 0.0f, 0.0f, 0.95f};  // inside [0, 1): uv has no wrap seam
+    m.indices = {0, 1, 2};
+    m.triMaterial = {0};
+    Material mat{};
+    mat.baseColor[0] = float(factor.r);
+    mat.baseColor[1] = float(factor.g);
+    mat.baseColor[2] = float(factor.b);
+    mat.baseColor[3] = 1.0f;
+    mat.texture = -1;
+    m.materials = {mat};
+    return m;
+  }
+  clr::FrameSettings settings(uint32_t mode, bool pointLight) const
+  {
+    clr::FrameSettings s = test::idSettings(W, H, mvp);
+    s.shadeMode = mode;
+    s.eye = glm::vec3(eye);
+    s.lightDir = glm::vec3(lightDir);
+    s.pointLightOn = pointLight;
+    s.pointLight = glm::vec3(point);
+    s.pointLightRange = float(range);
+    s.zNear = 0.5f;
+    s.zFar = 10.0f;
+    return s;
+  }
+};
+
+// Diffuse and specular sums of shade.cl at point p, unit normal nrm.
+void hostLights(const Scene& s, bool pointLight, glm::dvec3 nrm, glm::dvec3 p, double& diffuse, double& specular)
+{
+  const glm::dvec3 view = glm::normalize(s.eye - p);
+  diffuse = specular = 0.0;
+  auto add = [&](glm::dvec3 l, double atten) {
+    const double ndotl = glm::dot(nrm, l);
+    diffuse += atten * std::max(ndotl, 0.0);
+    if (ndotl > 0.0) specular += atten * std::pow(std::max(glm::dot(nrm, glm::normalize(l + view)), 0.0), kShininess);
+  };
+  add(s.lightDir, 1.0);
+  if (pointLight) {
+    const glm::dvec3 d = s.point - p;
+    add(glm::normalize(d), 1.0 / (1.0 + glm::dot(d, d) / (s.range * s.range)));
+  }
+}
+
+// The expected colour (0..255 per channel) of a mode at world barycentrics mu.
+glm::dvec3 expectedColour(const Scene& s, uint32_t mode, bool pointLight, glm::dvec3 mu, double eyeDepth)
+{
+  const glm::dvec3 p = mu.x * s.v[0] + mu.y * s.v[1] + mu.z * s.v[2];
+  const glm::dvec3 colour = glm::dvec3(mu.x * s.c[0] + mu.y * s.c[1] + mu.z * s.c[2]);
+  const glm::dvec3 albedo = s.factor * colour;
+  // The triangle faces the eye (counter-clockwise on screen): no flip.
+  const glm::dvec3 smooth = glm::normalize(mu.x * s.n[0] + mu.y * s.n[1] + mu.z * s.n[2]);
+  double d = 0, sp = 0;
+  glm::dvec3 out(0.0);
+  switch (mode) {
+    case CLR_SHADE_NORMAL: out = smooth * 0.5 + 0.5; break;
+    case CLR_SHADE_DEPTH: out = glm::dvec3(1.0 - (eyeDepth - 0.5) / (10.0 - 0.5)); break;
+    case CLR_SHADE_COLOR: out = colour; break;
+    case CLR_SHADE_TEXTURE: out = albedo; break;
+    case CLR_SHADE_LAMBERT:
+      hostLights(s, pointLight, smooth, p, d, sp);
+      out = albedo * (kAmbient + kDiffuse * d);
+      break;
+    case CLR_SHADE_PHONG:
+      hostLights(s, pointLight, smooth, p, d, sp);
+      out = albedo * (kAmbient + kDiffuse * d) + kSpecular * sp;
+      break;
+    case CLR_SHADE_FLAT: {
+      const glm::dvec3 face = glm::normalize(glm::cross(s.v[1] - s.v[0], s.v[2] - s.v[0]));
+      hostLights(s, pointLight, face, (s.v[0] + s.v[1] + s.v[2]) / 3.0, d, sp);
+      out = albedo * (kAmbient + kDiffuse * d) + kSpecular * sp;
+      break;
+    }
+    case CLR_SHADE_GOURAUD: {
+      double dj = 0, sj = 0;
+      for (int j = 0; j < 3; ++j) {
+        hostLights(s, pointLight, glm::normalize(s.n[j]), s.v[j], dj, sj);
+        d += mu[j] * dj;
+        sp += mu[j] * sj;
+      }
+      out = albedo * (kAmbient + kDiffuse * d) + kSpecular * sp;
+      break;
+    }
+  }
+  return glm::clamp(out, 0.0, 1.0) * 255.0;
+}
+
+// World barycentrics of the ray through pixel (x, y)'s centre and its eye depth.
+bool hitBarycentrics(const Scene& s, uint32_t x, uint32_t y, glm::dvec3& mu, double& eyeDepth)
+{
+  const glm::dmat4 inv = glm::inverse(glm::dmat4(s.mvp));
+  const glm::dvec2 ndc((x + 0.5) / W * 2 - 1, (y + 0.5) / H * 2 - 1);
+  const glm::dvec4 a = inv * glm::dvec4(ndc, -1, 1), b = inv * glm::dvec4(ndc, 1, 1);
+  const glm::dvec3 from = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - from;
+  const glm::dvec3 nrm = glm::cross(s.v[1] - s.v[0], s.v[2] - s.v[0]);
+  const double t = glm::dot(s.v[0] - from, nrm) / glm::dot(dir, nrm);
+  const glm::dvec3 hit = from + t * dir;
+  const double area = glm::dot(nrm, nrm);
+  mu = {glm::dot(glm::cross(s.v[2] - s.v[1], hit - s.v[1]), nrm) / area,
+        glm::dot(glm::cross(s.v[0] - s.v[2], hit - s.v[2]), nrm) / area,
+        glm::dot(glm::cross(s.v[1] - s.v[0], hit - s.v[0]), nrm) / area};
+  eyeDepth = glm::dot(hit - s.eye, glm::normalize(-s.eye));  // the camera looks at the origin
+  return mu.x > 0.02 && mu.y > 0.02 && mu.z > 0.02;          // clear of the edges
+}
+
+const char* modeName(uint32_t mode)
+{
+  static const char* const names[] = {"lambert", "normal", "depth",   "id",    "uv",     "checker",
+                                      "color",   "flat",   "gouraud", "phong", "texture"};
+  return names[mode];
+}
+
+}  // namespace
+
+TEST_CASE("shading modes match their formulas evaluated on the host", "[shade]")
+{
+  const uint32_t mode = GENERATE(CLR_SHADE_LAMBERT, CLR_SHADE_NORMAL, CLR_SHADE_DEPTH, CLR_SHADE_COLOR,
+                                 CLR_SHADE_TEXTURE, CLR_SHADE_FLAT, CLR_SHADE_GOURAUD, CLR_SHADE_PHONG);
+  const bool pointLight = GENERATE(false, true);
+  const Scene scene;
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(scene.mesh());
+  std::vector<uint32_t> rgba;
+  pipeline.render(scene.settings(mode, pointLight), rgba);
+  double worst = 0, highlight = 0;
+  size_t checked = 0;
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      glm::dvec3 mu;
+      double eyeDepth;
+      if (!hitBarycentrics(scene, x, y, mu, eyeDepth)) continue;
+      const uint32_t got = rgba[size_t(H - 1 - y) * W + x];
+      const glm::dvec3 want = expectedColour(scene, mode, pointLight, mu, eyeDepth);
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(double((got >> (8 * k)) & 0xFFu) - want[k]));
+      ++checked;
+      double d, sp;
+      hostLights(scene, pointLight, glm::normalize(mu.x * scene.n[0] + mu.y * scene.n[1] + mu.z * scene.n[2]),
+                 mu.x * scene.v[0] + mu.y * scene.v[1] + mu.z * scene.v[2], d, sp);
+      highlight = std::max(highlight, kSpecular * sp * 255.0);
+    }
+  INFO(modeName(mode) << (pointLight ? " with the point light" : "") << ": " << checked << " pixels, worst " << worst
+                      << " levels");
+  CHECK(checked > 800);
+  // The scene has a specular highlight worth checking (Phong's, at least).
+  CHECK(highlight > 20.0);
+  // Tolerance: 0.5 level from rounding to 8 bits, plus float arithmetic and
+  // the snapping of vertices to 1/256 pixel, which moves the barycentrics by
+  // about 1e-3 of a pixel (measured worst: 0.506 levels, Phong with the
+  // point light).
+  CHECK(worst <= 0.55);
+  // Every mode shows something other than black on this scene.
+  CHECK(size_t(std::count(rgba.begin(), rgba.end(), 0xFF000000u)) < rgba.size());
+}
+
+TEST_CASE("the point light changes only the lit modes, and its attenuation follows the range", "[shade]")
+{
+  Scene scene;
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(scene.mesh());
+  std::vector<uint32_t> off, on, far;
+  pipeline.render(scene.settings(CLR_SHADE_PHONG, false), off);
+  pipeline.render(scene.settings(CLR_SHADE_PHONG, true), on);
+  CHECK(off != on);
+  // A vanishing range attenuates the point light to nothing.
+  clr::FrameSettings s = scene.settings(CLR_SHADE_PHONG, true);
+  s.pointLightRange = 1e-6f;
+  pipeline.render(s, far);
+  CHECK(far == off);
+  std::vector<uint32_t> normalOff, normalOn;
+  pipeline.render(scene.settings(CLR_SHADE_NORMAL, false), normalOff);
+  pipeline.render(scene.settings(CLR_SHADE_NORMAL, true), normalOn);
+  CHECK(normalOff == normalOn);
+}
+
+TEST_CASE("anti-aliasing works with every shading mode", "[shade][aa]")
+{
+  const uint32_t mode =
+      GENERATE(CLR_SHADE_LAMBERT, CLR_SHADE_NORMAL, CLR_SHADE_DEPTH, CLR_SHADE_UV, CLR_SHADE_CHECKER, CLR_SHADE_COLOR,
+               CLR_SHADE_TEXTURE, CLR_SHADE_FLAT, CLR_SHADE_GOURAUD, CLR_SHADE_PHONG, CLR_SHADE_ID);
+  const uint32_t samples = GENERATE(4u, 16u);
+  const bool ssaa = GENERATE(false, true);
+  const Scene scene;
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(scene.mesh());
+  std::vector<uint32_t> plain, aa;
+  clr::FrameSettings s = scene.settings(mode, true);
+  pipeline.render(s, plain);
+  s.samples = samples;
+  s.shadeEverySample = ssaa;
+  pipeline.render(s, aa);
+  INFO(modeName(mode) << ", " << samples << " samples, " << (ssaa ? "SSAA" : "MSAA"));
+  // Step 1: inside the triangle (clear of its edges), every sample shows
+  // it: the pixel is its colour at points within half a pixel of the
+  // centre, which differs from the centre's by a few levels at most.
+  const uint32_t background = plain[0];
+  size_t blended = 0;
+  int worstInside = 0;
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      glm::dvec3 mu;
+      double eyeDepth;
+      const size_t p = size_t(H - 1 - y) * W + x;
+      if (hitBarycentrics(scene, x, y, mu, eyeDepth) && mu.x > 0.06 && mu.y > 0.06 && mu.z > 0.06) {
+        for (int k = 0; k < 3; ++k)
+          worstInside =
+              std::max(worstInside, std::abs(int((plain[p] >> (8 * k)) & 0xFFu) - int((aa[p] >> (8 * k)) & 0xFFu)));
+      } else if (aa[p] != plain[p] && aa[p] != background) {
+        ++blended;
+      }
+    }
+  // Step 2: id stays exact; every other mode blends along the edges.
+  if (mode == CLR_SHADE_ID) {
+    CHECK(worstInside == 0);
+  } else {
+    // The checker's squares and the specular highlight vary fastest: a
+    // square edge inside a pixel mixes 0.9 and 0.25 (166 levels).
+    CHECK(worstInside <= (mode == CLR_SHADE_CHECKER ? 166 : 12));
+    CHECK(blended > 20);
+  }
+}
+
+TEST_CASE("only the attributes the shading reads are uploaded, each once", "[shade]")
+{
+  Scene scene;
+  clr::Mesh mesh = scene.mesh();
+  clr::Texture t;
+  t.name = "crafted";
+  t.width = t.height = 2;
+  t.rgba = {0xFF0000FFu, 0xFF00FF00u, 0xFFFF0000u, 0xFFFFFFFFu};
+  mesh.textures = {t};
+  mesh.materials[0].texture = 0;
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(mesh);
+  std::vector<uint32_t> rgba;
+  using P = clr::Pipeline;
+  // Step 1: id and depth read positions and indices only.
+  pipeline.render(scene.settings(CLR_SHADE_ID, false), rgba);
+  CHECK(pipeline.resident() == 0u);
+  const size_t bytesAfterId = pipeline.deviceBytes();
+  pipeline.render(scene.settings(CLR_SHADE_DEPTH, false), rgba);
+  CHECK(pipeline.resident() == 0u);
+  // Step 2: each mode adds what it reads; nothing is uploaded twice.
+  pipeline.render(scene.settings(CLR_SHADE_NORMAL, false), rgba);
+  CHECK(pipeline.resident() == uint32_t(P::kResidentNormals));
+  CHECK(pipeline.deviceBytes() > bytesAfterId);
+  pipeline.render(scene.settings(CLR_SHADE_COLOR, false), rgba);
+  CHECK(pipeline.resident() == uint32_t(P::kResidentNormals | P::kResidentColors));
+  pipeline.render(scene.settings(CLR_SHADE_TEXTURE, false), rgba);
+  const uint32_t all =
+      P::kResidentNormals | P::kResidentColors | P::kResidentUvs | P::kResidentMaterials | P::kResidentTextures;
+  CHECK(pipeline.resident() == all);
+  const size_t bytesAll = pipeline.deviceBytes();
+  pipeline.render(scene.settings(CLR_SHADE_PHONG, true), rgba);
+  pipeline.render(scene.settings(CLR_SHADE_ID, false), rgba);
+  CHECK(pipeline.resident() == all);
+  CHECK(pipeline.deviceBytes() == bytesAll);
+  // Step 3: a new scene starts from positions and indices again.
+  pipeline.uploadScene(mesh);
+  CHECK(pipeline.resident() == 0u);
+  pipeline.render(scene.settings(CLR_SHADE_FLAT, false), rgba);
+  CHECK(pipeline.resident() ==
+        uint32_t(P::kResidentColors | P::kResidentUvs | P::kResidentMaterials | P::kResidentTextures));
+}
