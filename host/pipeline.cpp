@@ -117,6 +117,7 @@ Pipeline::Pipeline(ClContext& cl)
   rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
+  resolveAaKernel_ = cl::Kernel(cl.program, "resolve_aa");
   paramsBuf_.reserve(1);
   // Attributes a frame does not read are bound as 1-element dummies.
   normals_.reserve(1);

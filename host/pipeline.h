@@ -139,7 +139,7 @@ class Pipeline {
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
       scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_;
+      rasterFloatKernel_, resolveKernel_, resolveAaKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

@@ -8,11 +8,13 @@ void Pipeline::resolve()
 {
   image_.reserve(uint64_t(params_.width) * params_.height);
   cl::Event event;
-  setArgs(resolveKernel_, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(),
-          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
-          triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get());
+  // One sample per pixel, or the anti-aliased variant with the sample filter.
+  cl::Kernel& kernel = params_.samples > 1 ? resolveAaKernel_ : resolveKernel_;
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
+          indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(), triMaterial_.get(),
+          materials_.get(), texDescs_.get(), texels_.get(), image_.get());
   const size_t row = size_t(cl_.lanes);
-  cl_.queue.enqueueNDRangeKernel(resolveKernel_, cl::NullRange,
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
   record("resolve", event);

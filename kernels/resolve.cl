@@ -371,22 +371,28 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
-    __constant FrameParams* params,
-    __global const uint* visIndex,    // samples · width · height, unwritten in empty tiles
-    __global const float* visAttr,    // 3 · samples planes of width · height: depth, b1, b2
-    __global const uint* tileOffset,  // tiles + 1
-    __global const TriSetup* setup, __global const ClipBary* clipBary,
-    __global const uint* indices,          // 3·numTris
-    __global const float* positions,       // 3·numVerts
-    __global const float* normals,         // 3·numVerts, or a dummy the mode does not read
-    __global const float* uvs,             // 2·numVerts, or a dummy
-    __global const float* colours,         // 4·numVerts, or a dummy
-    __global const uint* triMaterial,      // numTris, or a dummy
-    __global const Material* materials,    // the scene's, or a dummy
-    __global const TextureDesc* texDescs,  // the scene's, or a dummy
-    __global const uint* texels,           // every level of every texture, or a dummy
-    __global uint* image)                  // width · height
+/* The resolve kernels' parameters, the same for both variants below:
+ *   params; visIndex (samples · width · height, unwritten in empty tiles);
+ *   visAttr (3 · samples planes of width · height: depth, b1, b2);
+ *   tileOffset (tiles + 1); setup; clipBary; indices (3·numTris);
+ *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
+ *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
+ *   texels (every level of every texture), each a 1-element dummy when the
+ *   mode does not read it; image (width · height). */
+#define CLR_RESOLVE_PARAMS                                                                                   \
+  __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,              \
+      __global const uint *tileOffset, __global const TriSetup *setup, __global const ClipBary *clipBary,    \
+      __global const uint *indices, __global const float *positions, __global const float *normals,          \
+      __global const float *uvs, __global const float *colours, __global const uint *triMaterial,            \
+      __global const Material *materials, __global const TextureDesc *texDescs, __global const uint *texels, \
+      __global uint *image
+#define CLR_RESOLVE_ARGS                                                                                          \
+  params, visIndex, visAttr, tileOffset, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, \
+      materials, texDescs, texels, image
+
+/* One row of CLR_LANES pixels. `multisample` is constant at each call: the
+ * one-sample kernel compiles without the sample loop's bookkeeping. */
+CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, const bool multisample)
 {
   const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
   if (py >= params->height || firstX >= params->width) return;
@@ -402,7 +408,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     return;
   }
   const uint plane = params->width * params->height, p = py * params->width + firstX;
-  const uint samples = params->samples;
+  const uint samples = multisample ? params->samples : 1u;
   uintL colour;
   if (mode == CLR_SHADE_ID) {
     colour = resolve_id(params, visIndex, p, count, setup);
@@ -423,7 +429,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       const intL covered = sampleIndex[k] != CLR_NONE;
       ColourL c = backgroundColour;
       intL done = CLR_NOT(covered);
-      for (uint j = 0; j < k && !params->shadeEverySample; ++j) {
+      for (uint j = 0; multisample && j < k && !params->shadeEverySample; ++j) {
         const intL reuse = CLR_NOT(done) & (sampleIndex[j] == sampleIndex[k]);
         c = colour_select(c, sampleColour[j], reuse);
         done = done | reuse;
@@ -453,4 +459,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   uint result[CLR_LANES];
   CLR_STORE_LANES(colour, result);
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
+}
+
+/* The variants are separate kernels so that a device compiles only what a
+ * frame launches (PoCL compiles each kernel at its first launch). */
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
+    CLR_RESOLVE_PARAMS)
+{
+  resolve_row(CLR_RESOLVE_ARGS, false);
+}
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve_aa(
+    CLR_RESOLVE_PARAMS)
+{
+  resolve_row(CLR_RESOLVE_ARGS, true);
 }
