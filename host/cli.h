@@ -30,6 +30,11 @@ struct RenderArgs {
   bool qualityAuto = false;  // --quality auto
   std::string viewsPath;     // --views: outPath is then a pattern (views.h)
   Shard shard;               // --shard K/N, with --views only
+  // Lines (README, "Wireframe and lines"): --wireframe [only], --line, --line-width.
+  uint32_t wireframe = CLR_WIREFRAME_OFF;
+  uint32_t lineMethod = CLR_LINE_AA;
+  float lineWidth = 1.0f;
+  std::string aovPath;  // --aov PATH.exr: the visibility-buffer outputs (aov.h)
 };
 
 // Copies the chosen methods (not "auto") into a frame's settings.

@@ -80,7 +80,13 @@ Pipeline::Pipeline(ClContext& cl)
       scanPartials_(memory_, "scan partial sums"),
       visIndex_(memory_, "visibility buffer (triangles)"),
       visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
-      image_(memory_, "image")
+      image_(memory_, "image"),
+      lineParams_(memory_, "line parameters"),
+      lineSegs_(memory_, "line segments"),
+      lineTileCount_(memory_, "line tile counts"),
+      lineTileCursor_(memory_, "line tile cursors"),
+      lineBinEntries_(memory_, "line bin entries"),
+      aov_(memory_, "visibility-buffer outputs")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
@@ -93,6 +99,11 @@ Pipeline::Pipeline(ClContext& cl)
   binFillKernel_ = cl::Kernel(cl.program, "bin_fill");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
+  linesFromSetupKernel_ = cl::Kernel(cl.program, "lines_from_setup");
+  linesBinCountKernel_ = cl::Kernel(cl.program, "lines_bin_count");
+  linesBinFillKernel_ = cl::Kernel(cl.program, "lines_bin_fill");
+  linesDrawKernel_ = cl::Kernel(cl.program, "lines_draw");
+  aovKernel_ = cl::Kernel(cl.program, "aov");
   paramsBuf_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);
   clipList_.reserve(1024);
@@ -123,6 +134,7 @@ cl::NDRange Pipeline::linear(uint64_t n) const
 void Pipeline::beginFrame(const FrameSettings& settings)
 {
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
+  settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
   cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, 0, sizeof params_, &params_);
@@ -138,6 +150,7 @@ FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>
   bin();
   raster();
   resolve();
+  if (settings.wireframe != CLR_WIREFRAME_OFF) lines();
   rgba = readImage();
   return finishFrame();
 }
