@@ -203,7 +203,7 @@ TEST_CASE("AOV EXR reads back exactly with tinyexr", "[aov]")
   FreeEXRHeader(&header);
 }
 
-TEST_CASE("cli: --aov writes the EXR; bad combinations are errors", "[cli][aov]")
+TEST_CASE("cli: --aov writes the EXR and rejects bad combinations", "[cli][aov]")
 {
   const std::string dir = test::tempDir();
   const std::string png = dir + "/aov_cli.png", exr = dir + "/aov_cli.exr";

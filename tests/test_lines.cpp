@@ -6,6 +6,7 @@
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <cstdlib>
@@ -282,4 +283,56 @@ TEST_CASE("wireframe only draws edges over the background", "[lines]")
   for (uint32_t y = 0; y < H; ++y)
     for (uint32_t x = 0; x < W; ++x)
       CHECK(rgba[size_t(H - 1 - y) * W + x] == (edges.count({int(x), int(y)}) ? 0xFFFFFFFFu : 0xFF000000u));
+}
+
+TEST_CASE("wireframe of a near-clipped triangle draws its input edges, not the fan's diagonals", "[lines]")
+{
+  // A ground triangle with one vertex behind the eye: the near plane cuts it
+  // into a quadrilateral, fanned into two sub-triangles whose shared diagonal
+  // is no input edge.
+  const uint32_t W = 96, H = 64;
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 1, 0), glm::vec3(0, 0.8f, -1), glm::vec3(0, 1, 0));
+  const glm::mat4 mvp = glm::perspective(glm::radians(60.0f), float(W) / H, 0.5f, 100.0f) * view;
+  test::Geometry g;
+  g.addTriangle({-6, 0, -60}, {6, 0, -60}, {0.5f, 0, 4});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  clr::FrameSettings s = test::idSettings(W, H, mvp);
+  s.shadeMode = CLR_SHADE_NORMAL;
+  s.wireframe = CLR_WIREFRAME_ONLY;
+  s.lineMethod = CLR_LINE_BRESENHAM;
+  std::vector<uint32_t> rgba;
+  REQUIRE(pipeline.render(s, rgba).trianglesClipped == 1);
+  // Step 1: the sub-triangles' edges, kept (on an input edge) or dropped.
+  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<ClipBary> clip = pipeline.readClipBary();
+  std::set<Pixel> kept, dropped;
+  size_t subTriangles = 0;
+  for (const TriSetup& r : setup) {
+    if (r.flags & CLR_FLAG_DEAD) continue;
+    REQUIRE(r.clipSlot != CLR_NOT_CLIPPED);
+    ++subTriangles;
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3;
+      bool onInput = false;
+      for (int j = 0; j < 3; ++j) onInput = onInput || (clip[r.clipSlot].w[a][j] == 0 && clip[r.clipSlot].w[b][j] == 0);
+      for (const Pixel& p : classicBresenham(r.x[a] >> 8, r.y[a] >> 8, r.x[b] >> 8, r.y[b] >> 8))
+        (onInput ? kept : dropped).insert(p);
+    }
+  }
+  REQUIRE(subTriangles == 2);
+  // Step 2: kept edges are white, the diagonal's own pixels background.
+  auto colour = [&](const Pixel& p) { return rgba[size_t(H - 1 - p.second) * W + p.first]; };
+  size_t keptDrawn = 0, droppedChecked = 0;
+  for (const Pixel& p : insideViewport(kept, W, H)) {
+    CHECK(colour(p) == 0xFFFFFFFFu);
+    ++keptDrawn;
+  }
+  for (const Pixel& p : insideViewport(dropped, W, H)) {
+    if (kept.count(p)) continue;
+    CHECK(colour(p) == 0xFF000000u);
+    ++droppedChecked;
+  }
+  CHECK(keptDrawn > 40);
+  CHECK(droppedChecked > 20);
 }
