@@ -219,20 +219,25 @@ CLR_INLINE void line_bresenham(const LineSeg* s, LineTile* tile)
 /* Area of the unit pixel square on the side u <= t of a line through its
  * centre whose unit normal has components of magnitudes p >= q: the
  * distribution function of u = p·X + q·Y for X, Y uniform on [−1/2, 1/2]
- * (a trapezoid: quadratic ramps of width q, a linear middle of slope 1/p). */
-CLR_INLINE float line_square_cdf(float t, float p, float q)
+ * (a trapezoid: quadratic ramps of width q, a linear middle of slope 1/p).
+ * The profile carries lo = (p − q)/2, hi = (p + q)/2, 1/p and 1/(2pq) (used
+ * only on the ramps, which are empty when q = 0). */
+typedef struct SquareProfile {
+  float lo, hi, invP, inv2pq;
+} SquareProfile;
+
+CLR_INLINE float line_square_cdf(float t, const SquareProfile* f)
 {
-  const float lo = 0.5f * (p - q), hi = 0.5f * (p + q);
-  if (t <= -hi) return 0.0f;
-  if (t >= hi) return 1.0f;
-  if (t < -lo) return (t + hi) * (t + hi) / (2.0f * p * q);
-  if (t > lo) return 1.0f - (hi - t) * (hi - t) / (2.0f * p * q);
-  return 0.5f + t / p;
+  if (t <= -f->hi) return 0.0f;
+  if (t >= f->hi) return 1.0f;
+  if (t < -f->lo) return (t + f->hi) * (t + f->hi) * f->inv2pq;
+  if (t > f->lo) return 1.0f - (f->hi - t) * (f->hi - t) * f->inv2pq;
+  return 0.5f + t * f->invP;
 }
 
 /* Anti-aliased: the pixels of the tile near the segment, column by column
  * along its major axis. */
-CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, float reach, LineTile* tile)
+CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTile* tile)
 {
   // Step 1: direction, length, the square's profile along it.
   const float dx = e.z - e.x, dy = e.w - e.y;
@@ -240,6 +245,15 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, float 
   if (len == 0.0f) return;  // no area
   const float tx = dx / len, ty = dy / len;
   const float p = max(fabs(tx), fabs(ty)), q = min(fabs(tx), fabs(ty));
+  SquareProfile f;
+  f.lo = 0.5f * (p - q);
+  f.hi = 0.5f * (p + q);
+  f.invP = 1.0f / p;
+  f.inv2pq = q > 0.0f ? 1.0f / (2.0f * p * q) : 0.0f;
+  const float halfWidth = 0.5f * width;
+  // A pixel overlaps the rectangle only when its centre lies within
+  // w/2 + hi of the line (hi: the square's half extent across it).
+  const float reach = halfWidth + f.hi;
   const bool xMajor = fabs(tx) >= fabs(ty);
   // Step 2: major-axis pixels within reach of the ends, inside the tile.
   const float am = xMajor ? e.x : e.y, bm = xMajor ? e.z : e.w, an = xMajor ? e.y : e.x;
@@ -261,13 +275,15 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, float 
       const float px = (float)(xMajor ? m : n) + 0.5f, py = (float)(xMajor ? n : m) + 0.5f;
       const float rx = px - e.x, ry = py - e.y;
       const float along = rx * tx + ry * ty, across = ry * tx - rx * ty;
-      const float coverAcross =
-          line_square_cdf(0.5f * width - across, p, q) - line_square_cdf(-0.5f * width - across, p, q);
-      const float coverAlong = line_square_cdf(len - along, p, q) - line_square_cdf(-along, p, q);
+      if (fabs(across) >= halfWidth + f.hi || along <= -f.hi || along >= len + f.hi) continue;  // no overlap
+      const float coverAcross = line_square_cdf(halfWidth - across, &f) - line_square_cdf(-halfWidth - across, &f);
+      // Away from the ends the pixel lies wholly within the segment's extent.
+      const float coverAlong =
+          along >= f.hi && along <= len - f.hi ? 1.0f : line_square_cdf(len - along, &f) - line_square_cdf(-along, &f);
       const float c = coverAcross * coverAlong;
       if (c <= 0.0f) continue;
-      const float f = clamp(along / len, 0.0f, 1.0f);
-      line_plot(tile, xMajor ? m : n, xMajor ? n : m, s->z[0] + (s->z[1] - s->z[0]) * f, c);
+      const float at = clamp(along / len, 0.0f, 1.0f);
+      line_plot(tile, xMajor ? m : n, xMajor ? n : m, s->z[0] + (s->z[1] - s->z[0]) * at, c);
     }
   }
 }
@@ -323,7 +339,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
     if (lp->method == CLR_LINE_BRESENHAM)
       line_bresenham(&s, &t);
     else
-      line_antialiased(&s, line_ends(&s, lp), lp->width, lp->reach, &t);
+      line_antialiased(&s, line_ends(&s, lp), lp->width, &t);
   }
   // Step 3: blend the coverage into the image (top row first).
   for (int row = 0; row < CLR_TILE_SIZE; ++row)
