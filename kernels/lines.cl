@@ -6,10 +6,11 @@
  * triangles' two passes: lines_bin_count adds one to every tile whose pixel
  * centres may lie within LineParams.reach of the segment, the host scans the
  * counts, lines_bin_fill writes segment indices. lines_draw runs one
- * work-item per tile in both work shapes (the per-pixel work of a line is a
- * few pixels per column, too little for vector rows) and keeps, per pixel,
- * the largest coverage of any segment that passes the depth test, so a
- * segment drawn twice (an edge shared by two triangles) draws it once.
+ * work-item per tile in both work shapes; Bresenham steps pixel by pixel,
+ * anti-aliased lines evaluate CLR_LANES pixels of a row at once (lanes.h).
+ * Per pixel it keeps the largest coverage of any segment that passes the
+ * depth test, so a segment drawn twice (an edge shared by two triangles)
+ * draws it once.
  *
  * Two methods (LineParams.method), as the notes' line-drawing slides:
  *  Bresenham: endpoints are the pixels that hold them, (x >> 8, y >> 8);
@@ -221,25 +222,28 @@ CLR_INLINE void line_bresenham(const LineSeg* s, LineTile* tile)
  * distribution function of u = p·X + q·Y for X, Y uniform on [−1/2, 1/2]
  * (a trapezoid: quadratic ramps of width q, a linear middle of slope 1/p).
  * The profile carries lo = (p − q)/2, hi = (p + q)/2, 1/p and 1/(2pq) (used
- * only on the ramps, which are empty when q = 0). */
+ * only on the ramps, which are empty when q = 0). Evaluated for CLR_LANES
+ * offsets at once, without branches. */
 typedef struct SquareProfile {
   float lo, hi, invP, inv2pq;
 } SquareProfile;
 
-CLR_INLINE float line_square_cdf(float t, const SquareProfile* f)
+CLR_INLINE floatL line_square_cdf(floatL t, const SquareProfile* f)
 {
-  if (t <= -f->hi) return 0.0f;
-  if (t >= f->hi) return 1.0f;
-  if (t < -f->lo) return (t + f->hi) * (t + f->hi) * f->inv2pq;
-  if (t > f->lo) return 1.0f - (f->hi - t) * (f->hi - t) * f->inv2pq;
-  return 0.5f + t * f->invP;
+  const floatL rampLow = (t + f->hi) * (t + f->hi) * f->inv2pq;
+  const floatL rampHigh = 1.0f - (f->hi - t) * (f->hi - t) * f->inv2pq;
+  floatL r = 0.5f + t * f->invP;
+  r = select(r, rampLow, t < -f->lo);
+  r = select(r, rampHigh, t > f->lo);
+  r = select(r, (floatL)0.0f, t <= -f->hi);
+  return select(r, (floatL)1.0f, t >= f->hi);
 }
 
-/* Anti-aliased: the pixels of the tile near the segment, column by column
- * along its major axis. */
+/* Anti-aliased: the tile's rows near the segment, CLR_LANES pixels of a row
+ * at a time, as raster.cl's rows. */
 CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTile* tile)
 {
-  // Step 1: direction, length, the square's profile along it.
+  // Step 1: direction, length, the square's profile across and along it.
   const float dx = e.z - e.x, dy = e.w - e.y;
   const float len = sqrt(dx * dx + dy * dy);
   if (len == 0.0f) return;  // no area
@@ -254,36 +258,40 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTi
   // A pixel overlaps the rectangle only when its centre lies within
   // w/2 + hi of the line (hi: the square's half extent across it).
   const float reach = halfWidth + f.hi;
-  const bool xMajor = fabs(tx) >= fabs(ty);
-  // Step 2: major-axis pixels within reach of the ends, inside the tile.
-  const float am = xMajor ? e.x : e.y, bm = xMajor ? e.z : e.w, an = xMajor ? e.y : e.x;
-  const float tm = xMajor ? tx : ty, tn = xMajor ? ty : tx;
-  const int tileM0 = xMajor ? tile->x0 : tile->y0, tileN0 = xMajor ? tile->y0 : tile->x0;
-  const int mBegin = max(tileM0, (int)ceil(max(min(am, bm) - reach, (float)tileM0 - 1.0f) - 0.5f));
-  const int mEnd = min(tileM0 + CLR_TILE_SIZE - 1,
-                       (int)floor(min(max(am, bm) + reach, (float)tileM0 + CLR_TILE_SIZE + 1.0f) - 0.5f));
-  const float spread = reach / fabs(tm);  // minor-axis reach of one column
-  for (int m = mBegin; m <= mEnd; ++m) {
-    // Step 3: the column's pixels within reach of the line.
-    const float cm = (float)m + 0.5f;
-    const float lineN = an + (cm - am) * (tn / tm);
-    const int nBegin = max(tileN0, (int)ceil(max(lineN - spread, (float)tileN0 - 1.0f) - 0.5f));
-    const int nEnd =
-        min(tileN0 + CLR_TILE_SIZE - 1, (int)floor(min(lineN + spread, (float)tileN0 + CLR_TILE_SIZE + 1.0f) - 0.5f));
-    for (int n = nBegin; n <= nEnd; ++n) {
-      // Step 4: coverage from the distance across (d) and along (s) the line.
-      const float px = (float)(xMajor ? m : n) + 0.5f, py = (float)(xMajor ? n : m) + 0.5f;
-      const float rx = px - e.x, ry = py - e.y;
-      const float along = rx * tx + ry * ty, across = ry * tx - rx * ty;
-      if (fabs(across) >= halfWidth + f.hi || along <= -f.hi || along >= len + f.hi) continue;  // no overlap
-      const float coverAcross = line_square_cdf(halfWidth - across, &f) - line_square_cdf(-halfWidth - across, &f);
-      // Away from the ends the pixel lies wholly within the segment's extent.
-      const float coverAlong =
-          along >= f.hi && along <= len - f.hi ? 1.0f : line_square_cdf(len - along, &f) - line_square_cdf(-along, &f);
-      const float c = coverAcross * coverAlong;
-      if (c <= 0.0f) continue;
-      const float at = clamp(along / len, 0.0f, 1.0f);
-      line_plot(tile, xMajor ? m : n, xMajor ? n : m, s->z[0] + (s->z[1] - s->z[0]) * at, c);
+  // Step 2: the tile's rows and columns within reach of the ends' bounds.
+  const float y0 = (float)tile->y0, x0 = (float)tile->x0;
+  const int rowBegin = max(0, (int)ceil(max(min(e.y, e.w) - reach, y0 - 1.0f) - 0.5f) - tile->y0);
+  const int rowEnd =
+      min(CLR_TILE_SIZE - 1, (int)floor(min(max(e.y, e.w) + reach, y0 + CLR_TILE_SIZE + 1.0f) - 0.5f) - tile->y0);
+  const int colBegin = max(0, (int)ceil(max(min(e.x, e.z) - reach, x0 - 1.0f) - 0.5f) - tile->x0);
+  const int colEnd =
+      min(CLR_TILE_SIZE - 1, (int)floor(min(max(e.x, e.z) + reach, x0 + CLR_TILE_SIZE + 1.0f) - 0.5f) - tile->x0);
+  for (int row = rowBegin; row <= rowEnd; ++row) {
+    // Step 3: the row's columns within reach across the line (all of them
+    // for a horizontal line), one pixel wider for rounding.
+    const float ry = y0 + (float)row + 0.5f - e.y;
+    int first = colBegin, last = colEnd;
+    if (fabs(ty) > 1e-3f) {
+      const float xa = (ry * tx - reach) / ty + e.x, xb = (ry * tx + reach) / ty + e.x;
+      const float lo = x0 - 2.0f, hi = x0 + CLR_TILE_SIZE + 2.0f;  // keeps the conversions in range
+      first = max(first, (int)floor(clamp(min(xa, xb), lo, hi)) - 1 - tile->x0);
+      last = min(last, (int)ceil(clamp(max(xa, xb), lo, hi)) + 1 - tile->x0);
+    }
+    for (int col = first / CLR_LANES * CLR_LANES; col <= last; col += CLR_LANES) {
+      // Step 4: coverage from the distance across and the position along.
+      const floatL rx = convert_floatL(tile->x0 + col + CLR_LANE_INDEX) + 0.5f - e.x;
+      const floatL along = rx * tx + ry * ty, across = ry * tx - rx * ty;
+      const floatL coverAcross = line_square_cdf(halfWidth - across, &f) - line_square_cdf(-halfWidth - across, &f);
+      const floatL coverAlong = line_square_cdf(len - along, &f) - line_square_cdf(-along, &f);
+      const floatL c = coverAcross * coverAlong;
+      if (!CLR_ANY(c > 0.0f)) continue;
+      // Step 5: depth at the centre's projection onto the segment; keep the
+      // larger coverage where the depth test passes.
+      const floatL at = clamp(along / len, (floatL)0.0f, (floatL)1.0f);
+      const floatL z = s->z[0] + (s->z[1] - s->z[0]) * at;
+      const floatL cover = CLR_LOAD_LANES(&tile->cover[row][col]);
+      const intL pass = (c > 0.0f) & (z <= CLR_LOAD_LANES(&tile->limit[row][col]));
+      CLR_STORE_LANES(select(cover, max(cover, c), pass), &tile->cover[row][col]);
     }
   }
 }
