@@ -27,7 +27,8 @@ const char* usageText()
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
          "                  [--traversal bbox|hierarchical] [--quality auto]\n"
          "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
-         "                  [--device SEL] [--frames N] [--stats]\n"
+         "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
+         "                  [--aov PATH.exr] [--device SEL] [--frames N] [--stats]\n"
          "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
          "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
          "                  [--device SEL] [--stats]\n"
@@ -94,6 +95,9 @@ void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRa
   settings.interpMode = args.interpMode;
   settings.traversal = args.traversal;
   settings.visibility = args.visibility;
+  settings.wireframe = args.wireframe;
+  settings.lineMethod = args.lineMethod;
+  settings.lineWidth = args.lineWidth;
 }
 
 DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera)
@@ -191,6 +195,20 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--quality") {
       parseChoice(a, value(), {"auto"});
       r.qualityAuto = true;
+    } else if (a == "--wireframe") {
+      // An optional value: "only" draws the edges alone, "overlay" (the
+      // default) over the shaded image.
+      r.wireframe = CLR_WIREFRAME_OVERLAY;
+      if (i + 1 < args.size() && (args[i + 1] == "only" || args[i + 1] == "overlay"))
+        r.wireframe = args[++i] == "only" ? CLR_WIREFRAME_ONLY : CLR_WIREFRAME_OVERLAY;
+    } else if (a == "--line") {
+      r.lineMethod = parseChoice(a, value(), {"aa", "bresenham"}) == 0 ? CLR_LINE_AA : CLR_LINE_BRESENHAM;
+    } else if (a == "--line-width") {
+      r.lineWidth = parseFloat(a, value());
+      if (!(r.lineWidth > 0.0f && r.lineWidth <= 16.0f)) throw Error("--line-width must lie in (0, 16] pixels");
+    } else if (a == "--aov") {
+      r.aovPath = value();
+      if (r.aovPath.empty()) throw Error("--aov: empty path");
     } else if (a == "--cull") {
       const std::string& s = value();
       if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");
@@ -221,6 +239,9 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
   if (shardGiven && r.viewsPath.empty()) throw Error("--shard needs --views");
   if (framesGiven && !r.viewsPath.empty()) throw Error("--frames cannot be combined with --views");
   if (!r.viewsPath.empty()) checkOutputPattern(r.outPath);
+  if (!r.aovPath.empty() && !r.viewsPath.empty()) throw Error("--aov cannot be combined with --views");
+  if (r.wireframe != CLR_WIREFRAME_OFF && r.shadeMode == CLR_SHADE_ID)
+    throw Error("--wireframe cannot be combined with --shade id (the id image stays exact)");
   // Check the camera now, before any file is read.
   if (!(r.camera.fovDegrees > 0.0f && r.camera.fovDegrees < 180.0f)) throw Error("--fov must lie in (0, 180) degrees");
   if (r.camera.zNear && !(*r.camera.zNear > 0.0f)) throw Error("--near must be > 0");

@@ -40,6 +40,11 @@ struct RenderArgs {
   bool pointLightOn = false;                     // --light-point x,y,z[,r]
   glm::vec3 pointLight{0.0f};
   std::optional<float> pointLightRange;  // r; default: the scene's bounding radius
+  // Lines (README, "Wireframe and lines"): --wireframe [only], --line, --line-width.
+  uint32_t wireframe = CLR_WIREFRAME_OFF;
+  uint32_t lineMethod = CLR_LINE_AA;
+  float lineWidth = 1.0f;
+  std::string aovPath;  // --aov PATH.exr: the visibility-buffer outputs (aov.h)
 };
 
 // Copies the chosen methods (not "auto"), the texture filter and the point

@@ -46,25 +46,13 @@ void checkWritable(const std::string& path)
   unlink(temp.c_str());
 }
 
-void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba)
+void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes)
 {
-  // Step 1: encode in memory.
-  std::vector<unsigned char> rgb(size_t(width) * height * 3);
-  for (size_t i = 0; i < size_t(width) * height; ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;
-  std::vector<unsigned char> png;
-  auto append = [](void* ctx, void* data, int size) {
-    auto* out = static_cast<std::vector<unsigned char>*>(ctx);
-    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-  };
-  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 3, rgb.data(), int(width) * 3))
-    throw Error(path + ": PNG encoding failed");
-  // Step 2: write a temporary file, flush it, rename it into place.
   std::string temp;
   const int fd = makeTemp(path, temp);
   size_t done = 0;
-  while (done < png.size()) {
-    const ssize_t n = write(fd, png.data() + done, png.size() - done);
+  while (done < bytes.size()) {
+    const ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       const int err = errno;
@@ -84,6 +72,23 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, const st
     unlink(temp.c_str());
     throw Error(failure(path, err));
   }
+}
+
+void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba)
+{
+  // Step 1: encode in memory.
+  std::vector<unsigned char> rgb(size_t(width) * height * 3);
+  for (size_t i = 0; i < size_t(width) * height; ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;
+  std::vector<unsigned char> png;
+  auto append = [](void* ctx, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 3, rgb.data(), int(width) * 3))
+    throw Error(path + ": PNG encoding failed");
+  // Step 2: write a temporary file, flush it, rename it into place.
+  writeFileAtomic(path, png);
 }
 
 }  // namespace clr

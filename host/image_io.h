@@ -13,6 +13,10 @@ namespace clr {
 // Written as 8-bit RGB.
 void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba);
 
+// Writes bytes to a temporary file beside path, flushes it and renames it
+// over path (the pattern every output file follows).
+void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes);
+
 // Throws unless a file can be created in path's directory (checked before
 // rendering so a bad -o fails fast).
 void checkWritable(const std::string& path);

@@ -4,6 +4,7 @@
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
 // half-written (image_io.h).
+#include "aov.h"
 #include "cli.h"
 #include "device.h"
 #include "frame_writer.h"
@@ -168,6 +169,7 @@ int renderCommand(const std::vector<std::string>& argList)
   const RenderArgs args = parseRenderArgs(argList);
   if (!args.viewsPath.empty()) return renderViewsCommand(args);
   checkWritable(args.outPath);
+  if (!args.aovPath.empty()) checkWritable(args.aovPath);
   const Mesh mesh = loadMesh(args);
   const Camera camera = frameCamera(args.camera, meshBounds(mesh));
 
@@ -203,7 +205,10 @@ int renderCommand(const std::vector<std::string>& argList)
   }
 
   // Step 4: output.
+  std::vector<float> aov;  // --aov: the last frame's visibility buffer (aov.h)
+  if (!args.aovPath.empty()) pipeline.aov(), aov = pipeline.readAov();
   writePng(args.outPath, args.width, args.height, image);
+  if (!args.aovPath.empty()) writeAovExr(args.aovPath, args.width, args.height, aov);
   if (args.stats) printStats(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames);
   return 0;
 }

@@ -102,7 +102,13 @@ Pipeline::Pipeline(ClContext& cl)
       visIndex_(memory_, "visibility buffer (triangles)"),
       visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
       image_(memory_, "image"),
-      paintRank_(memory_, "paint ranks")
+      paintRank_(memory_, "paint ranks"),
+      lineParams_(memory_, "line parameters"),
+      lineSegs_(memory_, "line segments"),
+      lineTileCount_(memory_, "line tile counts"),
+      lineTileCursor_(memory_, "line tile cursors"),
+      lineBinEntries_(memory_, "line bin entries"),
+      aov_(memory_, "visibility-buffer outputs")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
@@ -118,6 +124,11 @@ Pipeline::Pipeline(ClContext& cl)
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   resolveAaKernel_ = cl::Kernel(cl.program, "resolve_aa");
+  linesFromSetupKernel_ = cl::Kernel(cl.program, "lines_from_setup");
+  linesBinCountKernel_ = cl::Kernel(cl.program, "lines_bin_count");
+  linesBinFillKernel_ = cl::Kernel(cl.program, "lines_bin_fill");
+  linesDrawKernel_ = cl::Kernel(cl.program, "lines_draw");
+  aovKernel_ = cl::Kernel(cl.program, "aov");
   paramsBuf_.reserve(1);
   // Attributes a frame does not read are bound as 1-element dummies.
   normals_.reserve(1);
@@ -204,6 +215,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
 {
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
   params_.sceneFlags = bindAttributes(settings);
+  settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
   cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, 0, sizeof params_, &params_);
@@ -219,6 +231,7 @@ FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>
   bin();
   raster();
   resolve();
+  if (settings.wireframe != CLR_WIREFRAME_OFF) lines();
   rgba = readImage();
   return finishFrame();
 }

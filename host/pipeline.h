@@ -45,6 +45,10 @@ struct FrameSettings {
   float pointLightRange = 1.0f;          // r of the attenuation 1 / (1 + (d / r)²), > 0
   uint32_t texFilter = CLR_FILTER_TRILINEAR;
   float zNear = 0.1f, zFar = 100.0f;  // for depth shading only
+  // Lines (lines.cpp): wireframe mode, method and anti-aliased width in pixels.
+  uint32_t wireframe = CLR_WIREFRAME_OFF;
+  uint32_t lineMethod = CLR_LINE_AA;
+  float lineWidth = 1.0f;
 };
 
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
@@ -87,6 +91,14 @@ class Pipeline {
   void bin();
   void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)
   void resolve();
+  // After resolve: draws the edges of the setup triangles (lines.cpp), or
+  // the caller's segments, into the image with FrameSettings' line method.
+  void lines();
+  void lines(const std::vector<LineSeg>& segments);
+  // After raster: the visibility-buffer outputs, CLR_AOV_CHANNELS planes of
+  // width·height floats, bottom row first (aov.cpp).
+  void aov();
+  std::vector<float> readAov() const;
   FrameStats finishFrame();  // waits, gathers profiling times and counters
 
   // Read-backs for tests and tools.
@@ -110,6 +122,8 @@ class Pipeline {
  private:
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
   uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage);
+  // Bins and draws the first n segments of lineSegs_ (lines.cpp).
+  void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
   // Sets a kernel's arguments 0, 1, 2, ... in order.
   template <typename... Args>
@@ -129,6 +143,7 @@ class Pipeline {
   ClContext& cl_;
   DeviceMemory memory_;
   FrameParams params_{};
+  FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
   uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
@@ -139,7 +154,8 @@ class Pipeline {
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
       scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_, resolveAaKernel_;
+      rasterFloatKernel_, resolveKernel_, resolveAaKernel_, linesFromSetupKernel_, linesBinCountKernel_,
+      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
@@ -161,6 +177,10 @@ class Pipeline {
   DeviceBuffer<uint32_t> paintRank_;   // see shared.h
   std::vector<uint32_t> hostIndices_;  // the scene's indices, read back at the first painter frame
   std::vector<uint32_t> paintOrder_;
+  DeviceBuffer<LineParams> lineParams_;
+  DeviceBuffer<LineSeg> lineSegs_;
+  DeviceBuffer<uint32_t> lineTileCount_, lineTileCursor_, lineBinEntries_;
+  DeviceBuffer<float> aov_;
 };
 
 }  // namespace clr

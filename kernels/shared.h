@@ -258,7 +258,66 @@ typedef struct VisSample {
  *                                 otherwise); read by raster
  *  counters   uint[CLR_NUM_COUNTERS] setup kernels; host reads for stats
  *  image      uint[width·height]  resolve writes RGBA8, top row first
+ *                                 (lines_draw then blends the lines in)
+ *  lineParams LineParams[1]       host; read by the lines kernels
+ *  lineSegs   LineSeg[segments]   lines_from_setup or host upload
+ *  lineTileCount uint[tiles + 1]  lines_bin_count, scanned to offsets; read
+ *                                 by lines_bin_fill and lines_draw
+ *  lineTileCursor uint[tiles]     lines_bin_fill (atomic cursors)
+ *  lineBinEntries uint[total]     lines_bin_fill writes segment indices;
+ *                                 lines_draw reads
+ *  aov        float[10·width·height] aov writes (CLR_AOV_*); host reads
  */
+
+/* Lines (kernels/lines.cl): LineParams.mode and LineParams.method. */
+#define CLR_WIREFRAME_OFF 0u     /* no lines */
+#define CLR_WIREFRAME_OVERLAY 1u /* lines blended over the shaded image */
+#define CLR_WIREFRAME_ONLY 2u    /* lines over the background only */
+#define CLR_LINE_AA 0u           /* coverage from the perpendicular distance */
+#define CLR_LINE_BRESENHAM 1u    /* integer decision variable, one pixel per step */
+
+/* LineSeg.flags: the segment is not drawn (a clip-made edge, a dead record). */
+#define CLR_LINE_SKIP 1u
+
+/* One line segment in screen space. Written by lines_from_setup (three per
+ * setup record, edge e from vertex e to vertex (e + 1) % 3) or uploaded by
+ * the host (Pipeline::lines(segments)); read by lines_bin_count,
+ * lines_bin_fill and lines_draw. Array size: the segment count. */
+typedef struct LineSeg {
+  int x[2];   /* fixed-point screen x of the endpoints, CLR_SUBPIXEL_BITS */
+  int y[2];   /* fixed-point screen y */
+  float z[2]; /* window depth of the endpoints */
+  uint triId; /* input triangle it came from (informational) */
+  uint flags; /* CLR_LINE_* flags */
+} LineSeg;
+
+/* Per-frame line constants. Written by the host (Pipeline::lines), read by
+ * the lines kernels. One struct, 32 bytes. */
+typedef struct LineParams {
+  uint mode;        /* CLR_WIREFRAME_* */
+  uint method;      /* CLR_LINE_* */
+  float width;      /* anti-aliased line width in pixels, in (0, 16] */
+  float reach;      /* pixels a drawn pixel centre may lie from the segment */
+  float depthBias;  /* constant window-depth offset of the depth test */
+  uint colour;      /* RGBA8 of the lines, R in the low byte */
+  uint background;  /* RGBA8 under the lines in CLR_WIREFRAME_ONLY */
+  uint numSegments; /* segments in the LineSeg buffer */
+} LineParams;
+
+/* Visibility-buffer outputs (kernels/aov.cl): plane c of the AOV buffer
+ * float[CLR_AOV_CHANNELS · width · height], pixel (i, j) at c·P + j·W + i
+ * (bottom row first). Written by aov, read by the host (Pipeline::readAov). */
+#define CLR_AOV_TRIANGLE_ID 0 /* input triangle index as a float, −1 = none */
+#define CLR_AOV_BARY_U 1      /* perspective-correct weight of input vertex 1 */
+#define CLR_AOV_BARY_V 2      /* perspective-correct weight of input vertex 2 */
+#define CLR_AOV_SCREEN_U 3    /* screen-space (affine) weight of input vertex 1 */
+#define CLR_AOV_SCREEN_V 4    /* screen-space (affine) weight of input vertex 2 */
+#define CLR_AOV_Z_W 5         /* window depth z/w mapped to [0, 1], 1 = none */
+#define CLR_AOV_EYE_DEPTH 6   /* eye-space depth w_clip, +inf = none */
+#define CLR_AOV_NORMAL_X 7    /* interpolated, normalised vertex normal */
+#define CLR_AOV_NORMAL_Y 8
+#define CLR_AOV_NORMAL_Z 9
+#define CLR_AOV_CHANNELS 10
 
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(FrameParams) == 368, "FrameParams layout must match the kernels");
@@ -267,6 +326,8 @@ static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
 static_assert(sizeof(Material) == 32, "Material layout must match the kernels");
 static_assert(sizeof(TextureDesc) == 96, "TextureDesc layout must match the kernels");
+static_assert(sizeof(LineSeg) == 32, "LineSeg layout must match the kernels");
+static_assert(sizeof(LineParams) == 32, "LineParams layout must match the kernels");
 #endif
 
 #endif /* CLR_SHARED_H */

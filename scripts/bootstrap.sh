@@ -22,7 +22,7 @@ esac
 # Step 1: packages.
 packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
-  libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev nlohmann-json3-dev
+  libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev nlohmann-json3-dev libtinyexr-dev
   assimp-testmodels clang-format oclgrind)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,104 @@
+// lines.cpp — host side of kernels/lines.cl: line segments from the setup
+// triangles (the wireframe) or from the caller, binned into the triangles'
+// tiles (count, scan, fill, as bin.cpp) and drawn per tile into the image
+// after resolve, depth-tested against sample 0 of the visibility buffer.
+//
+// Constants of the method (README, "Wireframe and lines"): overlay lines are
+// orange (255, 140, 0), lines alone white on the shading mode's background;
+// the depth test's constant offset is 2^-16 in window depth, and its slope
+// term reaches LineParams.reach + 0.75 pixels.
+#include "pipeline.h"
+
+#include <cmath>
+
+namespace clr {
+
+namespace {
+
+constexpr uint32_t kOverlayColour = 0xFF008CFFu;  // RGBA8, R in the low byte
+constexpr uint32_t kOnlyColour = 0xFFFFFFFFu;
+constexpr float kDepthBias = 1.0f / 65536.0f;
+
+}  // namespace
+
+void Pipeline::lines()
+{
+  // Step 1: three segments per setup record, edges of the input triangles only.
+  const uint64_t n = 3ull * numSetup_;
+  if (n > UINT32_MAX) throw Error("the frame has more than 2^32 wireframe segments");
+  lineSegs_.reserve(n);
+  if (numSetup_ > 0) {
+    cl::Event event;
+    setArgs(linesFromSetupKernel_, setup_.get(), numSetup_, clipBary_.get(), lineSegs_.get());
+    cl_.queue.enqueueNDRangeKernel(linesFromSetupKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
+                                   &event);
+    record("lines_from_setup", event);
+  }
+  drawLineSegments(uint32_t(n));
+}
+
+void Pipeline::lines(const std::vector<LineSeg>& segments)
+{
+  if (segments.size() > UINT32_MAX) throw Error("more than 2^32 line segments");
+  lineSegs_.upload(segments);
+  drawLineSegments(uint32_t(segments.size()));
+}
+
+void Pipeline::drawLineSegments(uint32_t n)
+{
+  // Step 1: the line constants. Without a wireframe mode (caller's
+  // segments), lines are drawn over the image.
+  const FrameSettings& s = settings_;
+  if (s.lineMethod > CLR_LINE_BRESENHAM || s.wireframe > CLR_WIREFRAME_ONLY)
+    throw Error("unknown line method or wireframe mode");
+  if (!(s.lineWidth > 0.0f && s.lineWidth <= 16.0f)) throw Error("line width must lie in (0, 16] pixels");
+  LineParams lp{};
+  lp.mode = s.wireframe == CLR_WIREFRAME_OFF ? CLR_WIREFRAME_OVERLAY : s.wireframe;
+  lp.method = s.lineMethod;
+  lp.width = s.lineWidth;
+  // Bresenham pixels lie within half a pixel (along the minor axis) of the
+  // line between the end pixels' centres; an anti-aliased pixel with any
+  // coverage has its centre within half a diagonal of the rectangle.
+  lp.reach = s.lineMethod == CLR_LINE_BRESENHAM ? 0.75f : 0.5f * s.lineWidth + 0.7072f;
+  lp.depthBias = kDepthBias;
+  lp.colour = lp.mode == CLR_WIREFRAME_ONLY ? kOnlyColour : kOverlayColour;
+  lp.background = s.shadeMode == CLR_SHADE_LAMBERT ? 0xFF261F1Au : 0xFF000000u;  // as resolve.cl
+  lp.numSegments = n;
+  lineParams_.upload({lp});
+
+  // Step 2: count the segments near each tile and scan into offsets.
+  std::vector<cl::Event> fills;
+  lineTileCount_.zero(numTiles_ + 1, &fills);
+  lineSegs_.reserve(n);
+  if (n > 0) {
+    cl::Event countEvent;
+    setArgs(linesBinCountKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
+    cl_.queue.enqueueNDRangeKernel(linesBinCountKernel_, cl::NullRange, linear(n), cl::NDRange(64), nullptr,
+                                   &countEvent);
+    record("lines_bin_count", countEvent);
+  }
+  const uint64_t entries = scan(lineTileCount_, numTiles_, "lines_bin_scan");
+  if (entries > UINT32_MAX)
+    throw Error("the frame needs " + std::to_string(entries) + " line bin entries, more than 2^32");
+  lineBinEntries_.reserve(entries);
+
+  // Step 3: fill the bins.
+  lineTileCursor_.zero(numTiles_, &fills);
+  if (n > 0) {
+    cl::Event fillEvent;
+    setArgs(linesBinFillKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(),
+            lineTileCursor_.get(), lineBinEntries_.get());
+    cl_.queue.enqueueNDRangeKernel(linesBinFillKernel_, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &fillEvent);
+    record("lines_bin_fill", fillEvent);
+  }
+
+  // Step 4: one work-item per tile draws and blends.
+  cl::Event drawEvent;
+  setArgs(linesDrawKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(),
+          lineBinEntries_.get(), tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get());
+  cl_.queue.enqueueNDRangeKernel(linesDrawKernel_, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY),
+                                 cl::NDRange(1, 1), nullptr, &drawEvent);
+  record("lines_draw", drawEvent);
+}
+
+}  // namespace clr

@@ -1,0 +1,83 @@
+/* aov.cl — visibility-buffer outputs (arbitrary output variables): what a
+ * differentiable-rendering pipeline reads from a rasterizer, as nvdiffrast's
+ * rasterize output and PyTorch3D's fragments.
+ *
+ * One work-item per pixel reads sample 0 of the visibility buffer (pixels of
+ * tiles that binning left empty are "none" without a read) and writes
+ * CLR_AOV_CHANNELS float planes (shared.h), bottom row first:
+ *  triangle id: the input triangle index, −1 for none; exact while the index
+ *    is below 2^24, rounded to the nearest float above that;
+ *  bary (u, v): perspective-correct weights of input vertices 1 and 2
+ *    (vertex 0 weighs 1 − u − v), from the screen barycentrics by the 1/w
+ *    rule, λ_i = (b_i / w_i) / Σ_j (b_j / w_j), then mapped to the input
+ *    triangle as resolve.cl does: through ClipBary for a clipped triangle,
+ *    through the swap of vertices 1 and 2 for a back-facing one;
+ *  bary_screen (u, v): the screen-space barycentrics b_i mapped the same way
+ *    (what --interp affine interpolates): for an unclipped triangle exactly
+ *    its screen-space barycentrics, for a clipped one the affine
+ *    interpolation of the clip vertices' weights;
+ *  z/w: the window depth raster kept ([0, 1], 1 = none);
+ *  eye depth: w_clip = 1 / Σ b_i / w_i, the distance along the view axis
+ *    (+inf = none);
+ *  normal: the input vertex normals interpolated with the perspective-correct
+ *    weights and normalised (0 when they cancel; never flipped for back
+ *    faces), 0 for none.
+ * Background: id −1, barycentrics 0, z/w 1, eye depth +inf, normal 0.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+__kernel void aov(__constant FrameParams* params,
+                  __global const uint* visIndex,    // plane 0 of width · height
+                  __global const float* visAttr,    // planes 0-2: depth, b1, b2
+                  __global const uint* tileOffset,  // tiles + 1
+                  __global const TriSetup* setup, __global const ClipBary* clipBary,
+                  __global const uint* indices,   // 3·numTris
+                  __global const float* normals,  // 3·numVerts
+                  __global float* out)            // CLR_AOV_CHANNELS · width · height
+{
+  const uint px = get_global_id(0), py = get_global_id(1);
+  if (px >= params->width || py >= params->height) return;
+  const uint plane = params->width * params->height, p = py * params->width + px;
+  // Step 1: the visible triangle, or none.
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + px / CLR_TILE_SIZE;
+  const uint index = tileOffset[tile] == tileOffset[tile + 1] ? CLR_NONE : visIndex[p];
+  if (index == CLR_NONE) {
+    for (int c = 0; c < CLR_AOV_CHANNELS; ++c) out[c * plane + p] = 0.0f;
+    out[CLR_AOV_TRIANGLE_ID * plane + p] = -1.0f;
+    out[CLR_AOV_Z_W * plane + p] = 1.0f;
+    out[CLR_AOV_EYE_DEPTH * plane + p] = INFINITY;
+    return;
+  }
+  const TriSetup t = setup[index];
+  // Step 2: screen and perspective-correct barycentrics of the setup vertices.
+  const float b[3] = {1.0f - visAttr[plane + p] - visAttr[2 * plane + p], visAttr[plane + p], visAttr[2 * plane + p]};
+  const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
+  const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
+  // Step 3: weights of the input vertices in each setup vertex (resolve.cl).
+  const bool clipped = t.clipSlot != CLR_NOT_CLIPPED;
+  const bool swapped = !clipped && (t.flags & CLR_FLAG_BACKFACING);
+  float mu[3] = {0.0f, 0.0f, 0.0f}, muScreen[3] = {0.0f, 0.0f, 0.0f};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int identity = swapped && i != 0 ? 3 - i : i;
+      const float w = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
+      mu[j] += (q[i] * eyeDepth) * w;
+      muScreen[j] += b[i] * w;
+    }
+  // Step 4: the interpolated normal.
+  float3 n = (float3)(0.0f);
+  for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * t.triId + j], normals);
+  const float len = length(n);
+  n = len > 0.0f ? n / len : (float3)(0.0f);
+  // Step 5: write.
+  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)t.triId;
+  out[CLR_AOV_BARY_U * plane + p] = mu[1];
+  out[CLR_AOV_BARY_V * plane + p] = mu[2];
+  out[CLR_AOV_SCREEN_U * plane + p] = muScreen[1];
+  out[CLR_AOV_SCREEN_V * plane + p] = muScreen[2];
+  out[CLR_AOV_Z_W * plane + p] = visAttr[p];
+  out[CLR_AOV_EYE_DEPTH * plane + p] = eyeDepth;
+  out[CLR_AOV_NORMAL_X * plane + p] = n.x;
+  out[CLR_AOV_NORMAL_Y * plane + p] = n.y;
+  out[CLR_AOV_NORMAL_Z * plane + p] = n.z;
+}
