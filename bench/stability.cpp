@@ -73,12 +73,16 @@ int coords(const Args& a)
   ClContext cl("");
   const double angle = 35.0;
   const double guard = stab::guardBandReach(a.width, a.height, a.bands, angle);
-  // Step 1: reaches from 64 px up by sqrt(2), the guard-band limit itself,
-  // then beyond it (clipped).
   std::vector<double> reaches;
-  for (double r = 64.0; r < guard; r *= std::sqrt(2.0)) reaches.push_back(std::round(r));
+  // Step 1: reaches from the smallest that covers the viewport (the band
+  // lines must pass it) up by sqrt(2), the guard-band limit itself, then
+  // beyond it (clipped).
+  const double rad = angle * M_PI / 180.0;
+  const double cover = 0.5 * (a.width * std::fabs(std::cos(rad)) + a.height * std::fabs(std::sin(rad))) + 4.0;
+  for (double r = 64.0; r < guard; r *= std::sqrt(2.0))
+    if (r >= cover) reaches.push_back(std::round(r));
   reaches.push_back(guard);
-  for (double r = 131072.0; r <= 1048576.0; r *= 2.0) reaches.push_back(r);
+  for (double r = 131072.0; r <= 16777216.0; r *= 2.0) reaches.push_back(r);
   std::ofstream csv;
   if (!a.csv.empty()) {
     csv.open(a.csv);
