@@ -1,6 +1,6 @@
 // stability.cpp — clraster_stability: where the methods fail.
 //
-//   clraster_stability coords [--size WxH] [--bands N] [--seeds N] [--csv FILE]
+//   clraster_stability coords [--size WxH] [--bands N] [--seeds N] [--reach PX|guard] [--csv FILE]
 //   clraster_stability load [--tris N] [--fullscreen N] [--size WxH]
 //
 // coords renders a band mesh (tests/stability_scenes.h: a shared-edge mesh
@@ -8,14 +8,17 @@
 // reach with fixed-point and float edge functions, counts cracked pixels
 // (holes and double hits, from the kernels' own coverage) and writes one CSV
 // row per magnitude and method. Reaches past the guard band (fixed.h) are
-// clipped to it. load renders N small triangles inside one tile and M
+// clipped to it. --reach renders one reach only ("guard": the largest
+// inside the guard band), for one-off checks of large viewports. load renders N small triangles inside one tile and M
 // triangles that each cover the whole viewport, and prints one JSON line
 // per scene with the frame time, the bin entries against the expected
-// count and the device memory. Times are wall-clock on whatever else the
+// count, the pixels that differ from the oracle (one tile) or from the
+// nearest triangle (full screen) and the device memory. Times are wall-clock on whatever else the
 // machine runs; the counts are exact.
 #include "cli.h"
 #include "device.h"
 #include "pipeline.h"
+#include "reference_raster.h"
 #include "stability_scenes.h"
 
 #include <chrono>
@@ -35,6 +38,7 @@ struct Args {
   uint32_t width = 512, height = 512, bands = 64, seeds = 3;
   uint64_t tris = 10000000, fullscreen = 4000;
   std::string csv;
+  std::string reach;  // empty: the whole sweep
 };
 
 Args parse(int argc, char** argv)
@@ -60,6 +64,8 @@ Args parse(int argc, char** argv)
       a.fullscreen = parseUnsigned(flag, value, 1, 1000000);
     else if (flag == "--csv")
       a.csv = value;
+    else if (flag == "--reach")
+      a.reach = value;
     else
       throw Error("unknown flag " + flag);
   }
@@ -83,6 +89,7 @@ int coords(const Args& a)
     if (r >= cover) reaches.push_back(std::round(r));
   reaches.push_back(guard);
   for (double r = 131072.0; r <= 16777216.0; r *= 2.0) reaches.push_back(r);
+  if (!a.reach.empty()) reaches = {a.reach == "guard" ? guard : double(parseUnsigned("--reach", a.reach, 1, 1u << 30))};
   std::ofstream csv;
   if (!a.csv.empty()) {
     csv.open(a.csv);
@@ -162,11 +169,25 @@ int load(const Args& a)
     const uint64_t tiles =
         uint64_t((W + CLR_TILE_SIZE - 1) / CLR_TILE_SIZE) * ((H + CLR_TILE_SIZE - 1) / CLR_TILE_SIZE);
     const uint64_t expected = scene == 0 ? stats.setupTriangles : n * tiles;
+    // Step 3: the visible triangles against the scalar oracle (one tile) or
+    // the last, nearest triangle everywhere (full screen).
+    const std::vector<VisSample> vis = pipeline.readVis(0);
+    const std::vector<TriSetup> setup = pipeline.readSetup();
+    std::vector<uint32_t> want;
+    if (scene == 0)
+      want = ref::rasterize(m.positions, m.indices, glm::mat4(1.0f), {W, H, false}).triId;
+    else
+      want.assign(vis.size(), uint32_t(n - 1));
+    uint64_t differing = 0;
+    for (size_t p = 0; p < vis.size(); ++p)
+      differing += (vis[p].setupIndex == CLR_NONE ? ref::kNone : setup[vis[p].setupIndex].triId) != want[p];
     std::printf(
         "{\"scene\":\"%s\",\"width\":%u,\"height\":%u,\"triangles\":%llu,\"setup_triangles\":%llu,"
-        "\"bin_entries\":%llu,\"expected_bin_entries\":%llu,\"device_bytes\":%zu,\"frame_ms\":%.1f}\n",
+        "\"bin_entries\":%llu,\"expected_bin_entries\":%llu,\"pixels_differing\":%llu,\"device_bytes\":%zu,"
+        "\"frame_ms\":%.1f}\n",
         scene == 0 ? "one_tile" : "fullscreen", W, H, (unsigned long long)n, (unsigned long long)stats.setupTriangles,
-        (unsigned long long)stats.binEntries, (unsigned long long)expected, pipeline.deviceBytes(), ms);
+        (unsigned long long)stats.binEntries, (unsigned long long)expected, (unsigned long long)differing,
+        pipeline.deviceBytes(), ms);
     std::fflush(stdout);
   }
   return 0;
