@@ -142,6 +142,14 @@ ClContext::ClContext(const std::string& selector, int lanesOverride) : info(sele
   program = buildProgram(context, info.device, kernelBuildOptions(lanes));
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests
+  // can meet the device's limit with a small scene.
+  if (const char* cap = std::getenv("CLRASTER_MAX_ALLOC_BYTES")) {
+    char* end = nullptr;
+    const unsigned long long bytes = std::strtoull(cap, &end, 10);
+    if (!*cap || *end || bytes == 0) throw Error("CLRASTER_MAX_ALLOC_BYTES must be a positive number of bytes");
+    maxAllocBytes = std::min<size_t>(maxAllocBytes, bytes);
+  }
 }
 
 }  // namespace clr

@@ -41,7 +41,7 @@ struct ClContext {
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;
-  size_t maxAllocBytes = 0;
+  size_t maxAllocBytes = 0;  // the device's, or CLRASTER_MAX_ALLOC_BYTES when lower
   size_t globalMemBytes = 0;
 };
 

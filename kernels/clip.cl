@@ -11,7 +11,10 @@
  * fragments beyond it fail the depth test (GL LESS against a buffer cleared
  * to 1, or GREATER against 0 when reversed). Intersections are always computed from the
  * inside vertex towards the outside one, so an edge shared by two triangles
- * is cut at the same point from both sides (no seams).
+ * is cut at the same point from both sides (no seams); they are placed
+ * exactly on the plane and stay finite for any finite vertices (provided
+ * g·w does not overflow), so a triangle with vertices at 1e20 or 3e38 still
+ * covers what it should (docs/limits.md).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -60,11 +63,26 @@ CLR_INLINE uint clip_outcode(float4 c, float gx, float gy, float nearSign)
 CLR_INLINE void clip_intersect(const ClipVertex* inside, const ClipVertex* outside, int plane, float gx, float gy,
                                float nearSign, ClipVertex* out)
 {
+  // Step 1: the crossing. Near FLT_MAX a difference overflows; then it is
+  // taken of halved values (exact, so the same result where both work).
   const float dIn = clip_distance(inside->pos, plane, gx, gy, nearSign);
   const float dOut = clip_distance(outside->pos, plane, gx, gy, nearSign);
-  const float t = dIn / (dIn - dOut);
-  out->pos = inside->pos + t * (outside->pos - inside->pos);
+  const float denom = dIn - dOut;
+  const float t = isfinite(denom) ? dIn / denom : (0.5f * dIn) / (0.5f * dIn - 0.5f * dOut);
+  const float4 d = outside->pos - inside->pos;
+  out->pos = all(isfinite(d)) ? inside->pos + t * d
+                              : 2.0f * (0.5f * inside->pos + t * (0.5f * outside->pos - 0.5f * inside->pos));
   out->bary = inside->bary + t * (outside->bary - inside->bary);
+  // Step 2: the point exactly on the plane. The interpolation rounds by up
+  // to |coordinate|·2^-24, far more than the guard band when vertices lie
+  // at 1e20: a triangle covering the band would lose half of it.
+  switch (plane) {
+    case 0: out->pos.z = -nearSign * out->pos.w; break;
+    case 1: out->pos.x = -(gx * out->pos.w); break;
+    case 2: out->pos.x = gx * out->pos.w; break;
+    case 3: out->pos.y = -(gy * out->pos.w); break;
+    default: out->pos.y = gy * out->pos.w; break;
+  }
 }
 
 /* Clips the polygon poly[0..n) against the planes in `planeMask`, in place.

@@ -44,8 +44,13 @@ Run run(const std::string& args)
 
 std::string writeFile(const std::string& name, const std::string& content)
 {
+  // Written aside and renamed into place: CTest runs test cases in parallel
+  // processes, and several write the same scene file (views-cube.obj); a
+  // reader must never see it truncated.
   const std::string path = tempDir() + "/" + name;
-  std::ofstream(path, std::ios::binary) << content;
+  const std::string aside = path + ".writing-" + std::to_string(getpid());
+  std::ofstream(aside, std::ios::binary) << content;
+  std::rename(aside.c_str(), path.c_str());
   return path;
 }
 

@@ -20,7 +20,7 @@ Run run(const std::string& args);
 // The whole contents of a file ("" when it cannot be read).
 std::string slurp(const std::string& path);
 
-// Writes content to tempDir()/name and returns that path.
+// Writes content to tempDir()/name (atomically, by rename) and returns that path.
 std::string writeFile(const std::string& name, const std::string& content);
 
 // A failing run: exit 1, exactly one line on stderr containing `needle`.

@@ -31,10 +31,23 @@ float distance(const glm::vec4& c, int plane, float gx, float gy, float nearSign
 
 glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float gx, float gy, float nearSign)
 {
+  // As clip.cl: halved values where a difference overflows, and the
+  // result put exactly on the plane.
   const float dIn = distance(in, plane, gx, gy, nearSign), dOut = distance(out, plane, gx, gy, nearSign);
-  const float t = dIn / (dIn - dOut);
+  const float denom = dIn - dOut;
+  const float t = std::isfinite(denom) ? dIn / denom : (0.5f * dIn) / (0.5f * dIn - 0.5f * dOut);
+  bool finite = true;
+  for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(out[k] - in[k]);
   glm::vec4 r;
-  for (int k = 0; k < 4; ++k) r[k] = in[k] + t * (out[k] - in[k]);
+  for (int k = 0; k < 4; ++k)
+    r[k] = finite ? in[k] + t * (out[k] - in[k]) : 2.0f * (0.5f * in[k] + t * (0.5f * out[k] - 0.5f * in[k]));
+  switch (plane) {
+    case 0: r.z = -nearSign * r.w; break;
+    case 1: r.x = -(gx * r.w); break;
+    case 2: r.x = gx * r.w; break;
+    case 3: r.y = -(gy * r.w); break;
+    default: r.y = gy * r.w; break;
+  }
   return r;
 }
 
