@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace clr {
@@ -50,7 +51,11 @@ Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::stri
   Camera cam;
   cam.fovDegrees = args.fovDegrees;
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
-  const float radius = bounds.empty ? 1.0f : std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);
+  // A scene of one point (or one far smaller than its distance from the
+  // origin) still gets a radius the eye can stand off by in float.
+  const float centreScale = glm::max(glm::max(std::fabs(centre.x), std::fabs(centre.y)), std::fabs(centre.z));
+  const float radius =
+      bounds.empty ? 1.0f : std::max({0.5f * glm::length(bounds.max - bounds.min), 1e-6f, 1e-4f * centreScale});
 
   // Step 2: eye on a diagonal above the scene, far enough to see the sphere.
   cam.target = args.target.value_or(centre);

@@ -5,7 +5,9 @@
 #include "scene.h"
 
 #include "cl.h"
+#include "model_checks.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
@@ -16,15 +18,30 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
+#include <sys/stat.h>
+
 namespace clr {
 
 namespace {
+
+// The largest vertex coordinate accepted, after node transforms. Squares of
+// differences of such coordinates still fit a float, so bounds, their
+// extent and the framing camera stay finite.
+constexpr float kMaxCoordinate = 1e18f;
+
+std::string formatVector(const aiVector3D& v)
+{
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
+  return text;
+}
 
 struct ImportState {
   const std::string& path;
@@ -44,9 +61,19 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
   normalMatrix.Inverse().Transpose();
   if (!src->mNormals) state.allHaveNormals = false;
   for (unsigned v = 0; v < src->mNumVertices; ++v) {
-    const aiVector3D p = transform * src->mVertices[v];
+    // Non-finite or huge coordinates would leave the bounds and the camera
+    // framing overflowing; the file is rejected instead.
+    const aiVector3D& q = src->mVertices[v];
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+      throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) +
+                  " has a non-finite position " + formatVector(q));
+    const aiVector3D p = transform * q;
+    if (!(std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate))
+      throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) + " lies at " +
+                  formatVector(p) + " after node transforms, beyond the supported 1e18");
     dst.positions.insert(dst.positions.end(), {p.x, p.y, p.z});
     aiVector3D n = src->mNormals ? normalMatrix * src->mNormals[v] : aiVector3D(0, 0, 0);
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = aiVector3D(0, 0, 0);  // unlit
     dst.normals.insert(dst.normals.end(), {n.x, n.y, n.z});
     // Texture coordinates of the first channel, (0, 0) without one.
     const aiVector3D uv = src->mTextureCoords[0] ? src->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
@@ -181,56 +208,24 @@ void loadMaterials(ImportState& state)
   }
 }
 
-// Assimp 5.2's PLY reader loops forever on some malformed headers (an
-// unknown property type, a missing end_header). PLY headers are short and
-// fully specified, so they are checked here before assimp sees the file.
-void checkPlyHeader(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;  // not PLY: assimp decides
-  static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
-                                       "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
-  auto known = [](const std::string& t) {
-    return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
-  };
-  bool haveFormat = false, haveElement = false;
-  for (int lineNo = 2; std::getline(in, line) && lineNo < 10000; ++lineNo) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line);
-    std::string key, a, b, c;
-    words >> key;
-    const std::string where = path + ": PLY header line " + std::to_string(lineNo) + ": ";
-    if (key == "end_header") {
-      if (!haveFormat || !haveElement) throw Error(where + "end_header before format and element lines");
-      return;
-    }
-    if (key == "comment" || key == "obj_info" || key.empty()) continue;
-    if (key == "format") {
-      words >> a >> b;
-      if ((a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian") || b != "1.0")
-        throw Error(where + "unknown format '" + a + " " + b + "'");
-      haveFormat = true;
-    } else if (key == "element") {
-      long long count = -1;
-      words >> a >> count;
-      if (a.empty() || count < 0) throw Error(where + "malformed element line");
-      haveElement = true;
-    } else if (key == "property") {
-      if (!haveElement) throw Error(where + "property before any element");
-      words >> a;
-      if (a == "list") {
-        words >> b >> c;
-        if (!known(b) || !known(c)) throw Error(where + "unknown list property type in '" + line + "'");
-      } else if (!known(a)) {
-        throw Error(where + "unknown property type '" + a + "'");
-      }
-    } else {
-      throw Error(where + "unknown keyword '" + key + "'");
-    }
+// A file may name others (a glTF buffer, an OBJ material library). Only
+// regular files are opened: a FIFO or device named there would block the
+// import or feed it without end.
+class RegularFileIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override { return isRegular(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override
+  {
+    return isRegular(file) ? Assimp::DefaultIOSystem::Open(file, mode) : nullptr;
   }
-  throw Error(path + ": PLY header has no end_header");
-}
+
+ private:
+  static bool isRegular(const char* file)
+  {
+    struct stat st;
+    return file && stat(file, &st) == 0 && S_ISREG(st.st_mode);
+  }
+};
 
 // Some assimp importers repair bad input instead of failing: the OFF reader
 // clamps an out-of-range vertex index, the glTF reader drops the face. Both
@@ -274,25 +269,32 @@ struct ScopedImportLog {
 
 Mesh loadScene(const std::string& path)
 {
-  // Step 1: the file must exist, be readable and be non-empty.
+  uint64_t fileSize = 0;
+  // Step 1: the file must be a readable, non-empty regular file (checked
+  // before opening it: opening a FIFO would block).
   {
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+    if (!S_ISREG(st.st_mode)) throw Error(path + ": not a regular file");
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
     probe.seekg(0, std::ios::end);
     if (probe.tellg() <= 0) throw Error(path + ": file is empty or unreadable");
+    fileSize = uint64_t(probe.tellg());
   }
-  checkPlyHeader(path);
+  checkModelFile(path, fileSize);
   // Step 2: import without reordering post-processing.
   Assimp::Importer importer;
+  importer.SetIOHandler(new RegularFileIOSystem);  // the importer owns it
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot import (" + e.what() + ")");
+    throw Error(path + ": cannot import (" + oneLine(e.what()) + ")");
   }
-  if (!importLog.log.firstIndexProblem.empty()) throw Error(path + ": " + importLog.log.firstIndexProblem);
-  if (!scene) throw Error(path + ": cannot import (" + importer.GetErrorString() + ")");
+  if (!importLog.log.firstIndexProblem.empty()) throw Error(path + ": " + oneLine(importLog.log.firstIndexProblem));
+  if (!scene) throw Error(path + ": cannot import (" + oneLine(importer.GetErrorString()) + ")");
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
   // Step 3: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};

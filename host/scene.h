@@ -3,8 +3,10 @@
 // A Mesh is flat arrays: positions and normals (3 floats per vertex) and
 // indices (3 per triangle). loadScene() reads any file assimp reads,
 // fan-triangulates polygons in the file's own face order, concatenates
-// meshes in node order with node transforms applied, validates every index,
-// and throws clr::Error naming the file and the problem. Normals come from
+// meshes in node order with node transforms applied, validates every index
+// and every position (finite, within ±1e18), and throws clr::Error naming the
+// file and the problem; model_checks.h guards assimp against hostile files
+// first (docs/limits.md, "Hostile files"). Normals come from
 // the file when it has them, otherwise they are smoothed over vertices that
 // share a position. Vertex colours come from mColors[0]; every triangle
 // keeps its mesh's material (base colour factor and base-colour texture,

@@ -8,7 +8,8 @@
 #
 # Packages are checked with dpkg and only the missing ones are installed, so a
 # second run installs nothing. zlib1g-dev is listed because assimp's CMake
-# package links libz.so but Debian's libassimp-dev does not depend on it. PoCL caches compiled kernels in
+# package links libz.so but Debian's libassimp-dev does not depend on it, and libclang-rt-dev
+# (libFuzzer, the sanitizer runtimes) because clang only recommends it. PoCL caches compiled kernels in
 # build/pocl-cache, so repeated runs compile the kernels once.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -23,7 +24,7 @@ esac
 packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
   libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev nlohmann-json3-dev libtinyexr-dev
-  assimp-testmodels clang-format oclgrind)
+  assimp-testmodels clang-format oclgrind clang libclang-rt-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

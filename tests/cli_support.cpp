@@ -54,13 +54,14 @@ std::string writeFile(const std::string& name, const std::string& content)
   return path;
 }
 
-void expectError(const std::string& args, const std::string& needle)
+Run expectError(const std::string& args, const std::string& needle)
 {
   const Run r = run(args);
   INFO("clraster " << args << "\nstderr: " << r.err);
   CHECK(r.status == 1);
   CHECK(r.err.find(needle) != std::string::npos);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  return r;
 }
 
 size_t leftoverTemps(const std::string& target)

@@ -24,7 +24,7 @@ std::string slurp(const std::string& path);
 std::string writeFile(const std::string& name, const std::string& content);
 
 // A failing run: exit 1, exactly one line on stderr containing `needle`.
-void expectError(const std::string& args, const std::string& needle);
+Run expectError(const std::string& args, const std::string& needle);
 
 // Temporary files left beside `target` (its name followed by ".tmp-").
 size_t leftoverTemps(const std::string& target);

@@ -5,6 +5,8 @@
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -37,6 +39,42 @@ const char* const kGltfBadIndex =
     "\"byteLength\": 12}], \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": "
     "\"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}, {\"bufferView\": 1, \"componentType\": 5123, \"count\": 6, "
     "\"type\": \"SCALAR\"}]}";
+
+// kGltfBadIndex with its last index in range: a valid file, and the base of
+// the malformed variants below.
+std::string validGltf()
+{
+  std::string g = kGltfBadIndex;
+  g.replace(g.find("ADAAkA"), 6, "ADAAIA");
+  return g;
+}
+
+// validGltf() with the first `from` replaced by `to`.
+std::string gltfWith(const std::string& from, const std::string& to)
+{
+  std::string g = validGltf();
+  const size_t at = g.find(from);
+  REQUIRE(at != std::string::npos);
+  return g.replace(at, from.size(), to);
+}
+
+// A malformed scene file: `clraster render` fails with one line naming the
+// file and `needle`, and creates no output.
+void expectSceneError(const std::string& name, const std::string& content, const std::string& needle)
+{
+  const std::string png = tmpDir() + "/hostile-" + name + ".png";
+  std::remove(png.c_str());
+  const std::string path = writeFile(name, content);
+  const Run r = expectError("render '" + path + "' -o '" + png + "' --size 32x32", needle);
+  CHECK(r.err.rfind(std::string("clraster: ") + path + ": ", 0) == 0);
+  struct stat st;
+  CHECK(stat(png.c_str(), &st) != 0);
+  CHECK(leftoverTemps(png) == 0);
+}
+
+const std::string kPlyHeader =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face "
+    "1\nproperty list uchar int vertex_indices\nend_header\n";
 
 }  // namespace
 
@@ -112,6 +150,87 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
   expectError("render '" + dir + "'" + out, dir);
 }
 
+TEST_CASE("cli: hostile scene files are rejected with one line and no output", "[cli]")
+{
+  SECTION("a valid glTF renders, so the variants below fail for their one change")
+  {
+    const std::string png = tmpDir() + "/valid-gltf.png";
+    const Run r = run("render '" + writeFile("valid.gltf", validGltf()) + "' -o '" + png + "' --size 32x32");
+    INFO(r.err);
+    CHECK(r.status == 0);
+  }
+  SECTION("indices out of range")
+  {
+    expectSceneError("range-hostile.ply", kPlyHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", "out of range");
+    expectSceneError("range-hostile.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", "index");
+  }
+  SECTION("non-finite and huge positions")
+  {
+    expectSceneError("nan.obj", kSmallObj + "v nan 0 0\nf 5 1 2\n", "has a non-finite position (nan, 0, 0)");
+    expectSceneError("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n", "vertex 2 has a non-finite position");
+    expectSceneError("inf.ply", kPlyHeader + "0 0 0\n1 0 0\n-inf 1 0\n3 0 1 2\n", "non-finite position");
+    expectSceneError("huge.obj", kSmallObj + "v 0 3e38 0\nf 5 1 2\n", "beyond the supported 1e18");
+    expectSceneError("huge-scale.gltf", gltfWith("{\"mesh\": 0}", "{\"mesh\": 0, \"scale\": [1e30, 1, 1]}"),
+                     "beyond the supported 1e18");
+  }
+  SECTION("glTF accessors of the wrong type")
+  {
+    expectSceneError("position-ushort.gltf", gltfWith("\"componentType\": 5126", "\"componentType\": 5123"),
+                     "glTF: attribute POSITION uses an accessor of componentType 5123");
+    expectSceneError("position-scalar.gltf", gltfWith("\"VEC3\"", "\"SCALAR\""),
+                     "glTF: attribute POSITION uses an accessor of type SCALAR");
+    expectSceneError("position-mat4.gltf", gltfWith("\"VEC3\"", "\"MAT4\""),
+                     "glTF: attribute POSITION uses an accessor of type MAT4");
+    expectSceneError("indices-float.gltf", gltfWith("\"componentType\": 5123", "\"componentType\": 5126"),
+                     "glTF: indices uses an accessor of componentType 5126");
+    expectSceneError("component-unknown.gltf", gltfWith("\"componentType\": 5126", "\"componentType\": 1234"),
+                     "glTF: an accessor has no valid componentType");
+    expectSceneError("deep.gltf", std::string(1000, '[') + std::string(1000, ']'), "nested deeper than 64 levels");
+  }
+  SECTION("truncated files, each format")
+  {
+    expectSceneError("truncated.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2", "cannot import");
+    expectSceneError("truncated.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", "cannot import");
+    expectSceneError("truncated-ascii.ply", kPlyHeader + "0 0 0\n1 0 0\n0 1", "no triangles");
+    std::string ply = kPlyHeader;
+    ply.replace(ply.find("ascii"), 5, "binary_little_endian");
+    expectSceneError("truncated-binary.ply", ply + std::string(30, '\0'), "truncated-binary.ply");
+    expectSceneError("truncated-ascii.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n",
+                     "truncated-ascii.stl");
+    expectSceneError("truncated-binary.stl",
+                     std::string(80, '\0') + std::string("\x02\0\0\0", 4) + std::string(60, '\0'),
+                     "truncated-binary.stl");
+    const std::string gltf = validGltf();
+    expectSceneError("truncated.gltf", gltf.substr(0, gltf.size() / 2), "invalid JSON");
+    expectSceneError("truncated.glb", std::string("glTF\x02\0\0\0\x40\0\0\0\xe8\x03\0\0JSON{}", 22),
+                     "GLB JSON chunk truncated");
+  }
+  SECTION("missing buffers")
+  {
+    expectSceneError("missing-bin.gltf", gltfWith("\"uri\": \"data:", "\"uri\": \"no-such-file.bin\", \"x\": \"data:"),
+                     "could not open referenced file \"no-such-file.bin\"");
+  }
+  SECTION("counts larger than the file")
+  {
+    expectSceneError("count.off", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                     "OFF header vertex count 1000000000 exceeds what the file's 45 bytes hold");
+    std::string ply = kPlyHeader;
+    ply.replace(ply.find("vertex 3"), 8, "vertex 4000000000");
+    expectSceneError("count.ply", ply + "0 0 0\n", "element 'vertex' has 4000000000 items");
+  }
+  SECTION("a FIFO, as the scene or as a glTF buffer, is refused rather than waited on")
+  {
+    const std::string fifo = tmpDir() + "/hostile-fifo.bin";
+    std::remove(fifo.c_str());
+    REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+    const std::string png = tmpDir() + "/hostile-fifo.png";
+    expectError("render '" + fifo + "' -o '" + png + "'", fifo + ": not a regular file");
+    expectSceneError("fifo-buffer.gltf", gltfWith("\"uri\": \"data:", "\"uri\": \"hostile-fifo.bin\", \"x\": \"data:"),
+                     "could not open referenced file \"hostile-fifo.bin\"");
+    std::remove(fifo.c_str());
+  }
+}
+
 TEST_CASE("cli: an unwritable output is reported before anything is rendered", "[cli]")
 {
   expectError("render -o /nonexistent-dir/out.png", "/nonexistent-dir/out.png: cannot write");
@@ -125,10 +244,10 @@ TEST_CASE("cli: a failing run leaves an existing output untouched", "[cli]")
   CHECK(leftoverTemps(target) == 0);
 }
 
-TEST_CASE("cli: renders a file, NaN vertices culled, and reports stats", "[cli]")
+TEST_CASE("cli: renders a file and reports stats", "[cli]")
 {
-  const std::string scene = writeFile("nan.obj", kSmallObj + "v nan 0 0\nv 0 inf 0\nf 5 1 2\nf 6 2 3\n");
-  const std::string png = tmpDir() + "/nan.png";
+  const std::string scene = writeFile("small.obj", kSmallObj);
+  const std::string png = tmpDir() + "/small.png";
   std::remove(png.c_str());
   const Run r = run("render '" + scene + "' -o '" + png + "' --size 64x48 --shade id --stats --frames 2");
   INFO(r.err);
@@ -136,13 +255,26 @@ TEST_CASE("cli: renders a file, NaN vertices culled, and reports stats", "[cli]"
   CHECK(r.err.empty());
   const std::string png_bytes = slurp(png);
   CHECK(png_bytes.substr(1, 3) == "PNG");
-  CHECK(r.out.find("\"triangles_in\":4") != std::string::npos);
-  CHECK(r.out.find("\"triangles_culled\":2") != std::string::npos);
+  CHECK(r.out.find("\"triangles_in\":2") != std::string::npos);
+  CHECK(r.out.find("\"triangles_culled\":0") != std::string::npos);
   CHECK(r.out.find("\"frame_ms\":") != std::string::npos);
   CHECK(r.out.find("\"stage_ms\":{") != std::string::npos);
   CHECK(r.out.find("\"device_bytes\":") != std::string::npos);
   CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
   CHECK(leftoverTemps(png) == 0);
+}
+
+TEST_CASE("cli: a one-point scene far from the origin is framed", "[cli]")
+{
+  // Every vertex at one spot: the default camera must still stand off from it.
+  for (const char* at : {"1000", "1e17"}) {
+    const std::string v = std::string("v ") + at + " " + at + " " + at + "\n";
+    const std::string scene = writeFile("point.obj", v + v + v + "f 1 2 3\n");
+    const std::string png = tmpDir() + "/point.png";
+    const Run r = run("render '" + scene + "' -o '" + png + "' --size 16x16");
+    INFO(at << ": " << r.err);
+    CHECK(r.status == 0);
+  }
 }
 
 TEST_CASE("cli: devices lists at least one device", "[cli]")
