@@ -1,5 +1,6 @@
 // bin.cpp — host side of kernels/bin.cl: count tile overlaps, scan them into
-// per-tile offsets, size binEntries from the exact total, then fill.
+// per-tile offsets, size binEntries from the exact total, give each
+// non-empty tile its block of the visibility buffer, then fill.
 #include "pipeline.h"
 
 namespace clr {
@@ -21,6 +22,15 @@ void Pipeline::bin()
     throw Error("the frame needs " + std::to_string(numBinEntries_) +
                 " bin entries, more than the 2^32 a 32-bit offset can address");
   binEntries_.reserve(numBinEntries_);
+
+  // Step 2b: a block of the visibility buffer for each tile with triangles.
+  tileSlot_.reserve(numTiles_ + 1);
+  cl::Event slotsEvent;
+  setArgs(binSlotsKernel_, tileCount_.get(), numTiles_, tileSlot_.get());
+  cl_.queue.enqueueNDRangeKernel(binSlotsKernel_, cl::NullRange, linear(numTiles_), cl::NDRange(64), nullptr,
+                                 &slotsEvent);
+  record("bin_slots", slotsEvent);
+  numVisSlots_ = uint32_t(scan(tileSlot_, numTiles_, "bin_slots"));
 
   // Step 3: fill.
   tileCursor_.zero(numTiles_, &fills);

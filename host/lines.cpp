@@ -95,7 +95,8 @@ void Pipeline::drawLineSegments(uint32_t n)
   // Step 4: one work-item per tile draws and blends.
   cl::Event drawEvent;
   setArgs(linesDrawKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(),
-          lineBinEntries_.get(), tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get());
+          lineBinEntries_.get(), tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get(),
+          tileSlot_.get(), visPlane());
   cl_.queue.enqueueNDRangeKernel(linesDrawKernel_, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY),
                                  cl::NDRange(1, 1), nullptr, &drawEvent);
   record("lines_draw", drawEvent);

@@ -97,6 +97,7 @@ Pipeline::Pipeline(ClContext& cl)
       clipBary_(memory_, "clipped-triangle barycentrics"),
       tileCount_(memory_, "tile counts"),
       tileCursor_(memory_, "tile cursors"),
+      tileSlot_(memory_, "tile slots"),
       binEntries_(memory_, "bin entries"),
       scanPartials_(memory_, "scan partial sums"),
       visIndex_(memory_, "visibility buffer (triangles)"),
@@ -119,11 +120,11 @@ Pipeline::Pipeline(ClContext& cl)
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_apply");
   binCountKernel_ = cl::Kernel(cl.program, "bin_count");
   binFillKernel_ = cl::Kernel(cl.program, "bin_fill");
+  binSlotsKernel_ = cl::Kernel(cl.program, "bin_slots");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
   rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
-  resolveAaKernel_ = cl::Kernel(cl.program, "resolve_aa");
   linesFromSetupKernel_ = cl::Kernel(cl.program, "lines_from_setup");
   linesBinCountKernel_ = cl::Kernel(cl.program, "lines_bin_count");
   linesBinFillKernel_ = cl::Kernel(cl.program, "lines_bin_fill");
@@ -277,12 +278,13 @@ std::vector<uint32_t> Pipeline::readBinEntries() const
 }
 std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
 {
-  // Step 1: the planes of the sample.
+  // Step 1: the planes of the sample, and each tile's block in them.
   if (sample >= params_.samples) throw Error("readVis: no sample " + std::to_string(sample));
-  const uint64_t n = uint64_t(params_.width) * params_.height;
-  const std::vector<uint32_t> index = visIndex_.download(n, sample * n);
-  const std::vector<float> attr = visAttr_.download(3 * n, 3 * sample * n);
+  const uint64_t n = uint64_t(params_.width) * params_.height, v = visPlane();
+  const std::vector<uint32_t> index = visIndex_.download(v, sample * v);
+  const std::vector<float> attr = visAttr_.download(3 * v, 3 * sample * v);
   const std::vector<uint32_t> offsets = readTileOffsets();
+  const std::vector<uint32_t> slots = tileSlot_.download(numTiles_);
   // Step 2: samples; raster leaves empty tiles unwritten, so they read as empty.
   std::vector<VisSample> vis(n);
   for (uint32_t y = 0; y < params_.height; ++y)
@@ -290,8 +292,9 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
       const size_t p = size_t(y) * params_.width + x;
       const uint32_t tile = (y / CLR_TILE_SIZE) * params_.tilesX + x / CLR_TILE_SIZE;
       const float clearDepth = params_.depthMode == CLR_DEPTH_REVERSED ? 0.0f : 1.0f;
+      const size_t a = offsets[tile] == offsets[tile + 1] ? 0 : vis_address(slots[tile], x, y);
       vis[p] = offsets[tile] == offsets[tile + 1] ? VisSample{CLR_NONE, clearDepth, 0.0f, 0.0f}
-                                                  : VisSample{index[p], attr[p], attr[n + p], attr[2 * n + p]};
+                                                  : VisSample{index[a], attr[a], attr[v + a], attr[2 * v + a]};
     }
   return vis;
 }

@@ -115,8 +115,14 @@ class Pipeline {
 
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
-  // Bytes per pixel of the per-sample buffers and the image of this frame.
-  double bytesPerPixel() const { return 16.0 * params_.samples + 4.0; }
+  // Bytes per pixel of the per-sample buffers and the image of this frame:
+  // 16 per sample of a covered tile (the visibility buffer), 4 for the image.
+  double bytesPerPixel() const
+  {
+    const double pixels = double(params_.width) * params_.height;
+    return 16.0 * params_.samples * numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
+  }
+  uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
   const ClContext& cl() const { return cl_; }
 
  private:
@@ -148,13 +154,14 @@ class Pipeline {
   uint32_t numSetup_ = 0;
   uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
-  Mesh scene_;             // host copy: lazy uploads read it
-  uint32_t resident_ = 0;  // kResident* bits
+  uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
+  Mesh scene_;                // host copy: lazy uploads read it
+  uint32_t resident_ = 0;     // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_, resolveAaKernel_, linesFromSetupKernel_, linesBinCountKernel_,
+      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, binSlotsKernel_, rasterKernel_,
+      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, linesFromSetupKernel_, linesBinCountKernel_,
       linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
@@ -169,7 +176,7 @@ class Pipeline {
   DeviceBuffer<uint32_t> clipList_;
   DeviceBuffer<TriSetup> setup_;
   DeviceBuffer<ClipBary> clipBary_;
-  DeviceBuffer<uint32_t> tileCount_, tileCursor_, binEntries_;
+  DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
   DeviceBuffer<cl_ulong> scanPartials_;
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;

@@ -42,7 +42,10 @@ void Pipeline::sortForPainter()
 
 void Pipeline::raster()
 {
-  const uint64_t samples = uint64_t(params_.width) * params_.height * params_.samples;
+  // The visibility buffer: a block per non-empty tile and sample (shared.h).
+  const uint64_t samples = uint64_t(visPlane()) * params_.samples;
+  if (samples > UINT32_MAX / 3)
+    throw Error("the frame needs " + std::to_string(samples) + " visibility samples, more than 32-bit offsets address");
   visIndex_.reserve(samples);
   visAttr_.reserve(3 * samples);
   if (params_.visibility == CLR_VISIBILITY_PAINTER)
@@ -57,7 +60,7 @@ void Pipeline::raster()
                                                                          : rasterKernel_;
   cl::Event event;
   setArgs(kernel, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(), visAttr_.get(),
-          paintRank_.get());
+          paintRank_.get(), tileSlot_.get(), visPlane());
   // One work-item per pixel sample (GPU shape) or per tile and sample index
   // (CPU shape, see raster.cl).
   const bool perPixel = cl_.lanes == 1;

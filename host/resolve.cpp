@@ -8,11 +8,10 @@ void Pipeline::resolve()
 {
   image_.reserve(uint64_t(params_.width) * params_.height);
   cl::Event event;
-  // One sample per pixel, or the anti-aliased variant with the sample filter.
-  cl::Kernel& kernel = params_.samples > 1 ? resolveAaKernel_ : resolveKernel_;
+  cl::Kernel& kernel = resolveKernel_;
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
           indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(), triMaterial_.get(),
-          materials_.get(), texDescs_.get(), texels_.get(), image_.get());
+          materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(), visPlane());
   const size_t row = size_t(cl_.lanes);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),

@@ -27,20 +27,24 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 __kernel void aov(__constant FrameParams* params,
-                  __global const uint* visIndex,    // plane 0 of width · height
-                  __global const float* visAttr,    // planes 0-2: depth, b1, b2
+                  __global const uint* visIndex,    // sample plane 0 (shared.h)
+                  __global const float* visAttr,    // its depth, b1, b2 planes
                   __global const uint* tileOffset,  // tiles + 1
                   __global const TriSetup* setup, __global const ClipBary* clipBary,
                   __global const uint* indices,   // 3·numTris
                   __global const float* normals,  // 3·numVerts
-                  __global float* out)            // CLR_AOV_CHANNELS · width · height
+                  __global float* out,            // CLR_AOV_CHANNELS · width · height
+                  __global const uint* tileSlot,  // tiles + 1: visibility-buffer slots (shared.h)
+                  uint visPlane)
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   if (px >= params->width || py >= params->height) return;
   const uint plane = params->width * params->height, p = py * params->width + px;
   // Step 1: the visible triangle, or none.
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + px / CLR_TILE_SIZE;
-  const uint index = tileOffset[tile] == tileOffset[tile + 1] ? CLR_NONE : visIndex[p];
+  const bool empty = tileOffset[tile] == tileOffset[tile + 1];
+  const uint v = empty ? 0u : vis_address(tileSlot[tile], px, py);  // in plane 0 of the visibility buffer
+  const uint index = empty ? CLR_NONE : visIndex[v];
   if (index == CLR_NONE) {
     for (int c = 0; c < CLR_AOV_CHANNELS; ++c) out[c * plane + p] = 0.0f;
     out[CLR_AOV_TRIANGLE_ID * plane + p] = -1.0f;
@@ -50,7 +54,8 @@ __kernel void aov(__constant FrameParams* params,
   }
   const TriSetup t = setup[index];
   // Step 2: screen and perspective-correct barycentrics of the setup vertices.
-  const float b[3] = {1.0f - visAttr[plane + p] - visAttr[2 * plane + p], visAttr[plane + p], visAttr[2 * plane + p]};
+  const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
+                      visAttr[2 * visPlane + v]};
   const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
   const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
   // Step 3: weights of the input vertices in each setup vertex (resolve.cl).
@@ -75,7 +80,7 @@ __kernel void aov(__constant FrameParams* params,
   out[CLR_AOV_BARY_V * plane + p] = mu[2];
   out[CLR_AOV_SCREEN_U * plane + p] = muScreen[1];
   out[CLR_AOV_SCREEN_V * plane + p] = muScreen[2];
-  out[CLR_AOV_Z_W * plane + p] = visAttr[p];
+  out[CLR_AOV_Z_W * plane + p] = visAttr[v];
   out[CLR_AOV_EYE_DEPTH * plane + p] = eyeDepth;
   out[CLR_AOV_NORMAL_X * plane + p] = n.x;
   out[CLR_AOV_NORMAL_Y * plane + p] = n.y;

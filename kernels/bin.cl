@@ -82,3 +82,13 @@ __kernel void bin_fill(__constant FrameParams* params, __global const TriSetup* 
       binEntries[tileOffset[tile] + atomic_inc(&tileCursor[tile])] = s;
     }
 }
+
+/* One per tile: 1 when its bin holds a triangle. The host scans these into
+ * each tile's slot in the visibility buffer (shared.h) and sizes the buffer
+ * from the total. */
+__kernel void bin_slots(__global const uint* tileOffset,         // tiles + 1, scanned
+                        uint numTiles, __global uint* tileSlot)  // tiles + 1
+{
+  const uint t = get_global_id(0);
+  if (t < numTiles) tileSlot[t] = tileOffset[t + 1] != tileOffset[t] ? 1u : 0u;
+}

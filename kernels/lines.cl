@@ -314,10 +314,12 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
     __global const uint* lineTileOffset,  // tiles + 1
     __global const uint* lineBinEntries,
     __global const uint* triTileOffset,  // tiles + 1: empty triangle tiles hold no visibility samples
-    __global const uint* visIndex,       // sample plane 0 of width · height
-    __global const float* visAttr,       // plane 0: window depth
+    __global const uint* visIndex,       // sample plane 0 (shared.h)
+    __global const float* visAttr,       // its window depth plane
     __global const TriSetup* setup,
-    __global uint* image)  // width · height, top row first
+    __global uint* image,           // width · height, top row first
+    __global const uint* tileSlot,  // tiles + 1: visibility-buffer slots (shared.h)
+    uint visPlane)
 {
   const int tx = get_global_id(0), ty = get_global_id(1);
   const uint tile = ty * params->tilesX + tx;
@@ -329,6 +331,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
   t.x0 = tx * CLR_TILE_SIZE;
   t.y0 = ty * CLR_TILE_SIZE;
   const bool noTriangles = triTileOffset[tile] == triTileOffset[tile + 1];
+  const uint slot = noTriangles ? 0u : tileSlot[tile];
   const float slopeReach = lp->reach + 0.75f;
   for (int row = 0; row < CLR_TILE_SIZE; ++row)
     for (int col = 0; col < CLR_TILE_SIZE; ++col) {
@@ -336,7 +339,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
       t.cover[row][col] = 0.0f;
       t.limit[row][col] = -INFINITY;
       if (px >= params->width || py >= params->height || begin == end) continue;
-      const uint p = py * params->width + px;
+      const uint p = vis_address(slot, px, py);
       const uint index = noTriangles ? CLR_NONE : visIndex[p];
       t.limit[row][col] = index == CLR_NONE ? 1.0f + lp->depthBias
                                             : visAttr[p] + lp->depthBias + line_depth_slope(&setup[index]) * slopeReach;

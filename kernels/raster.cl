@@ -185,50 +185,30 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
 }
 
-/* Writes the samples of a row segment that lie inside the viewport into
- * sample plane k of the visibility buffer (shared.h): a whole row segment
- * in one vector store per plane, a segment cut by the viewport's right edge
- * lane by lane. */
-CLR_INLINE void raster_write_row(__constant FrameParams* params, uint k, uint firstX, uint py, const RowBest* best,
+/* Writes a row segment of samples into sample plane k of the visibility
+ * buffer (shared.h) at address a of the plane: one vector store per plane.
+ * The tile's block has room for its whole rows, so lanes past the
+ * viewport's edge are stored too (and never read). */
+CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, uint k, uint a, const RowBest* best,
                                  __global uint* visIndex, __global float* visAttr)
 {
-  if (py >= params->height) return;
-  const uint plane = params->width * params->height, p = py * params->width + firstX;
-  __global uint* index = &visIndex[k * plane + p];
-  __global float* depth = &visAttr[3 * k * plane + p];
-  __global float* b1 = depth + plane;
-  __global float* b2 = depth + 2 * plane;
   const floatL windowDepth = raster_key_depth(best->depth, params->depthMode, params->visibility);
-  if (firstX + CLR_LANES <= params->width) {
-    CLR_STORE_LANES(best->index, index);
-    CLR_STORE_LANES(windowDepth, depth);
-    CLR_STORE_LANES(best->b1, b1);
-    CLR_STORE_LANES(best->b2, b2);
-    return;
-  }
-  uint laneIndex[CLR_LANES];
-  float laneDepth[CLR_LANES], laneB1[CLR_LANES], laneB2[CLR_LANES];
-  CLR_STORE_LANES(best->index, laneIndex);
-  CLR_STORE_LANES(windowDepth, laneDepth);
-  CLR_STORE_LANES(best->b1, laneB1);
-  CLR_STORE_LANES(best->b2, laneB2);
-  for (uint lane = 0; firstX + lane < params->width; ++lane) {
-    index[lane] = laneIndex[lane];
-    depth[lane] = laneDepth[lane];
-    b1[lane] = laneB1[lane];
-    b2[lane] = laneB2[lane];
-  }
+  CLR_STORE_LANES(best->index, &visIndex[k * visPlane + a]);
+  CLR_STORE_LANES(windowDepth, &visAttr[3 * k * visPlane + a]);
+  CLR_STORE_LANES(best->b1, &visAttr[(3 * k + 1) * visPlane + a]);
+  CLR_STORE_LANES(best->b2, &visAttr[(3 * k + 2) * visPlane + a]);
 }
 
 /* The raster kernels' parameters, the same for every variant below:
  *   params, setup, tileOffset (tiles + 1), binEntries,
- *   visIndex (samples · width · height), visAttr (3 · samples planes),
- *   paintRank (numTris with the painter's algorithm, else 1). */
+ *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
+ *   paintRank (numTris with the painter's algorithm, else 1), tileSlot
+ *   (tiles + 1: each non-empty tile's slot) and visPlane (slots · tile²). */
 #define CLR_RASTER_PARAMS                                                                          \
   __constant FrameParams *params, __global const TriSetup *setup, __global const uint *tileOffset, \
       __global const uint *binEntries, __global uint *visIndex, __global float *visAttr,           \
-      __global const uint *paintRank
-#define CLR_RASTER_ARGS params, setup, tileOffset, binEntries, visIndex, visAttr, paintRank
+      __global const uint *paintRank, __global const uint *tileSlot, uint visPlane
+#define CLR_RASTER_ARGS params, setup, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot, visPlane
 
 /* The method variants are separate kernels (raster, raster_hierarchical,
  * raster_float) rather than branches of one, so that a device compiles only
@@ -254,7 +234,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode)
     const uint rank = painter ? paintRank[setup[s].triId] : 0u;
     raster_row(&setup[s], s, sx, sy, &best, &rule, rank, edgeMode, false);
   }
-  raster_write_row(params, k, px, py, &best, visIndex, visAttr);
+  raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
 
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(CLR_RASTER_PARAMS)
@@ -321,10 +301,11 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
       }
     }
   }
-  // Step 3: write the tile's sample plane.
+  // Step 3: write the tile's block of the sample plane.
+  const uint slot = tileSlot[tile];
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
-      raster_write_row(params, k, tileX * CLR_TILE_SIZE + col * CLR_LANES, firstY + row, &best[col][row], visIndex,
+      raster_write_row(params, visPlane, k, vis_address(slot, col * CLR_LANES, row), &best[col][row], visIndex,
                        visAttr);
 }
 

@@ -342,11 +342,11 @@ CLR_INLINE ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
 }
 
 /* The id mode: the input triangle that holds most samples of each pixel. */
-CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint* visIndex, uint p, uint count,
-                            __global const TriSetup* setup)
+CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint* visIndex, uint visPlane, uint p,
+                            uint count, __global const TriSetup* setup)
 {
   // Step 1: the most frequent setup index per lane (CLR_NONE counts too).
-  const uint plane = params->width * params->height, samples = params->samples;
+  const uint plane = visPlane, samples = params->samples;
   uint winner[CLR_LANES];
   load_index_lanes(&visIndex[p], count, winner);
   if (samples > 1) {
@@ -371,28 +371,30 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
-/* The resolve kernels' parameters, the same for both variants below:
- *   params; visIndex (samples · width · height, unwritten in empty tiles);
- *   visAttr (3 · samples planes of width · height: depth, b1, b2);
+/* The resolve kernel's parameters:
+ *   params; visIndex (samples · visPlane), visAttr (3 · samples · visPlane:
+ *   depth, b1, b2), visibility-buffer planes of the non-empty tiles;
  *   tileOffset (tiles + 1); setup; clipBary; indices (3·numTris);
  *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
  *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
  *   texels (every level of every texture), each a 1-element dummy when the
- *   mode does not read it; image (width · height). */
+ *   mode does not read it; image (width · height); tileSlot (tiles + 1) and
+ *   visPlane (see shared.h). */
 #define CLR_RESOLVE_PARAMS                                                                                   \
   __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,              \
       __global const uint *tileOffset, __global const TriSetup *setup, __global const ClipBary *clipBary,    \
       __global const uint *indices, __global const float *positions, __global const float *normals,          \
       __global const float *uvs, __global const float *colours, __global const uint *triMaterial,            \
       __global const Material *materials, __global const TextureDesc *texDescs, __global const uint *texels, \
-      __global uint *image
+      __global uint *image, __global const uint *tileSlot, uint visPlane
 #define CLR_RESOLVE_ARGS                                                                                          \
   params, visIndex, visAttr, tileOffset, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, \
-      materials, texDescs, texels, image
+      materials, texDescs, texels, image, tileSlot, visPlane
 
-/* One row of CLR_LANES pixels. `multisample` is constant at each call: the
- * one-sample kernel compiles without the sample loop's bookkeeping. */
-CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, const bool multisample)
+/* One row of CLR_LANES pixels. (A variant specialised to one sample, with
+ * the sample count a compile-time 1, computed wrong pixels under Oclgrind's
+ * 16-lane interpretation while PoCL was right; one kernel serves both.) */
+CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
 {
   const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
   if (py >= params->height || firstX >= params->width) return;
@@ -407,11 +409,12 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, const bool multisample)
     for (uint lane = 0; lane < count; ++lane) out[lane] = background;
     return;
   }
-  const uint plane = params->width * params->height, p = py * params->width + firstX;
-  const uint samples = multisample ? params->samples : 1u;
+  // The row's entries in the tile's block of each sample plane (shared.h).
+  const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
+  const uint samples = params->samples;
   uintL colour;
   if (mode == CLR_SHADE_ID) {
-    colour = resolve_id(params, visIndex, p, count, setup);
+    colour = resolve_id(params, visIndex, visPlane, p, count, setup);
   } else {
     // Step 2: each sample plane's colour; MSAA reuses a triangle's colour
     // from the first sample of the pixel that it covers.
@@ -429,7 +432,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, const bool multisample)
       const intL covered = sampleIndex[k] != CLR_NONE;
       ColourL c = backgroundColour;
       intL done = CLR_NOT(covered);
-      for (uint j = 0; multisample && j < k && !params->shadeEverySample; ++j) {
+      for (uint j = 0; j < k && !params->shadeEverySample; ++j) {
         const intL reuse = CLR_NOT(done) & (sampleIndex[j] == sampleIndex[k]);
         c = colour_select(c, sampleColour[j], reuse);
         done = done | reuse;
@@ -461,15 +464,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, const bool multisample)
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }
 
-/* The variants are separate kernels so that a device compiles only what a
- * frame launches (PoCL compiles each kernel at its first launch). */
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
     CLR_RESOLVE_PARAMS)
 {
-  resolve_row(CLR_RESOLVE_ARGS, false);
-}
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve_aa(
-    CLR_RESOLVE_PARAMS)
-{
-  resolve_row(CLR_RESOLVE_ARGS, true);
+  resolve_row(CLR_RESOLVE_ARGS);
 }

@@ -207,18 +207,32 @@ typedef struct TextureDesc {
   uint levelOffset[CLR_MAX_MIP_LEVELS];
 } TextureDesc;
 
-/* The visibility buffer: the nearest fragment of each pixel sample, stored
- * as planes so that a row of samples is one vector load or store. With
- * S = FrameParams.samples and P = width·height, sample k of pixel p is
- *  visIndex uint[S·P]     at k·P + p: setup index, or CLR_NONE
- *  visAttr  float[3·S·P]  at (3k + c)·P + p: c = 0 window depth, 1 b1, 2 b2
+/* The visibility buffer: the nearest fragment of each pixel sample. Only
+ * tiles that hold a triangle have room in it: tile t, when its bin is not
+ * empty, owns slot tileSlot[t] (an exclusive scan over the non-empty tiles,
+ * bin_slots), a block of CLR_TILE_SIZE² entries in row order, so a row of a
+ * tile is one vector load or store and memory follows the covered tiles,
+ * not the viewport. With S = FrameParams.samples and the plane size
+ * V = slots · CLR_TILE_SIZE² (the kernels' visPlane argument), sample k of
+ * pixel (x, y) in tile t is, with a = vis_address(tileSlot[t], x, y),
+ *  visIndex uint[S·V]     at k·V + a: setup index, or CLR_NONE
+ *  visAttr  float[3·S·V]  at (3k + c)·V + a: c = 0 window depth, 1 b1, 2 b2
  * (the depth plane holds the depth as its format stores it: unorm24 reads
  * back as q / (2^24 − 1); with CLR_VISIBILITY_PAINTER it holds the paint
  * rank of the visible triangle, as uint bits)
- * Written by raster, read by resolve; memory follows S (4 + 12 bytes per
- * sample). Pixels of tiles with no binned triangle are not written (resolve
- * knows them from the tile offsets).
+ * Written by raster, read by resolve, lines_draw and aov; 4 + 12 bytes per
+ * sample of a covered tile. Entries of a tile's block outside the viewport
+ * are written but never read.
  * VisSample is one sample as Pipeline::readVis() returns it. */
+#ifdef __OPENCL_VERSION__
+CLR_INLINE uint vis_address(uint slot, uint x, uint y)
+#else
+inline uint vis_address(uint slot, uint x, uint y)
+#endif
+{
+  return slot * (CLR_TILE_SIZE * CLR_TILE_SIZE) + (y % CLR_TILE_SIZE) * CLR_TILE_SIZE + x % CLR_TILE_SIZE;
+}
+
 typedef struct VisSample {
   uint setupIndex; /* index into TriSetup, or CLR_NONE */
   float depth;     /* window depth of the fragment (see visAttr) */
@@ -250,6 +264,10 @@ typedef struct VisSample {
  *  tileCount  uint[tiles + 1]     bin_count, then scanned to offsets; read
  *                                 by bin_fill, raster and resolve
  *  tileCursor uint[tiles]         bin_fill (atomic cursors)
+ *  tileSlot   uint[tiles + 1]     bin_slots flags the non-empty tiles, the
+ *                                 scan turns them into visibility-buffer
+ *                                 slots (last = slot count); read by raster,
+ *                                 resolve, lines_draw and aov
  *  binEntries uint[total]         bin_fill writes setup indices; raster reads
  *  scanPartials ulong[chunks + 1] scan internals (at most 4097)
  *  paintRank  uint[numTris]       host upload with CLR_VISIBILITY_PAINTER

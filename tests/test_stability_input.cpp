@@ -260,12 +260,16 @@ TEST_CASE("stability: a thousand full-screen triangles at 1920x1080, none droppe
   CHECK(badTiles == 0);
   CHECK(size_t(std::count(ids.begin(), ids.end(), n / 2)) == ids.size());
   // Step 2: the same number of triangles in one tile: every buffer but the
-  // bins has the same size, so the device bytes differ by the bins alone.
+  // bins and the visibility buffer (a block per covered tile, shared.h) has
+  // the same size, so the device bytes differ by those alone.
   clr::Pipeline small(test::context());
   small.uploadScene(stackedTriangles(n, false).mesh());
   const clr::FrameStats smallStats = small.render(test::idSettings(W, H), rgba);
   CHECK(smallStats.binEntries == n);
-  CHECK(full.deviceBytes() - small.deviceBytes() == grownBytes(stats.binEntries) - grownBytes(n));
+  const uint64_t fullVis = tiles * 256, smallVis = 256;  // entries per sample plane
+  CHECK(full.deviceBytes() - small.deviceBytes() == grownBytes(stats.binEntries) - grownBytes(n) + grownBytes(fullVis) +
+                                                        grownBytes(3 * fullVis) - grownBytes(smallVis) -
+                                                        grownBytes(3 * smallVis));
 }
 
 TEST_CASE("stability: bins larger than the device's largest allocation are a clear error", "[stability][load]")
