@@ -15,7 +15,7 @@ void Pipeline::resolve()
   const size_t row = size_t(cl_.lanes);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
-                                 cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
+                                 cl::NDRange(CLR_TILE_SIZE / row, row == 1 ? CLR_TILE_SIZE : 1), nullptr, &event);
   record("resolve", event);
 }
 

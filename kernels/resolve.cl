@@ -464,7 +464,12 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }
 
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
+#if CLR_LANES == 1
+#define CLR_RESOLVE_GROUP_Y CLR_TILE_SIZE
+#else
+#define CLR_RESOLVE_GROUP_Y 1
+#endif
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_RESOLVE_GROUP_Y, 1))) void resolve(
     CLR_RESOLVE_PARAMS)
 {
   resolve_row(CLR_RESOLVE_ARGS);
