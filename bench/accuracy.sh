@@ -12,9 +12,9 @@
 #   docs/bench/accuracy_pareto.csv  the Pareto front of each scene
 #   docs/bench/accuracy.md          the table
 #   docs/bench/accuracy.png         the chart
-# Environment: FRAMES (default 7) timed frames after WARMUP (default 2),
-# REF_SAMPLES (default 64, per axis) for the reference. Took about N
-# minutes on the 2-core development machine.
+# Environment: FRAMES (default 15) timed frames after WARMUP (default 3),
+# REF_SAMPLES (default 64, per axis) for the reference. Took about 20 s on
+# the 2-core development machine.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 if ! command -v gnuplot >/dev/null; then
@@ -27,7 +27,7 @@ meshes=("$@")
 ((${#meshes[@]})) || meshes=(/usr/share/assimp/models/OFF/Wuson.off)
 out=docs/bench
 mkdir -p "$out"
-./build/clraster_accuracy "${meshes[@]}" --frames "${FRAMES:-7}" --warmup "${WARMUP:-2}" \
+./build/clraster_accuracy "${meshes[@]}" --frames "${FRAMES:-15}" --warmup "${WARMUP:-3}" \
   --ref-samples "${REF_SAMPLES:-64}" --csv "$out/accuracy.csv" --pareto "$out/accuracy_pareto.csv" \
   --markdown "$out/accuracy.md"
 scenes=$(tail -n +2 "$out/accuracy.csv" | cut -d, -f1 | uniq | tr '\n' ' ')

@@ -28,9 +28,13 @@ namespace clr {
 // anti-aliasing although its silhouettes were visibly stepped.
 constexpr double kAutoTargetRmse = 0.005;
 
-// Tiles per setup triangle above which --quality auto takes hierarchical
-// traversal (bench/accuracy measures the crossover, docs/accuracy.md).
-constexpr double kHierarchicalTilesPerTriangle = 4.0;
+// Tiles per setup triangle (bounding-box binning) above which --quality auto
+// takes hierarchical traversal. Measured at 1920x1080 (clraster render
+// --traversal bbox|hierarchical --frames 15, README "Methods"): hierarchical
+// was 5–15% slower in bin + raster time at 2.2 to 14.5 tiles per triangle
+// (the built-in scene from five distances) and 2.1–4.1x faster at 762 to
+// 6059 (300 long or large slanted triangles); the threshold sits between.
+constexpr double kHierarchicalTilesPerTriangle = 100.0;
 
 struct EdgeContrast {
   uint64_t pixels = 0, edgePixels = 0;
