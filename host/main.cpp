@@ -74,6 +74,7 @@ double msSince(std::chrono::steady_clock::time_point start)
 Mesh loadMesh(const RenderArgs& args)
 {
   Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  for (const std::string& w : mesh.warnings) std::fprintf(stderr, "clraster: warning: %s\n", w.c_str());
   if (args.shadeMode == CLR_SHADE_ID && mesh.numTris() >= (1u << 24) - 1)
     std::fprintf(stderr, "clraster: warning: %zu triangles; --shade id encodes only 24 bits, ids wrap\n",
                  mesh.numTris());

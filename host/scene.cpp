@@ -188,13 +188,19 @@ void loadMaterials(ImportState& state)
           throw Error(state.path + ": material " + std::to_string(m) + " names missing embedded texture '" + name +
                       "'");
         } else {
-          std::string file = name;
+          // A file beside the model ("//" is Blender's "relative to the .blend").
+          std::string file = name.rfind("//", 0) == 0 ? name.substr(2) : name;
           std::replace(file.begin(), file.end(), '\\', '/');
           if (file[0] != '/') file = folder + file;
           try {
             t = loadTextureFile(file);
           } catch (const Error& e) {
-            throw Error(state.path + ": material " + std::to_string(m) + ": " + e.what());
+            // The model itself is sound: render the material untextured and
+            // say so, as other renderers do with a missing texture file.
+            state.mesh.warnings.push_back(state.path + ": material " + std::to_string(m) + ": " + e.what() +
+                                          "; rendered without the texture");
+            state.mesh.materials.push_back(out);
+            continue;
           }
         }
         t.wrapS = wrapMode(wrapU);

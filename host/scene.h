@@ -33,6 +33,7 @@ struct Mesh {
   std::vector<uint32_t> triMaterial;  // 1 per triangle, index into materials; or empty
   std::vector<Material> materials;    // empty: the built-in grey albedo
   std::vector<Texture> textures;      // base-colour textures the materials name
+  std::vector<std::string> warnings;  // what loading left out (a texture file it could not read), one line each
   bool hasTextures() const { return !textures.empty(); }
   size_t numVerts() const { return positions.size() / 3; }
   size_t numTris() const { return indices.size() / 3; }
