@@ -70,7 +70,8 @@ typedef struct ResolveLanes {
   float grad[3][2][CLR_LANES];    // [setup vertex][d/dx, d/dy][lane]: screen barycentric per pixel
 } ResolveLanes;
 
-/* Copies lane `from`'s per-triangle values to lane `to`. */
+/* Copies lane `from`'s per-triangle values to lane `to`: only those the
+ * shading reads (the flags are the same for every lane). */
 CLR_INLINE void resolve_copy_lane(ResolveLanes* g, uint to, uint from)
 {
   g->triId[to] = g->triId[from];
@@ -78,16 +79,17 @@ CLR_INLINE void resolve_copy_lane(ResolveLanes* g, uint to, uint from)
   g->material[to] = g->material[from];
   for (int i = 0; i < 3; ++i) {
     g->invW[i][to] = g->invW[i][from];
-    for (int j = 0; j < 3; ++j) {
-      g->weight[i][j][to] = g->weight[i][j][from];
-      g->normal[i][j][to] = g->normal[i][j][from];
-      g->pos[i][j][to] = g->pos[i][j][from];
-    }
-    for (int j = 0; j < 4; ++j) g->colour[i][j][to] = g->colour[i][j][from];
-    for (int j = 0; j < 2; ++j) {
-      g->uv[i][j][to] = g->uv[i][j][from];
-      g->grad[i][j][to] = g->grad[i][j][from];
-    }
+    for (int j = 0; j < 3; ++j) g->weight[i][j][to] = g->weight[i][j][from];
+    if (g->needNormals)
+      for (int j = 0; j < 3; ++j) g->normal[i][j][to] = g->normal[i][j][from];
+    if (g->needPositions)
+      for (int j = 0; j < 3; ++j) g->pos[i][j][to] = g->pos[i][j][from];
+    if (g->needColours)
+      for (int j = 0; j < 4; ++j) g->colour[i][j][to] = g->colour[i][j][from];
+    if (g->needUvs)
+      for (int j = 0; j < 2; ++j) g->uv[i][j][to] = g->uv[i][j][from];
+    if (g->needGradients)
+      for (int j = 0; j < 2; ++j) g->grad[i][j][to] = g->grad[i][j][from];
   }
 }
 
@@ -140,31 +142,39 @@ CLR_INLINE void resolve_gather(__constant FrameParams* params, const uint* visIn
     // Step 3: gradients of the screen barycentrics per pixel, from the edge
     // functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
     // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; g->needGradients && i < 3; ++i) {
       const int a = (i + 1) % 3, b = (i + 2) % 3;
-      const float scale = covered && g->needGradients ? t.invArea2 * (float)CLR_FIXED_ONE : 0.0f;
+      const float scale = covered ? t.invArea2 * (float)CLR_FIXED_ONE : 0.0f;
       g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
       g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
     }
     // Step 4: the input vertices' attributes that the shading reads.
     for (int j = 0; j < 3; ++j) {
       const uint v = covered ? indices[3 * t.triId + j] : 0;
-      const float3 n = covered && g->needNormals ? vload3(v, normals) : (float3)(0.0f);
-      const float3 p = covered && g->needPositions ? vload3(v, positions) : (float3)(0.0f);
-      const float2 uv = covered && g->needUvs ? vload2(v, uvs) : (float2)(0.0f);
-      const float4 c = covered && g->needColours ? vload4(v, colours) : (float4)(1.0f);
-      g->normal[j][0][lane] = n.x;
-      g->normal[j][1][lane] = n.y;
-      g->normal[j][2][lane] = n.z;
-      g->pos[j][0][lane] = p.x;
-      g->pos[j][1][lane] = p.y;
-      g->pos[j][2][lane] = p.z;
-      g->uv[j][0][lane] = uv.x;
-      g->uv[j][1][lane] = uv.y;
-      g->colour[j][0][lane] = c.x;
-      g->colour[j][1][lane] = c.y;
-      g->colour[j][2][lane] = c.z;
-      g->colour[j][3][lane] = c.w;
+      if (g->needNormals) {
+        const float3 n = covered ? vload3(v, normals) : (float3)(0.0f);
+        g->normal[j][0][lane] = n.x;
+        g->normal[j][1][lane] = n.y;
+        g->normal[j][2][lane] = n.z;
+      }
+      if (g->needPositions) {
+        const float3 p = covered ? vload3(v, positions) : (float3)(0.0f);
+        g->pos[j][0][lane] = p.x;
+        g->pos[j][1][lane] = p.y;
+        g->pos[j][2][lane] = p.z;
+      }
+      if (g->needUvs) {
+        const float2 uv = covered ? vload2(v, uvs) : (float2)(0.0f);
+        g->uv[j][0][lane] = uv.x;
+        g->uv[j][1][lane] = uv.y;
+      }
+      if (g->needColours) {
+        const float4 c = covered ? vload4(v, colours) : (float4)(1.0f);
+        g->colour[j][0][lane] = c.x;
+        g->colour[j][1][lane] = c.y;
+        g->colour[j][2][lane] = c.z;
+        g->colour[j][3][lane] = c.w;
+      }
     }
   }
 }
@@ -413,15 +423,29 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
   uintL colour;
+  const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
+                                    (floatL)(((background >> 8) & 0xFFu) / 255.0f),
+                                    (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
+  const ShadeInputs inputs = {materials, texDescs, texels};
   if (mode == CLR_SHADE_ID) {
     colour = resolve_id(params, visIndex, visPlane, p, count, setup);
+  } else if (samples == 1) {
+    // Step 2a: one sample per pixel, shaded where covered.
+    uint index[CLR_LANES];
+    load_index_lanes(&visIndex[p], count, index);
+    const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
+    ColourL c = backgroundColour;
+    if (CLR_ANY(covered)) {
+      ResolveLanes g;
+      resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
+      const floatL b1 = load_float_lanes(&visAttr[plane + p], count);
+      const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
+      c = colour_select(backgroundColour, resolve_shade(params, &g, &inputs, b1, b2), covered);
+    }
+    colour = pack_rgba(c.r, c.g, c.b);
   } else {
-    // Step 2: each sample plane's colour; MSAA reuses a triangle's colour
+    // Step 2b: each sample plane's colour; MSAA reuses a triangle's colour
     // from the first sample of the pixel that it covers.
-    const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
-                                      (floatL)(((background >> 8) & 0xFFu) / 255.0f),
-                                      (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
-    const ShadeInputs inputs = {materials, texDescs, texels};
     uintL sampleIndex[CLR_MAX_SAMPLES];
     ColourL sampleColour[CLR_MAX_SAMPLES];
     ColourL sum = {0.0f, 0.0f, 0.0f};
