@@ -94,7 +94,7 @@ CLR_INLINE void resolve_copy_lane(ResolveLanes* g, uint to, uint from)
 }
 
 /* visIndex: the lanes' setup indices, CLR_NONE past the viewport's edge. */
-CLR_INLINE void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
+CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
                                __global const ClipBary* clipBary, __global const uint* indices,
                                __global const float* positions, __global const float* normals,
                                __global const float* uvs, __global const float* colours,
@@ -234,7 +234,7 @@ typedef struct ShadeInputs {
 } ShadeInputs;
 
 /* Shades the lanes of one sample plane from its gathered fragments. */
-CLR_INLINE ColourL resolve_shade(__constant FrameParams* params, const ResolveLanes* g, const ShadeInputs* in,
+CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLanes* g, const ShadeInputs* in,
                                  floatL b1, floatL b2)
 {
   // A per-triangle value for every lane: broadcast when the row is uniform.

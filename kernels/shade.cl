@@ -84,9 +84,17 @@ CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Mate
   albedo[1] = CLR_GREY_G;
   albedo[2] = CLR_GREY_B;
   if (!(params->sceneFlags & CLR_SCENE_MATERIALS)) return;
+  const bool textured = (params->sceneFlags & CLR_SCENE_TEXTURES) != 0;
+  // Step 0: one untextured material for the whole row: its factor, once.
+  if (uniform && (!textured || materials[material[0]].texture < 0)) {
+    const Material m = materials[material[0]];
+    albedo[0] = m.baseColor[0];
+    albedo[1] = m.baseColor[1];
+    albedo[2] = m.baseColor[2];
+    return;
+  }
   // Step 1: the lanes' coordinates as scalars.
   float u[CLR_LANES], v[CLR_LANES], ux[CLR_LANES], vx[CLR_LANES], uy[CLR_LANES], vy[CLR_LANES];
-  const bool textured = (params->sceneFlags & CLR_SCENE_TEXTURES) != 0;
   if (textured) {
     CLR_STORE_LANES(uv[0], u);
     CLR_STORE_LANES(uv[1], v);

@@ -20,6 +20,11 @@ typedef uint32_t uint;
 /* Kernel helpers are always inlined: a call left inside PoCL's work-item
  * loop stops it from vectorising that loop across work-items. */
 #define CLR_INLINE inline __attribute__((always_inline))
+/* The few large helpers of resolve are called, not inlined: the CPU shape
+ * runs it with one work-item per work-group, where a call costs nothing to
+ * vectorisation, and inlining them at each call site made its first
+ * compile take most of a cold start. */
+#define CLR_CALLED __attribute__((noinline))
 #endif
 
 /* Marks "no triangle" in a visibility sample. */

@@ -80,7 +80,7 @@ CLR_INLINE float tex_lod(__global const TextureDesc* d, float dudx, float dvdx, 
   return fmin(fmax(lambda, 0.0f), (float)(d->levels - 1));
 }
 
-CLR_INLINE float4 tex_sample(__global const TextureDesc* d, __global const uint* texels, uint filter, float u, float v,
+CLR_CALLED float4 tex_sample(__global const TextureDesc* d, __global const uint* texels, uint filter, float u, float v,
                              float dudx, float dvdx, float dudy, float dvdy)
 {
   if (filter == CLR_FILTER_NEAREST) return tex_nearest(d, texels, u, v);
