@@ -18,7 +18,7 @@ namespace clr {
 
 void Pipeline::aov()
 {
-  aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height);
+  aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
   cl::Event event;
   setArgs(aovKernel_, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(),
           clipBary_.get(), indices_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane());

@@ -24,7 +24,7 @@ void Pipeline::bin()
   binEntries_.reserve(numBinEntries_);
 
   // Step 2b: a block of the visibility buffer for each tile with triangles.
-  tileSlot_.reserve(numTiles_ + 1);
+  tileSlot_.reserve(numTiles_ + 1, true);
   cl::Event slotsEvent;
   setArgs(binSlotsKernel_, tileCount_.get(), numTiles_, tileSlot_.get());
   cl_.queue.enqueueNDRangeKernel(binSlotsKernel_, cl::NullRange, linear(numTiles_), cl::NDRange(64), nullptr,

@@ -31,16 +31,19 @@ class DeviceBuffer {
   DeviceBuffer& operator=(const DeviceBuffer&) = delete;
   ~DeviceBuffer() { memory_->bytesAllocated -= capacity_ * sizeof(T); }
 
-  // Ensures room for n elements (at least one, so kernels always get a buffer).
-  void reserve(uint64_t n)
+  // Ensures room for n elements (at least one, so kernels always get a
+  // buffer). Buffers whose size changes from frame to frame grow with 1/8
+  // slack so that small changes do not reallocate; `exact` buffers, sized
+  // once per scene or viewport (uploads, the image), take what they need.
+  void reserve(uint64_t n, bool exact = false)
   {
     n = n == 0 ? 1 : n;
     if (n <= capacity_) return;
-    const uint64_t grown = n + n / 8;
+    const uint64_t grown = exact ? n : n + n / 8;
     const uint64_t bytes = grown * sizeof(T);
-    const uint64_t exact = n * sizeof(T);
-    if (exact > memory_->maxAllocBytes)
-      throw Error("the frame needs " + std::to_string(exact) + " bytes for " + name_ +
+    const uint64_t needed = n * sizeof(T);
+    if (needed > memory_->maxAllocBytes)
+      throw Error("the frame needs " + std::to_string(needed) + " bytes for " + name_ +
                   ", more than the device's largest allocation (" + std::to_string(memory_->maxAllocBytes) + " bytes)");
     const uint64_t chosen = bytes <= memory_->maxAllocBytes ? grown : n;
     buffer_ = cl::Buffer();
@@ -58,7 +61,7 @@ class DeviceBuffer {
 
   void upload(const std::vector<T>& data)
   {
-    reserve(data.size());
+    reserve(data.size(), true);
     if (!data.empty()) memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
   }
 

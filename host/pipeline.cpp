@@ -163,8 +163,8 @@ void Pipeline::uploadScene(const Mesh& mesh)
   paintOrder_.clear();
   scene_ = mesh;
   resident_ = 0;
-  clipPos_.reserve(mesh.numVerts());
-  triCount_.reserve(mesh.numTris() + 1);
+  clipPos_.reserve(mesh.numVerts(), true);
+  triCount_.reserve(mesh.numTris() + 1, true);
   params_.numVerts = uint32_t(mesh.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
 }

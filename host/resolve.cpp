@@ -6,7 +6,7 @@ namespace clr {
 
 void Pipeline::resolve()
 {
-  image_.reserve(uint64_t(params_.width) * params_.height);
+  image_.reserve(uint64_t(params_.width) * params_.height, true);
   cl::Event event;
   cl::Kernel& kernel = resolveKernel_;
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
