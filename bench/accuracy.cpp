@@ -436,28 +436,24 @@ Args parseArgs(const std::vector<std::string>& argv)
   Args a;
   for (size_t i = 0; i < argv.size(); ++i) {
     const std::string& f = argv[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= argv.size()) throw Error(f + ": missing value");
-      return argv[++i];
-    };
     if (f == "--size")
-      parseSize(f, value(), a.width, a.height);
+      parseSize(f, flagValue(argv, i), a.width, a.height);
     else if (f == "--warmup")
-      a.warmup = uint32_t(parseUnsigned(f, value(), 0, 100));
+      a.warmup = uint32_t(parseUnsigned(f, flagValue(argv, i), 0, 100));
     else if (f == "--frames")
-      a.frames = uint32_t(parseUnsigned(f, value(), 1, 1000));
+      a.frames = uint32_t(parseUnsigned(f, flagValue(argv, i), 1, 1000));
     else if (f == "--ref-samples")
-      a.refSamples = uint32_t(parseUnsigned(f, value(), 1, 256));
+      a.refSamples = uint32_t(parseUnsigned(f, flagValue(argv, i), 1, 256));
     else if (f == "--crop")
-      a.crop = uint32_t(parseUnsigned(f, value(), 8, 4096));
+      a.crop = uint32_t(parseUnsigned(f, flagValue(argv, i), 8, 4096));
     else if (f == "--device")
-      a.device = value();
+      a.device = flagValue(argv, i);
     else if (f == "--csv")
-      a.csvPath = value();
+      a.csvPath = flagValue(argv, i);
     else if (f == "--pareto")
-      a.paretoPath = value();
+      a.paretoPath = flagValue(argv, i);
     else if (f == "--markdown")
-      a.markdownPath = value();
+      a.markdownPath = flagValue(argv, i);
     else if (!f.empty() && f[0] == '-')
       throw Error("unknown option '" + f + "'");
     else

@@ -88,43 +88,35 @@ Args parseArgs(const std::vector<std::string>& args)
   Args r;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + ": missing value");
-      return args[++i];
-    };
     if (a == "--size") {
-      parseSize(a, value(), r.width, r.height);
+      parseSize(a, flagValue(args, i), r.width, r.height);
     } else if (a == "--sphere") {
-      r.sphereTriangles = parseUnsigned(a, value(), 12, 400000000);
+      r.sphereTriangles = parseUnsigned(a, flagValue(args, i), 12, 400000000);
     } else if (a == "--grid") {
-      r.gridSide = uint32_t(parseUnsigned(a, value(), 1, 1000));
+      r.gridSide = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
     } else if (a == "--view") {
-      r.view = value();
+      r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "near") throw Error("--view: '" + r.view + "' is not far or near");
     } else if (a == "--warmup") {
-      r.warmup = uint32_t(parseUnsigned(a, value(), 0, 100000));
+      r.warmup = uint32_t(parseUnsigned(a, flagValue(args, i), 0, 100000));
     } else if (a == "--frames") {
-      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
+      r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
     } else if (a == "--device") {
-      r.device = value();
+      r.device = flagValue(args, i);
     } else if (a == "--no-ids") {
       r.ids = false;
     } else if (a == "--name") {
-      r.name = value();
+      r.name = flagValue(args, i);
     } else if (a == "--csv") {
-      r.csvPath = value();
+      r.csvPath = flagValue(args, i);
     } else if (a == "--images") {
-      r.imagePrefix = value();
+      r.imagePrefix = flagValue(args, i);
     } else if (a == "--peak-int64-gmadds") {
-      r.peakInt64Gmadds = parsePositive(a, value());
+      r.peakInt64Gmadds = parsePositive(a, flagValue(args, i));
     } else if (a == "--peak-copy-gbs") {
-      r.peakCopyGbs = parsePositive(a, value());
-    } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "'");
-    } else if (r.scenePath.empty()) {
-      r.scenePath = a;
+      r.peakCopyGbs = parsePositive(a, flagValue(args, i));
     } else {
-      throw Error("unexpected argument '" + a + "' (only one SCENE)");
+      takeScenePath(a, r.scenePath);
     }
   }
   if (r.sphereTriangles && !r.scenePath.empty()) throw Error("--sphere and a SCENE exclude each other");

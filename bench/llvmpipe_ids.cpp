@@ -54,31 +54,23 @@ Args parseArgs(const std::vector<std::string>& args)
   Args r;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + ": missing value");
-      return args[++i];
-    };
     if (a == "--size") {
-      parseSize(a, value(), r.width, r.height);
+      parseSize(a, flagValue(args, i), r.width, r.height);
     } else if (a == "--device") {
-      r.device = value();
+      r.device = flagValue(args, i);
     } else if (a == "--diff") {
-      r.diffPath = value();
+      r.diffPath = flagValue(args, i);
     } else if (a == "--frames") {
-      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
+      r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
     } else if (a == "--max-diff-fraction") {
-      const std::string& s = value();
+      const std::string& s = flagValue(args, i);
       char* end = nullptr;
       const double f = std::strtod(s.c_str(), &end);
       if (s.empty() || *end != '\0' || !(f >= 0.0 && f <= 1.0))
         throw Error("--max-diff-fraction: '" + s + "' must be a number in [0, 1]");
       r.maxDiffFraction = f;
-    } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "'");
-    } else if (r.scenePath.empty()) {
-      r.scenePath = a;
     } else {
-      throw Error("unexpected argument '" + a + "' (only one SCENE)");
+      takeScenePath(a, r.scenePath);
     }
   }
   return r;

@@ -89,16 +89,12 @@ Args parseArgs(const std::vector<std::string>& args)
   Args r;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + ": missing value");
-      return args[++i];
-    };
     if (a == "--device")
-      r.device = value();
+      r.device = flagValue(args, i);
     else if (a == "--repeats")
-      r.repeats = uint32_t(parseUnsigned(a, value(), 1, 1000));
+      r.repeats = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
     else if (a == "--copy-mib")
-      r.copyMib = uint32_t(parseUnsigned(a, value(), 1, 65536));
+      r.copyMib = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 65536));
     else
       throw Error("unknown argument '" + a + "'");
   }

@@ -49,18 +49,14 @@ Args parseArgs(const std::vector<std::string>& args)
 {
   Args a;
   for (size_t i = 0; i < args.size(); ++i) {
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(args[i] + ": missing value");
-      return args[++i];
-    };
     if (args[i] == "--size")
-      a.size = uint32_t(parseUnsigned("--size", value(), 16, 2048));
+      a.size = uint32_t(parseUnsigned("--size", flagValue(args, i), 16, 2048));
     else if (args[i] == "--device")
-      a.device = value();
+      a.device = flagValue(args, i);
     else if (args[i] == "--csv")
-      a.csv = value();
+      a.csv = flagValue(args, i);
     else if (args[i] == "--summary")
-      a.summary = value();
+      a.summary = flagValue(args, i);
     else
       throw Error("unknown argument '" + args[i] + "'");
   }

@@ -80,6 +80,19 @@ uint32_t parseChoice(const std::string& flag, const std::string& text, std::init
 
 }  // namespace
 
+const std::string& flagValue(const std::vector<std::string>& args, size_t& i)
+{
+  if (i + 1 >= args.size()) throw Error(args[i] + ": missing value");
+  return args[++i];
+}
+
+void takeScenePath(const std::string& arg, std::string& scenePath)
+{
+  if (!arg.empty() && arg[0] == '-') throw Error("unknown option '" + arg + "'");
+  if (!scenePath.empty()) throw Error("unexpected argument '" + arg + "' (only one SCENE)");
+  scenePath = arg;
+}
+
 void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius)
 {
   settings.texFilter = args.texFilter;
@@ -135,36 +148,32 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     // Step 1: flags that take a value.
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw Error(a + ": missing value");
-      return args[++i];
-    };
     if (a == "-o" || a == "--output") {
-      r.outPath = value();
+      r.outPath = flagValue(args, i);
     } else if (a == "--size") {
-      parseSize(a, value(), r.width, r.height);
+      parseSize(a, flagValue(args, i), r.width, r.height);
     } else if (a == "--eye") {
-      r.camera.eye = parseVec3(a, value());
+      r.camera.eye = parseVec3(a, flagValue(args, i));
     } else if (a == "--target") {
-      r.camera.target = parseVec3(a, value());
+      r.camera.target = parseVec3(a, flagValue(args, i));
     } else if (a == "--up") {
-      r.camera.up = parseVec3(a, value());
+      r.camera.up = parseVec3(a, flagValue(args, i));
     } else if (a == "--fov") {
-      r.camera.fovDegrees = parseFloat(a, value());
+      r.camera.fovDegrees = parseFloat(a, flagValue(args, i));
     } else if (a == "--near") {
-      r.camera.zNear = parseFloat(a, value());
+      r.camera.zNear = parseFloat(a, flagValue(args, i));
     } else if (a == "--far") {
-      r.camera.zFar = parseFloat(a, value());
+      r.camera.zFar = parseFloat(a, flagValue(args, i));
     } else if (a == "--shade") {
       // The order is the CLR_SHADE_* numbering.
       r.shadeMode = parseChoice(
-          a, value(),
+          a, flagValue(args, i),
           {"lambert", "normal", "depth", "id", "uv", "checker", "color", "flat", "gouraud", "phong", "texture"});
     } else if (a == "--filter") {
-      r.texFilter = parseChoice(a, value(), {"nearest", "bilinear", "trilinear"});
+      r.texFilter = parseChoice(a, flagValue(args, i), {"nearest", "bilinear", "trilinear"});
     } else if (a == "--light-point") {
       // x,y,z or x,y,z,r.
-      const std::string& text = value();
+      const std::string& text = flagValue(args, i);
       const size_t commas = size_t(std::count(text.begin(), text.end(), ','));
       if (commas == 3) {
         const size_t last = text.rfind(',');
@@ -177,23 +186,23 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       }
       r.pointLightOn = true;
     } else if (a == "--aa") {
-      r.aa = value();
+      r.aa = flagValue(args, i);
       if (r.aa != "auto") findAaMode(r.aa);  // throws for an unknown name
     } else if (a == "--edges") {
-      r.edgeMode = parseChoice(a, value(), {"fixed", "float"});
+      r.edgeMode = parseChoice(a, flagValue(args, i), {"fixed", "float"});
     } else if (a == "--interp") {
-      r.interpMode = parseChoice(a, value(), {"perspective", "affine"});
+      r.interpMode = parseChoice(a, flagValue(args, i), {"perspective", "affine"});
     } else if (a == "--traversal") {
-      r.traversal = parseChoice(a, value(), {"bbox", "hierarchical"});
+      r.traversal = parseChoice(a, flagValue(args, i), {"bbox", "hierarchical"});
     } else if (a == "--depth") {
-      const uint32_t choice = parseChoice(a, value(), {"float32", "unorm24", "reversed", "auto"});
+      const uint32_t choice = parseChoice(a, flagValue(args, i), {"float32", "unorm24", "reversed", "auto"});
       r.depthAuto = choice == 3;
       r.depthMode = r.depthAuto ? CLR_DEPTH_FLOAT32 : choice;
       r.depthGiven = true;
     } else if (a == "--visibility") {
-      r.visibility = parseChoice(a, value(), {"zbuffer", "painter"});
+      r.visibility = parseChoice(a, flagValue(args, i), {"zbuffer", "painter"});
     } else if (a == "--quality") {
-      parseChoice(a, value(), {"auto"});
+      parseChoice(a, flagValue(args, i), {"auto"});
       r.qualityAuto = true;
     } else if (a == "--wireframe") {
       // An optional value: "only" draws the edges alone, "overlay" (the
@@ -202,37 +211,33 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       if (i + 1 < args.size() && (args[i + 1] == "only" || args[i + 1] == "overlay"))
         r.wireframe = args[++i] == "only" ? CLR_WIREFRAME_ONLY : CLR_WIREFRAME_OVERLAY;
     } else if (a == "--line") {
-      r.lineMethod = parseChoice(a, value(), {"aa", "bresenham"}) == 0 ? CLR_LINE_AA : CLR_LINE_BRESENHAM;
+      r.lineMethod = parseChoice(a, flagValue(args, i), {"aa", "bresenham"}) == 0 ? CLR_LINE_AA : CLR_LINE_BRESENHAM;
     } else if (a == "--line-width") {
-      r.lineWidth = parseFloat(a, value());
+      r.lineWidth = parseFloat(a, flagValue(args, i));
       if (!(r.lineWidth > 0.0f && r.lineWidth <= 16.0f)) throw Error("--line-width must lie in (0, 16] pixels");
     } else if (a == "--aov") {
-      r.aovPath = value();
+      r.aovPath = flagValue(args, i);
       if (r.aovPath.empty()) throw Error("--aov: empty path");
     } else if (a == "--cull") {
-      const std::string& s = value();
+      const std::string& s = flagValue(args, i);
       if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");
       r.cullBack = s == "back";
     } else if (a == "--device") {
-      r.device = value();
+      r.device = flagValue(args, i);
     } else if (a == "--frames") {
-      r.frames = uint32_t(parseUnsigned(a, value(), 1, 100000));
+      r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
       framesGiven = true;
     } else if (a == "--views") {
-      r.viewsPath = value();
+      r.viewsPath = flagValue(args, i);
       if (r.viewsPath.empty()) throw Error("--views: empty path");
     } else if (a == "--shard") {
-      r.shard = parseShard(value());
+      r.shard = parseShard(flagValue(args, i));
       shardGiven = true;
       // Step 2: switches and the scene path.
     } else if (a == "--stats") {
       r.stats = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "'");
-    } else if (r.scenePath.empty()) {
-      r.scenePath = a;
     } else {
-      throw Error("unexpected argument '" + a + "' (only one SCENE)");
+      takeScenePath(a, r.scenePath);
     }
   }
   if (r.outPath.empty()) throw Error(r.viewsPath.empty() ? "missing -o OUT.png" : "missing -o OUT_%04d.png");

@@ -60,6 +60,14 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args);
 
 const char* usageText();
 
+// The value after flag args[i], moving i onto it; a clr::Error naming the
+// flag when it is the last argument. Every parse loop of the project uses it.
+const std::string& flagValue(const std::vector<std::string>& args, size_t& i);
+
+// An argument that no flag of the parse loop claimed: an unknown option is
+// an error, otherwise it is the command's one SCENE.
+void takeScenePath(const std::string& arg, std::string& scenePath);
+
 // Shared flag parsers (the bench tools use them too); each throws a
 // clr::Error naming the flag and the bad text.
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi);

@@ -159,7 +159,6 @@ void Pipeline::uploadScene(const Mesh& mesh)
   // Step 2: what every mode reads, now; the rest when a frame reads it.
   positions_.upload(mesh.positions);
   indices_.upload(mesh.indices);
-  hostIndices_.clear();
   paintOrder_.clear();
   scene_ = mesh;
   resident_ = 0;

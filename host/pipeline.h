@@ -181,8 +181,7 @@ class Pipeline {
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
-  DeviceBuffer<uint32_t> paintRank_;   // see shared.h
-  std::vector<uint32_t> hostIndices_;  // the scene's indices, read back at the first painter frame
+  DeviceBuffer<uint32_t> paintRank_;  // see shared.h
   std::vector<uint32_t> paintOrder_;
   DeviceBuffer<LineParams> lineParams_;
   DeviceBuffer<LineSeg> lineSegs_;

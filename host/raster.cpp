@@ -18,16 +18,16 @@ namespace clr {
 
 void Pipeline::sortForPainter()
 {
-  // Step 1: the scene's indices (once) and this frame's clip positions.
+  // Step 1: this frame's clip positions (the indices are the host copy of the scene).
   const uint32_t numTris = params_.numTris;
-  if (hostIndices_.size() != 3 * size_t(numTris)) hostIndices_ = indices_.download(3 * uint64_t(numTris));
+  const std::vector<uint32_t>& indices = scene_.indices;
   const std::vector<cl_float4> clip = clipPos_.download(params_.numVerts);
   // Step 2: each triangle's farthest vertex depth (−inf when all w <= 0).
   const float sign = params_.depthMode == CLR_DEPTH_REVERSED ? -1.0f : 1.0f;
   std::vector<float> key(numTris, -std::numeric_limits<float>::infinity());
   for (uint32_t t = 0; t < numTris; ++t)
     for (int v = 0; v < 3; ++v) {
-      const cl_float4& c = clip[hostIndices_[3 * size_t(t) + v]];
+      const cl_float4& c = clip[indices[3 * size_t(t) + v]];
       if (c.s[3] > 0.0f) key[t] = std::max(key[t], sign * c.s[2] / c.s[3]);
     }
   // Step 3: far to near; ties: the later input triangle first.
