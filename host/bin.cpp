@@ -1,44 +1,52 @@
-// bin.cpp — host side of kernels/bin.cl: count tile overlaps, scan them into
-// per-tile offsets, size binEntries from the exact total, give each
-// non-empty tile its block of the visibility buffer, then fill.
+// bin.cpp — host side of kernels/bin.cl. setup() has counted every
+// triangle's tiles; this scans the counts into per-tile offsets, gives each
+// non-empty tile its block of the visibility buffer, sizes binEntries from
+// the exact total (one synchronisation reads both totals), then emits the
+// unclipped triangles with setup_emit, which fills their bins as it writes
+// their records, and fills the clipped triangles' bins.
 #include "pipeline.h"
 
 namespace clr {
 
 void Pipeline::bin()
 {
-  // Step 1: count the triangles touching each tile.
-  std::vector<cl::Event> fills;
-  tileCount_.zero(numTiles_ + 1, &fills);
-  cl::Event countEvent;
-  setArgs(binCountKernel_, paramsBuf_.get(), setup_.get(), numSetup_, tileCount_.get());
-  cl_.queue.enqueueNDRangeKernel(binCountKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
-                                 &countEvent);
-  record("bin_count", countEvent);
-
-  // Step 2: offsets; the bins take exactly the memory the counts ask for.
-  numBinEntries_ = scan(tileCount_, numTiles_, "bin_scan");
-  if (numBinEntries_ > UINT32_MAX)
-    throw Error("the frame needs " + std::to_string(numBinEntries_) +
-                " bin entries, more than the 2^32 a 32-bit offset can address");
-  binEntries_.reserve(numBinEntries_);
-
-  // Step 2b: a block of the visibility buffer for each tile with triangles.
+  // Step 1: a slot of the visibility buffer for each tile with triangles,
+  // from the counts; then both scans, and their totals in one read.
   tileSlot_.reserve(numTiles_ + 1, true);
   cl::Event slotsEvent;
   setArgs(binSlotsKernel_, tileCount_.get(), numTiles_, tileSlot_.get());
   cl_.queue.enqueueNDRangeKernel(binSlotsKernel_, cl::NullRange, linear(numTiles_), cl::NDRange(64), nullptr,
                                  &slotsEvent);
   record("bin_slots", slotsEvent);
-  numVisSlots_ = uint32_t(scan(tileSlot_, numTiles_, "bin_slots"));
+  cl_ulong binTotal = 0, slotTotal = 0;
+  scan(tileCount_, numTiles_, "bin_scan", &binTotal);
+  scan(tileSlot_, numTiles_, "bin_slots", &slotTotal);
+  cl_.queue.finish();
+  numBinEntries_ = binTotal;
+  numVisSlots_ = uint32_t(slotTotal);
+  if (numBinEntries_ > UINT32_MAX)
+    throw Error("the frame needs " + std::to_string(numBinEntries_) +
+                " bin entries, more than the 2^32 a 32-bit offset can address");
+  binEntries_.reserve(numBinEntries_);
 
-  // Step 3: fill.
+  // Step 2: emit the unclipped triangles into the setup buffer and their bins.
+  std::vector<cl::Event> fills;
   tileCursor_.zero(numTiles_, &fills);
+  const uint32_t batches = (params_.numTris + cl_.lanes - 1) / cl_.lanes;
+  cl::Event emitEvent;
+  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), setup_.get(),
+          tileCount_.get(), tileCursor_.get(), binEntries_.get());
+  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
+                                 &emitEvent);
+  record("setup_emit", emitEvent);
+
+  // Step 3: the clipped triangles' bins.
+  if (numClipped_ == 0) return;
   cl::Event fillEvent;
-  setArgs(binFillKernel_, paramsBuf_.get(), setup_.get(), numSetup_, tileCount_.get(), tileCursor_.get(),
-          binEntries_.get());
-  cl_.queue.enqueueNDRangeKernel(binFillKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
-                                 &fillEvent);
+  setArgs(binFillClippedKernel_, paramsBuf_.get(), setup_.get(), triCount_.get(), clipList_.get(), numClipped_,
+          tileCount_.get(), tileCursor_.get(), binEntries_.get());
+  cl_.queue.enqueueNDRangeKernel(binFillClippedKernel_, cl::NullRange, linear(uint64_t(numClipped_) * CLR_MAX_SUBTRIS),
+                                 cl::NDRange(64), nullptr, &fillEvent);
   record("bin_fill", fillEvent);
 }
 

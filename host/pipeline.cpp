@@ -118,13 +118,13 @@ Pipeline::Pipeline(ClContext& cl)
   scanReduceKernel_ = cl::Kernel(cl.program, "scan_reduce");
   scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_apply");
-  binCountKernel_ = cl::Kernel(cl.program, "bin_count");
-  binFillKernel_ = cl::Kernel(cl.program, "bin_fill");
+  binFillClippedKernel_ = cl::Kernel(cl.program, "bin_fill_clipped");
   binSlotsKernel_ = cl::Kernel(cl.program, "bin_slots");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
   rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
+  resolveLambertKernel_ = cl::Kernel(cl.program, "resolve_lambert");
   linesFromSetupKernel_ = cl::Kernel(cl.program, "lines_from_setup");
   linesBinCountKernel_ = cl::Kernel(cl.program, "lines_bin_count");
   linesBinFillKernel_ = cl::Kernel(cl.program, "lines_bin_fill");
@@ -252,6 +252,7 @@ FrameStats Pipeline::finishFrame()
   stats.setupTriangles = numSetup_ - counters[CLR_COUNTER_DEAD_RECORDS];
   numClipSlots_ = counters[CLR_COUNTER_CLIP_SLOTS];
   stats.binEntries = numBinEntries_;
+  stats.leanResolve = leanResolve_;
   return stats;
 }
 

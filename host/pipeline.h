@@ -49,6 +49,9 @@ struct FrameSettings {
   uint32_t wireframe = CLR_WIREFRAME_OFF;
   uint32_t lineMethod = CLR_LINE_AA;
   float lineWidth = 1.0f;
+  // Lets resolve use its lean lambert kernel when the frame qualifies
+  // (Pipeline::resolve); tests turn it off to compare the two kernels.
+  bool leanResolve = true;
 };
 
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
@@ -61,6 +64,7 @@ struct FrameStats {
   uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
   uint64_t setupTriangles = 0;    // screen triangles after clipping
   uint64_t binEntries = 0;
+  bool leanResolve = false;  // resolve ran its lean lambert kernel (resolve.cl)
 };
 
 class Pipeline {
@@ -127,7 +131,7 @@ class Pipeline {
 
  private:
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
-  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage);
+  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total = nullptr);
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
@@ -152,6 +156,8 @@ class Pipeline {
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
+  bool leanResolve_ = false;   // this frame's resolve kernel was resolve_lambert
+  uint32_t numClipped_ = 0;    // input triangles clipped this frame (clip list length)
   uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
   uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
@@ -160,9 +166,9 @@ class Pipeline {
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binCountKernel_, binFillKernel_, binSlotsKernel_, rasterKernel_,
-      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, linesFromSetupKernel_, linesBinCountKernel_,
-      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, binSlotsKernel_, rasterKernel_,
+      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_,
+      linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

@@ -1,12 +1,13 @@
 // scan.cpp — host side of kernels/scan.cl: an exclusive in-place prefix sum
 // over n counts (data has n + 1 slots; data[n] receives the total). The
 // 64-bit total is read back, so callers size buffers exactly and detect
-// totals that do not fit in 32 bits.
+// totals that do not fit in 32 bits; or the read is enqueued, so that
+// several scans share one synchronisation.
 #include "pipeline.h"
 
 namespace clr {
 
-uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage)
+uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total)
 {
   // Step 1: at most 4096 chunks of at least 64 counts each.
   const uint32_t chunk = std::max<uint32_t>(64, (n + 4095) / 4096);
@@ -28,7 +29,12 @@ uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* st
   record(stage, partialsEvent);
   record(stage, applyEvent);
 
-  // Step 3: the 64-bit total.
+  // Step 3: the 64-bit total: read now, or (with `total`) enqueued to land
+  // in *total, valid once the queue has finished.
+  if (total) {
+    cl_.queue.enqueueReadBuffer(scanPartials_.get(), CL_FALSE, numChunks * sizeof(cl_ulong), sizeof(cl_ulong), total);
+    return 0;
+  }
   return scanPartials_.download(1, numChunks)[0];
 }
 

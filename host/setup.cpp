@@ -1,7 +1,9 @@
 // setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
-// triangles each input triangle yields, scan the counts into offsets, size
-// the setup and ClipBary buffers from the totals, then emit the unclipped
-// triangles and clip the listed ones.
+// triangles each input triangle yields (and, for binning, the tiles each
+// unclipped one touches), scan the counts into offsets, size the setup and
+// ClipBary buffers from the totals, and clip the listed triangles (counting
+// their tiles too). The unclipped triangles are emitted by bin() once the
+// tile offsets are known, because setup_emit also fills their bins.
 #include "pipeline.h"
 
 namespace clr {
@@ -15,9 +17,11 @@ void Pipeline::setup()
   uint32_t clipped = 0;
   uint64_t total = 0;
   for (;;) {
+    std::vector<cl::Event> fills;
+    tileCount_.zero(numTiles_ + 1, &fills);
     cl::Event countEvent;
     setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
-            clipList_.get(), uint32_t(clipList_.capacity()));
+            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get());
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                    &countEvent);
     record("setup_count", countEvent);
@@ -32,21 +36,15 @@ void Pipeline::setup()
   // Step 2: the sizes of this frame's outputs.
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
   numSetup_ = uint32_t(total);
+  numClipped_ = clipped;
   setup_.reserve(numSetup_);
   clipBary_.reserve(uint64_t(clipped) * CLR_MAX_SUBTRIS);
 
-  // Step 3: emit the unclipped triangles.
-  cl::Event emitEvent;
-  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), setup_.get());
-  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
-                                 &emitEvent);
-  record("setup_emit", emitEvent);
-
-  // Step 4: clip the listed triangles into their reserved slots.
+  // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
   setArgs(setupClipKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), clipList_.get(),
-          setup_.get(), clipBary_.get(), counters_.get());
+          setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
   cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
                                  &clipEvent);
   record("setup_clip", clipEvent);

@@ -1,17 +1,52 @@
 /* bin.cl — stage 4: binning screen triangles into CLR_TILE_SIZE² tiles.
  *
  * Two passes with a scan between them, so memory follows the actual counts
- * and no triangle is ever dropped: bin_count adds one to every tile that a
- * triangle's pixel bounds touch; the host scans the counts into offsets,
- * sizes binEntries from the total, and bin_fill writes each triangle's setup
- * index into its tiles. The order inside a tile is not deterministic; the
- * raster kernel breaks depth ties by setup index, which is input order.
- * With hierarchical traversal (FrameParams.traversal) a tile of the bounds
- * is skipped when all of it lies strictly outside one edge: the edge
- * function is linear, so its largest value over the tile's rectangle is at
- * a corner, and a negative maximum leaves every sample of the tile outside,
- * whatever the fill rule.
+ * and no triangle is ever dropped. The passes ride on setup's (setup.cl):
+ * setup_count adds one to every tile an unclipped triangle's pixel bounds
+ * touch (bin_count_tiles) while it counts screen triangles, and setup_clip
+ * does the same for the sub-triangles it writes; the host scans the tile
+ * counts into offsets, sizes binEntries from the total and gives each
+ * non-empty tile its block of the visibility buffer (bin_slots, shared.h);
+ * then setup_emit writes each unclipped triangle's record and its bin
+ * entries in one pass (bin_fill_tiles), and bin_fill_clipped fills the
+ * entries of the clipped triangles' records. Fusing the passes this way
+ * saves reading every setup record twice more. The order inside a tile is
+ * not deterministic; the raster kernel breaks depth ties by setup index,
+ * which is input order. With hierarchical traversal (FrameParams.traversal)
+ * a tile of the bounds is skipped when all of it lies strictly outside one
+ * edge: the edge function is linear, so its largest value over the tile's
+ * rectangle is at a corner, and a negative maximum leaves every sample of
+ * the tile outside, whatever the fill rule.
  */
+
+/* Floor and ceiling of a / CLR_FIXED_ONE for signed a. */
+CLR_INLINE int fixed_floor(int a)
+{
+  return a >> CLR_SUBPIXEL_BITS;
+}
+CLR_INLINE int fixed_ceil(int a)
+{
+  return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
+}
+
+/* Inclusive pixel range that can hold a sample of the triangle, clamped to
+ * the viewport: pixel i's samples lie at i·ONE + HALF + offset with the
+ * offset in [sampleMin, sampleMax] (FrameParams), so with one sample at the
+ * centre this is the range of pixel centres (i + 0.5) in the bounds. Empty
+ * when x0 > x1 or y0 > y1. setup_make computes the same in lane types. */
+CLR_INLINE int4 bin_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
+{
+  const int minX = min(t->x[0], min(t->x[1], t->x[2]));
+  const int maxX = max(t->x[0], max(t->x[1], t->x[2]));
+  const int minY = min(t->y[0], min(t->y[1], t->y[2]));
+  const int maxY = max(t->y[0], max(t->y[1], t->y[2]));
+  int4 r;
+  r.x = max(0, fixed_ceil(minX - CLR_FIXED_HALF - params->sampleMaxX));
+  r.y = max(0, fixed_ceil(minY - CLR_FIXED_HALF - params->sampleMaxY));
+  r.z = min((int)params->width - 1, fixed_floor(maxX - CLR_FIXED_HALF - params->sampleMinX));
+  r.w = min((int)params->height - 1, fixed_floor(maxY - CLR_FIXED_HALF - params->sampleMinY));
+  return r;
+}
 
 /* Edge function of a→b at one point, exact in 64 bits (fixed.h). */
 CLR_INLINE long bin_edge_at(int ax, int ay, int bx, int by, int px, int py)
@@ -48,47 +83,73 @@ CLR_INLINE int bin_tile_class(const TriSetup* t, __constant FrameParams* params,
 CLR_INLINE int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
 {
   if (t->flags & CLR_FLAG_DEAD) return (int4)(0, 0, -1, -1);
-  const int4 px = setup_pixel_bounds(t, params);
-  return px / CLR_TILE_SIZE;
+  return bin_pixel_bounds(t, params) / CLR_TILE_SIZE;
 }
 
-__kernel void bin_count(__constant FrameParams* params, __global const TriSetup* setup, uint numSetup,
-                        __global uint* tileCount)  // tiles + 1
+/* True when hierarchical traversal tests triangle tiles of range r. */
+CLR_INLINE bool bin_hierarchical(__constant FrameParams* params, int4 r)
 {
-  const uint s = get_global_id(0);
-  if (s >= numSetup) return;
-  const TriSetup t = setup[s];
-  const int4 r = bin_tile_range(&t, params);
-  const bool hierarchical = params->traversal == CLR_TRAVERSAL_HIERARCHICAL && (r.z > r.x || r.w > r.y);
+  return params->traversal == CLR_TRAVERSAL_HIERARCHICAL && (r.z > r.x || r.w > r.y);
+}
+
+/* Pass 1: adds one to the count of each tile of r (the triangle's tile
+ * range) that hierarchical traversal does not reject; t is read only when
+ * bin_hierarchical(params, r). */
+CLR_INLINE void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParams* params, __global uint* tileCount)
+{
+  const bool hierarchical = bin_hierarchical(params, r);
   for (int ty = r.y; ty <= r.w; ++ty)
     for (int tx = r.x; tx <= r.z; ++tx)
-      if (!hierarchical || bin_tile_class(&t, params, tx, ty) >= 0) atomic_inc(&tileCount[ty * params->tilesX + tx]);
+      if (!hierarchical || bin_tile_class(t, params, tx, ty) >= 0) atomic_inc(&tileCount[ty * params->tilesX + tx]);
 }
 
-__kernel void bin_fill(__constant FrameParams* params, __global const TriSetup* setup, uint numSetup,
-                       __global const uint* tileOffset,  // tiles + 1, scanned
-                       __global uint* tileCursor,        // tiles, zeroed
-                       __global uint* binEntries)        // tileOffset[tiles]
+/* Pass 2: writes setup index s into the same tiles, at the scanned offset
+ * plus a per-tile cursor. */
+CLR_INLINE void bin_fill_tiles(const TriSetup* t, int4 r, uint s, __constant FrameParams* params,
+                               __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
-  const uint s = get_global_id(0);
-  if (s >= numSetup) return;
-  const TriSetup t = setup[s];
-  const int4 r = bin_tile_range(&t, params);
-  const bool hierarchical = params->traversal == CLR_TRAVERSAL_HIERARCHICAL && (r.z > r.x || r.w > r.y);
+  const bool hierarchical = bin_hierarchical(params, r);
   for (int ty = r.y; ty <= r.w; ++ty)
     for (int tx = r.x; tx <= r.z; ++tx) {
-      if (hierarchical && bin_tile_class(&t, params, tx, ty) < 0) continue;
+      if (hierarchical && bin_tile_class(t, params, tx, ty) < 0) continue;
       const uint tile = ty * params->tilesX + tx;
       binEntries[tileOffset[tile] + atomic_inc(&tileCursor[tile])] = s;
     }
 }
 
-/* One per tile: 1 when its bin holds a triangle. The host scans these into
- * each tile's slot in the visibility buffer (shared.h) and sizes the buffer
- * from the total. */
-__kernel void bin_slots(__global const uint* tileOffset,         // tiles + 1, scanned
+/* Pass 2 for a run of triangles binned to one tile: one atomic add takes
+ * their entries. */
+CLR_INLINE void bin_fill_run(uint tile, const uint* setupIndex, uint count, __global const uint* tileOffset,
+                             __global uint* tileCursor, __global uint* binEntries)
+{
+  const uint at = tileOffset[tile] + atomic_add(&tileCursor[tile], count);
+  for (uint i = 0; i < count; ++i) binEntries[at + i] = setupIndex[i];
+}
+
+/* Pass 2 for clipped triangles: their records lie in CLR_MAX_SUBTRIS
+ * reserved slots from triOffset[clipList[i]] (setup_clip); one work-item per
+ * slot, padding records skipped. */
+__kernel void bin_fill_clipped(__constant FrameParams* params, __global const TriSetup* setup,
+                               __global const uint* triOffset,   // numTris + 1, scanned
+                               __global const uint* clipList,    // CLIPPED_TRIS counter
+                               uint numClipped,                  // clipList entries
+                               __global const uint* tileOffset,  // tiles + 1, scanned
+                               __global uint* tileCursor,        // tiles
+                               __global uint* binEntries)        // tileOffset[tiles]
+{
+  const uint i = get_global_id(0);
+  if (i >= numClipped * CLR_MAX_SUBTRIS) return;
+  const uint s = triOffset[clipList[i / CLR_MAX_SUBTRIS]] + i % CLR_MAX_SUBTRIS;
+  const TriSetup t = setup[s];
+  bin_fill_tiles(&t, bin_tile_range(&t, params), s, params, tileOffset, tileCursor, binEntries);
+}
+
+/* One per tile, from the tile counts before their scan: 1 when its bin
+ * holds a triangle. The host scans these into each tile's slot in the
+ * visibility buffer (shared.h) and sizes the buffer from the total. */
+__kernel void bin_slots(__global const uint* tileCount,          // tiles + 1, not yet scanned
                         uint numTiles, __global uint* tileSlot)  // tiles + 1
 {
   const uint t = get_global_id(0);
-  if (t < numTiles) tileSlot[t] = tileOffset[t + 1] != tileOffset[t] ? 1u : 0u;
+  if (t < numTiles) tileSlot[t] = tileCount[t] != 0 ? 1u : 0u;
 }

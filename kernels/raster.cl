@@ -185,6 +185,38 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
 }
 
+/* raster_row with fixed edges over rows rowBegin .. rowEnd of one column of
+ * a tile, the first at sample y firstSy: the edge functions are evaluated
+ * once, then stepped by their exact y increment (bx − ax)·CLR_FIXED_ONE per
+ * row, so each row costs additions instead of 64-bit multiplies and gives
+ * the same integers. */
+CLR_INLINE void raster_rows_fixed(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
+                                  RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)
+{
+  // Step 1: the three edge functions at the first row, their row steps and
+  // the fill rule's thresholds (inside when e > −bias).
+  longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);
+  longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);
+  longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);
+  const long step0 = (long)(t->x[2] - t->x[1]) * CLR_FIXED_ONE, step1 = (long)(t->x[0] - t->x[2]) * CLR_FIXED_ONE,
+             step2 = (long)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;
+  const long low0 = -edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);
+  const long low1 = -edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);
+  const long low2 = -edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);
+  const float invArea2 = t->invArea2;
+  // Step 2: each row: coverage, barycentrics, depth test; then step.
+  for (int row = rowBegin; row <= rowEnd; ++row) {
+    intL inside = (intL)(-1);
+    if (!acceptAll) inside = convert_intL((e0 > low0) & (e1 > low1) & (e2 > low2));
+    if (acceptAll || CLR_ANY(inside))
+      raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], rule,
+                        rank);
+    e0 += step0;
+    e1 += step1;
+    e2 += step2;
+  }
+}
+
 /* Writes a row segment of samples into sample plane k of the visibility
  * buffer (shared.h) at address a of the plane: one vector store per plane.
  * The tile's block has room for its whole rows, so lanes past the
@@ -292,12 +324,14 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
     for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
       const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX;
       if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
+      if (edgeMode == CLR_EDGES_FIXED) {
+        raster_rows_fixed(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+                          &rule, rank, hierarchical && acceptAll);
+        continue;
+      }
       for (int row = rowBegin; row <= rowEnd; ++row) {
         const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
-        if (hierarchical && acceptAll)
-          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, true);
-        else
-          raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, false);
+        raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, false);
       }
     }
   }

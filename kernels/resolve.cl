@@ -488,13 +488,131 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }
 
-#if CLR_LANES == 1
-#define CLR_RESOLVE_GROUP_Y CLR_TILE_SIZE
-#else
-#define CLR_RESOLVE_GROUP_Y 1
-#endif
-__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_RESOLVE_GROUP_Y, 1))) void resolve(
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
     CLR_RESOLVE_PARAMS)
 {
   resolve_row(CLR_RESOLVE_ARGS);
+}
+
+/* The common case, lean: lambert at one sample per pixel with the 1/w rule,
+ * the directional light only, and no textures or vertex colours (materials
+ * give each triangle a flat base colour). The host launches this kernel
+ * instead of resolve when a frame is such a case (Pipeline::resolve). It
+ * gathers only the per-lane values lambert reads and computes them with the
+ * same operations in the same order as resolve_shade, so both kernels give
+ * bit-identical pixels (a test holds them to that); it is a separate kernel
+ * because the general one's gathers and branches cost twice the time and
+ * most of a cold start's compile. */
+__kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve_lambert(
+    CLR_RESOLVE_PARAMS)
+{
+  const uint firstX = get_global_id(0) * CLR_LANES, py = get_global_id(1);
+  if (py >= params->height || firstX >= params->width) return;
+  const uint count = min((uint)CLR_LANES, params->width - firstX);
+  __global uint* out = &image[(params->height - 1 - py) * params->width + firstX];
+  const uint background = 0xFF261F1Au;
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
+  if (tileOffset[tile] == tileOffset[tile + 1]) {
+    for (uint lane = 0; lane < count; ++lane) out[lane] = background;
+    return;
+  }
+  const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
+  uint index[CLR_LANES];
+  load_index_lanes(&visIndex[p], count, index);
+  const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
+  uintL colour = (uintL)background;
+  if (CLR_ANY(covered)) {
+    // Step 1: gathers in stages, each a branch-free loop over the lanes
+    // whose loads do not depend on each other (so the CPU overlaps their
+    // cache misses): the setup records, then vertex indices and materials,
+    // then normals and base colours. Uncovered lanes read record 0 (a tile
+    // with a bin has one) and are replaced by the background at the end.
+    uint triId[CLR_LANES], flags[CLR_LANES], clipSlot[CLR_LANES], vertex[3][CLR_LANES];
+    float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      __global const TriSetup* t = &setup[index[lane] != CLR_NONE ? index[lane] : 0];
+      triId[lane] = t->triId;
+      flags[lane] = t->flags;
+      clipSlot[lane] = t->clipSlot;
+      for (int i = 0; i < 3; ++i) invW[i][lane] = t->invW[i];
+    }
+    const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
+    uint material[CLR_LANES];
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * triId[lane] + j];
+      material[lane] = materialsOn ? triMaterial[triId[lane]] : 0;
+    }
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      for (int j = 0; j < 3; ++j) {
+        const float3 n = vload3(vertex[j][lane], normals);
+        normal[j][0][lane] = n.x;
+        normal[j][1][lane] = n.y;
+        normal[j][2][lane] = n.z;
+      }
+      const Material m = materials[material[lane]];
+      albedo[0][lane] = materialsOn ? m.baseColor[0] : CLR_GREY_R;
+      albedo[1][lane] = materialsOn ? m.baseColor[1] : CLR_GREY_G;
+      albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
+    }
+    // The weight of input vertex j in setup vertex i: identity, vertices 1
+    // and 2 swapped for a back face, or ClipBary for a clipped triangle.
+    const uintL flagsL = CLR_LOAD_LANES(flags);
+    const intL clippedL = (CLR_LOAD_LANES(clipSlot) != CLR_NOT_CLIPPED) & covered;
+    const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
+    const floatL one = 1.0f, zero = 0.0f;
+    floatL weight[3][3] = {{one, zero, zero},
+                           {zero, select(one, zero, swappedL), select(zero, one, swappedL)},
+                           {zero, select(zero, one, swappedL), select(one, zero, swappedL)}};
+    if (CLR_ANY(clippedL)) {
+      int clippedLane[CLR_LANES];
+      CLR_STORE_LANES(clippedL, clippedLane);
+      float w[3][3][CLR_LANES];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) CLR_STORE_LANES(weight[i][j], w[i][j]);
+      for (uint lane = 0; lane < CLR_LANES; ++lane)
+        if (clippedLane[lane])
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) w[i][j][lane] = clipBary[clipSlot[lane]].w[i][j];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) weight[i][j] = CLR_LOAD_LANES(w[i][j]);
+    }
+    // Step 2: resolve_shade's lambert path in lane types.
+    const floatL b1 = load_float_lanes(&visAttr[plane + p], count);
+    const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
+    const floatL b[3] = {1.0f - b1 - b2, b1, b2};
+    floatL q[3], lambda[3];
+    for (int i = 0; i < 3; ++i) q[i] = CLR_LOAD_LANES(invW[i]);
+    const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
+    for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
+    floatL mu[3], n[3];
+    for (int j = 0; j < 3; ++j) {
+      mu[j] = 0.0f;
+      for (int i = 0; i < 3; ++i) mu[j] += lambda[i] * weight[i][j];
+    }
+    for (int k = 0; k < 3; ++k) {
+      n[k] = 0.0f;
+      for (int j = 0; j < 3; ++j) n[k] += mu[j] * CLR_LOAD_LANES(normal[j][k]);
+    }
+    resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, (flagsL & CLR_FLAG_BACKFACING) != 0u));
+    floatL diffuse, specular;
+    const floatL p0[3] = {0.0f, 0.0f, 0.0f};
+    shade_lights(params, n, p0, false, &diffuse, &specular);
+    const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
+    const ColourL lit =
+        colour_make(CLR_LOAD_LANES(albedo[0]) * light + highlight, CLR_LOAD_LANES(albedo[1]) * light + highlight,
+                    CLR_LOAD_LANES(albedo[2]) * light + highlight);
+    const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
+                                      (floatL)(((background >> 8) & 0xFFu) / 255.0f),
+                                      (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
+    const ColourL c = colour_select(backgroundColour, lit, covered);
+    colour = pack_rgba(c.r, c.g, c.b);
+  }
+  // Step 3: store the row.
+  if (count == CLR_LANES) {
+    CLR_STORE_LANES(colour, out);
+    return;
+  }
+  uint result[CLR_LANES];
+  CLR_STORE_LANES(colour, result);
+  for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }

@@ -15,38 +15,11 @@
  * slots with CLR_FLAG_DEAD records that binning skips. Output order is input
  * order, whatever the scheduling. setup_count and setup_emit handle
  * CLR_LANES triangles per work-item (lanes.h): 16 in vector types on a CPU.
- * The rare clipping path runs in its own, scalar kernel.
+ * The rare clipping path runs in its own, scalar kernel. Binning (bin.cl)
+ * rides on these passes: setup_count and setup_clip count each triangle's
+ * tiles, and setup_emit writes the unclipped triangles' bin entries.
  */
 #pragma OPENCL FP_CONTRACT OFF
-
-/* Floor and ceiling of a / CLR_FIXED_ONE for signed a. */
-CLR_INLINE int fixed_floor(int a)
-{
-  return a >> CLR_SUBPIXEL_BITS;
-}
-CLR_INLINE int fixed_ceil(int a)
-{
-  return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
-}
-
-/* Inclusive pixel range that can hold a sample of the triangle, clamped to
- * the viewport: pixel i's samples lie at i·ONE + HALF + offset with the
- * offset in [sampleMin, sampleMax] (FrameParams), so with one sample at the
- * centre this is the range of pixel centres (i + 0.5) in the bounds. Empty
- * when x0 > x1 or y0 > y1. */
-CLR_INLINE int4 setup_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
-{
-  const int minX = min(t->x[0], min(t->x[1], t->x[2]));
-  const int maxX = max(t->x[0], max(t->x[1], t->x[2]));
-  const int minY = min(t->y[0], min(t->y[1], t->y[2]));
-  const int maxY = max(t->y[0], max(t->y[1], t->y[2]));
-  int4 r;
-  r.x = max(0, fixed_ceil(minX - CLR_FIXED_HALF - params->sampleMaxX));
-  r.y = max(0, fixed_ceil(minY - CLR_FIXED_HALF - params->sampleMaxY));
-  r.z = min((int)params->width - 1, fixed_floor(maxX - CLR_FIXED_HALF - params->sampleMinX));
-  r.w = min((int)params->height - 1, fixed_floor(maxY - CLR_FIXED_HALF - params->sampleMinY));
-  return r;
-}
 
 /* CLR_LANES triangles' clip-space vertices, one lane per triangle. */
 typedef struct ClipBatch {
@@ -58,7 +31,8 @@ typedef struct SetupBatch {
   intL x[3], y[3];
   floatL z[3], invW[3];
   floatL invArea2;
-  intL back;  // mask: wound clockwise, vertices 1 and 2 swapped
+  intL back;                            // mask: wound clockwise, vertices 1 and 2 swapped
+  intL tileX0, tileY0, tileX1, tileY1;  // tiles of the pixel bounds (bin_tile_range)
 } SetupBatch;
 
 /* The same, unpacked to arrays so single lanes can be read. */
@@ -67,6 +41,7 @@ typedef struct SetupLanes {
   float z[3][CLR_LANES], invW[3][CLR_LANES];
   float invArea2[CLR_LANES];
   int back[CLR_LANES];
+  int tileX0[CLR_LANES], tileY0[CLR_LANES], tileX1[CLR_LANES], tileY1[CLR_LANES];
 } SetupLanes;
 
 /* How an input triangle is handled. */
@@ -178,7 +153,8 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->invW[2] = select(out->invW[2], w1, back);
   area2 = select(area2, -area2, convert_longL(back));
   out->back = back;
-  // Step 4: cull triangles whose bounds hold no sample (as setup_pixel_bounds).
+  // Step 4: cull triangles whose bounds hold no sample (as bin_pixel_bounds),
+  // and keep the bounds' tiles for binning.
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
   const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
   const intL x0 = max((minX - (CLR_FIXED_HALF + params->sampleMaxX) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
@@ -188,6 +164,10 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   const intL yEnd =
       min((maxY - (CLR_FIXED_HALF + params->sampleMinY)) >> CLR_SUBPIXEL_BITS, (intL)((int)params->height - 1));
   valid = valid & (x0 <= xEnd) & (y0 <= yEnd);
+  out->tileX0 = x0 / CLR_TILE_SIZE;
+  out->tileY0 = y0 / CLR_TILE_SIZE;
+  out->tileX1 = xEnd / CLR_TILE_SIZE;
+  out->tileY1 = yEnd / CLR_TILE_SIZE;
   out->invArea2 = 1.0f / convert_floatL(area2);
   return valid;
 }
@@ -202,31 +182,45 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
   }
   CLR_STORE_LANES(b->invArea2, l->invArea2);
   CLR_STORE_LANES(b->back, l->back);
+  CLR_STORE_LANES(b->tileX0, l->tileX0);
+  CLR_STORE_LANES(b->tileY0, l->tileY0);
+  CLR_STORE_LANES(b->tileX1, l->tileX1);
+  CLR_STORE_LANES(b->tileY1, l->tileY1);
 }
 
-/* Writes one lane as a TriSetup record. */
-CLR_INLINE void setup_store(__global TriSetup* dst, const SetupLanes* l, int lane, uint triId, uint clipSlot)
+/* One lane as a TriSetup record. (An out parameter rather than a returned
+ * struct: Oclgrind cannot run the noalias marker an inlined struct return
+ * leaves behind.) */
+CLR_INLINE void setup_lane(const SetupLanes* l, int lane, uint triId, uint clipSlot, TriSetup* t)
 {
   for (int v = 0; v < 3; ++v) {
-    dst->x[v] = l->x[v][lane];
-    dst->y[v] = l->y[v][lane];
-    dst->z[v] = l->z[v][lane];
-    dst->invW[v] = l->invW[v][lane];
+    t->x[v] = l->x[v][lane];
+    t->y[v] = l->y[v][lane];
+    t->z[v] = l->z[v][lane];
+    t->invW[v] = l->invW[v][lane];
   }
-  dst->invArea2 = l->invArea2[lane];
-  dst->triId = triId;
-  dst->clipSlot = clipSlot;
-  dst->flags = l->back[lane] ? CLR_FLAG_BACKFACING : 0u;
+  t->invArea2 = l->invArea2[lane];
+  t->triId = triId;
+  t->clipSlot = clipSlot;
+  t->flags = l->back[lane] ? CLR_FLAG_BACKFACING : 0u;
 }
 
-/* Pass 1: how many screen triangles each input triangle yields. */
+/* One lane's tile range (bin_tile_range). */
+CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
+{
+  return (int4)(l->tileX0[lane], l->tileY0[lane], l->tileX1[lane], l->tileY1[lane]);
+}
+
+/* Pass 1: how many screen triangles each input triangle yields, and the
+ * unclipped ones' tiles counted (bin_count_tiles). */
 __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__constant FrameParams* params,
                                                                           __global const float4* clipPos,  // numVerts
                                                                           __global const uint* indices,    // 3·numTris
                                                                           __global uint* triCount,  // numTris + 1
                                                                           __global uint* counters,  // CLR_NUM_COUNTERS
                                                                           __global uint* clipList,
-                                                                          uint clipListCapacity)
+                                                                          uint clipListCapacity,
+                                                                          __global uint* tileCount)  // tiles + 1
 {
   __local uint culledIn[64], clipBits[64];
   const uint lid = get_local_id(0), first = get_global_id(0) * CLR_LANES;
@@ -242,11 +236,34 @@ __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__cons
                                kind == CLR_SETUP_CLIP);
     uint counts[CLR_LANES];
     CLR_STORE_LANES(count, counts);
+    SetupLanes l;
+    setup_unpack(&b, &l);
+    // Consecutive one-tile triangles in one tile (common: meshes are
+    // coherent) are counted with one atomic add per run.
+    uint runTile = 0, runLength = 0;
     for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
       triCount[first + lane] = counts[lane];
       culled += counts[lane] == 0;
       clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
+      if (counts[lane] != 1) continue;
+      const int4 r = setup_lane_tiles(&l, lane);
+      if (r.x == r.z && r.y == r.w) {
+        const uint tile = r.y * params->tilesX + r.x;
+        if (runLength > 0 && tile != runTile) {
+          atomic_add(&tileCount[runTile], runLength);
+          runLength = 0;
+        }
+        runTile = tile;
+        ++runLength;
+      } else if (bin_hierarchical(params, r)) {
+        TriSetup t;
+        setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+        bin_count_tiles(&t, r, params, tileCount);
+      } else {
+        bin_count_tiles(0, r, params, tileCount);
+      }
     }
+    if (runLength > 0) atomic_add(&tileCount[runTile], runLength);
   }
   culledIn[lid] = culled;
   clipBits[lid] = clipMask;
@@ -270,12 +287,16 @@ __kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__cons
       }
 }
 
-/* Pass 2: writes the unclipped screen triangles at their scanned offsets. */
+/* Pass 2: writes the unclipped screen triangles at their scanned offsets,
+ * and each into its tiles' bins (bin_fill_tiles). */
 __kernel void setup_emit(__constant FrameParams* params,
-                         __global const float4* clipPos,  // numVerts
-                         __global const uint* indices,    // 3·numTris
-                         __global const uint* triOffset,  // numTris + 1, scanned
-                         __global TriSetup* setup)        // triOffset[numTris]
+                         __global const float4* clipPos,   // numVerts
+                         __global const uint* indices,     // 3·numTris
+                         __global const uint* triOffset,   // numTris + 1, scanned
+                         __global TriSetup* setup,         // triOffset[numTris]
+                         __global const uint* tileOffset,  // tiles + 1, scanned
+                         __global uint* tileCursor,        // tiles, zeroed
+                         __global uint* binEntries)        // tileOffset[tiles]
 {
   const uint first = get_global_id(0) * CLR_LANES;
   if (first >= params->numTris) return;
@@ -289,11 +310,34 @@ __kernel void setup_emit(__constant FrameParams* params,
   setup_unpack(&b, &l);
   int writeLane[CLR_LANES];
   CLR_STORE_LANES(write, writeLane);
-  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane)
-    if (writeLane[lane]) setup_store(&setup[triOffset[first + lane]], &l, lane, first + lane, CLR_NOT_CLIPPED);
+  // Runs of one-tile triangles in one tile take their bin entries with one
+  // atomic add, as setup_count counted them.
+  uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
+  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
+    if (!writeLane[lane]) continue;
+    const uint s = triOffset[first + lane];
+    TriSetup t;
+    setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+    setup[s] = t;
+    const int4 r = setup_lane_tiles(&l, lane);
+    if (r.x != r.z || r.y != r.w) {
+      bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
+      continue;
+    }
+    const uint tile = r.y * params->tilesX + r.x;
+    if (runLength > 0 && tile != runTile) {
+      bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
+      runLength = 0;
+    }
+    runTile = tile;
+    runSetup[runLength++] = s;
+  }
+  if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
 }
 
-/* Pass 3: clips the listed triangles and fills their reserved slots. */
+/* Pass 3 (before the tile scan): clips the listed triangles, fills their
+ * reserved slots and counts the sub-triangles' tiles (bin_fill_clipped
+ * fills their bins after the scan). */
 __kernel void setup_clip(__constant FrameParams* params,
                          __global const float4* clipPos,  // numVerts
                          __global const uint* indices,    // 3·numTris
@@ -301,7 +345,8 @@ __kernel void setup_clip(__constant FrameParams* params,
                          __global const uint* clipList,   // CLIPPED_TRIS counter
                          __global TriSetup* setup,        // triOffset[numTris]
                          __global ClipBary* clipBary,     // CLR_MAX_SUBTRIS · CLIPPED_TRIS
-                         __global uint* counters)
+                         __global uint* counters,
+                         __global uint* tileCount)  // tiles + 1
 {
   const uint i = get_global_id(0);
   if (i >= counters[CLR_COUNTER_CLIPPED_TRIS]) return;
@@ -337,7 +382,10 @@ __kernel void setup_clip(__constant FrameParams* params,
       clipBary[slot].w[v][1] = sb[v].y;
       clipBary[slot].w[v][2] = sb[v].z;
     }
-    setup_store(&setup[base + count++], &l, 0, tri, slot);
+    TriSetup t;
+    setup_lane(&l, 0, tri, slot, &t);
+    setup[base + count++] = t;
+    bin_count_tiles(&t, bin_tile_range(&t, params), params, tileCount);
   }
   // Step 3: pad the reservation with records that binning skips.
   for (uint k = count; k < CLR_MAX_SUBTRIS; ++k) {
