@@ -46,7 +46,9 @@ struct ClContext {
 };
 
 // The compile options every build uses (also the key of PoCL's cache).
-std::string kernelBuildOptions(int lanes);
+// prefetch: the compiler takes __builtin_prefetch (PoCL's clang does; the
+// raster kernel then fetches bin records ahead, -D CLR_PREFETCH).
+std::string kernelBuildOptions(int lanes, bool prefetch = false);
 
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
 

@@ -309,6 +309,10 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
     __global const TriSetup* t = &setup[s];
+#ifdef CLR_PREFETCH
+    // The records of a bin are scattered: fetch a later one's while this one is tested.
+    if (n + CLR_PREFETCH < end) __builtin_prefetch(&setup[binEntries[n + CLR_PREFETCH]]);
+#endif
     const uint rank = painter ? paintRank[t->triId] : 0u;
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));

@@ -50,26 +50,29 @@ typedef struct SetupLanes {
 #define CLR_SETUP_CLIP 2u
 
 /* Loads the clip positions of triangles first .. first + CLR_LANES − 1
- * (lanes past the last triangle repeat it). */
+ * (lanes past the last triangle repeat it). With 16 lanes the 16 float4 of
+ * a vertex are transposed in registers by swizzles, which the compiler
+ * turns into a few permutes; going through a private array instead stalls
+ * the CPU on every wide load of narrow stores. */
 CLR_INLINE void setup_load_batch(uint first, uint numTris, __global const float4* clipPos, __global const uint* indices,
                                  ClipBatch* c)
 {
-  float p[3][4][CLR_LANES];  // vertex, component, lane
-  for (int lane = 0; lane < CLR_LANES; ++lane) {
-    const uint tri = min(first + lane, numTris - 1);
-    for (int v = 0; v < 3; ++v) {
-      const float4 q = clipPos[indices[3 * tri + v]];
-      p[v][0][lane] = q.x;
-      p[v][1][lane] = q.y;
-      p[v][2][lane] = q.z;
-      p[v][3][lane] = q.w;
-    }
-  }
   for (int v = 0; v < 3; ++v) {
-    c->x[v] = CLR_LOAD_LANES(p[v][0]);
-    c->y[v] = CLR_LOAD_LANES(p[v][1]);
-    c->z[v] = CLR_LOAD_LANES(p[v][2]);
-    c->w[v] = CLR_LOAD_LANES(p[v][3]);
+    float4 q[CLR_LANES];
+    for (int lane = 0; lane < CLR_LANES; ++lane) q[lane] = clipPos[indices[3 * min(first + lane, numTris - 1) + v]];
+#if CLR_LANES == 1
+    c->x[v] = q[0].x;
+    c->y[v] = q[0].y;
+    c->z[v] = q[0].z;
+    c->w[v] = q[0].w;
+#else
+    const float16 a = (float16)(q[0], q[1], q[2], q[3]), b = (float16)(q[4], q[5], q[6], q[7]);
+    const float16 d = (float16)(q[8], q[9], q[10], q[11]), e = (float16)(q[12], q[13], q[14], q[15]);
+    c->x[v] = (float16)(a.s048c, b.s048c, d.s048c, e.s048c);
+    c->y[v] = (float16)(a.s159d, b.s159d, d.s159d, e.s159d);
+    c->z[v] = (float16)(a.s26ae, b.s26ae, d.s26ae, e.s26ae);
+    c->w[v] = (float16)(a.s37bf, b.s37bf, d.s37bf, e.s37bf);
+#endif
   }
 }
 
@@ -188,21 +191,30 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
   CLR_STORE_LANES(b->tileY1, l->tileY1);
 }
 
-/* One lane as a TriSetup record. (An out parameter rather than a returned
- * struct: Oclgrind cannot run the noalias marker an inlined struct return
- * leaves behind.) */
+/* One lane as a TriSetup record, field by field into *t, in private or
+ * global memory. (Not a returned struct: Oclgrind cannot run the noalias
+ * marker an inlined struct return leaves behind; and not a private record
+ * copied whole: the CPU stalls loading it wide right after narrow stores.) */
+#define CLR_SETUP_LANE(l, lane, triIdValue, clipSlotValue, t) \
+  do {                                                        \
+    for (int v = 0; v < 3; ++v) {                             \
+      (t)->x[v] = (l)->x[v][lane];                            \
+      (t)->y[v] = (l)->y[v][lane];                            \
+      (t)->z[v] = (l)->z[v][lane];                            \
+      (t)->invW[v] = (l)->invW[v][lane];                      \
+    }                                                         \
+    (t)->invArea2 = (l)->invArea2[lane];                      \
+    (t)->triId = (triIdValue);                                \
+    (t)->clipSlot = (clipSlotValue);                          \
+    (t)->flags = (l)->back[lane] ? CLR_FLAG_BACKFACING : 0u;  \
+  } while (0)
 CLR_INLINE void setup_lane(const SetupLanes* l, int lane, uint triId, uint clipSlot, TriSetup* t)
 {
-  for (int v = 0; v < 3; ++v) {
-    t->x[v] = l->x[v][lane];
-    t->y[v] = l->y[v][lane];
-    t->z[v] = l->z[v][lane];
-    t->invW[v] = l->invW[v][lane];
-  }
-  t->invArea2 = l->invArea2[lane];
-  t->triId = triId;
-  t->clipSlot = clipSlot;
-  t->flags = l->back[lane] ? CLR_FLAG_BACKFACING : 0u;
+  CLR_SETUP_LANE(l, lane, triId, clipSlot, t);
+}
+CLR_INLINE void setup_lane_store(const SetupLanes* l, int lane, uint triId, uint clipSlot, __global TriSetup* t)
+{
+  CLR_SETUP_LANE(l, lane, triId, clipSlot, t);
 }
 
 /* One lane's tile range (bin_tile_range). */
@@ -316,11 +328,11 @@ __kernel void setup_emit(__constant FrameParams* params,
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
     if (!writeLane[lane]) continue;
     const uint s = triOffset[first + lane];
-    TriSetup t;
-    setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
-    setup[s] = t;
+    setup_lane_store(&l, lane, first + lane, CLR_NOT_CLIPPED, &setup[s]);
     const int4 r = setup_lane_tiles(&l, lane);
     if (r.x != r.z || r.y != r.w) {
+      TriSetup t;  // read only by hierarchical traversal's tile test
+      if (bin_hierarchical(params, r)) setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
       continue;
     }
