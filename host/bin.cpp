@@ -34,8 +34,9 @@ void Pipeline::bin()
   tileCursor_.zero(numTiles_, &fills);
   const uint32_t batches = (params_.numTris + cl_.lanes - 1) / cl_.lanes;
   cl::Event emitEvent;
-  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), setup_.get(),
-          tileCount_.get(), tileCursor_.get(), binEntries_.get());
+  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
+          clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
+          binEntries_.get(), uint32_t(CLR_SETUP_PASS_EMIT));
   cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                  &emitEvent);
   record("setup_emit", emitEvent);

@@ -112,8 +112,8 @@ Pipeline::Pipeline(ClContext& cl)
       aov_(memory_, "visibility-buffer outputs")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
-  setupCountKernel_ = cl::Kernel(cl.program, "setup_count");
-  setupEmitKernel_ = cl::Kernel(cl.program, "setup_emit");
+  setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments
+  setupEmitKernel_ = cl::Kernel(cl.program, "setup_triangles");
   setupClipKernel_ = cl::Kernel(cl.program, "setup_clip");
   scanReduceKernel_ = cl::Kernel(cl.program, "scan_reduce");
   scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");

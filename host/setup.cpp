@@ -20,8 +20,13 @@ void Pipeline::setup()
     std::vector<cl::Event> fills;
     tileCount_.zero(numTiles_ + 1, &fills);
     cl::Event countEvent;
+    // (The emit pass's outputs are bound too; this pass does not touch them.)
+    setup_.reserve(1);
+    tileCursor_.reserve(1);
+    binEntries_.reserve(1);
     setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
-            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get());
+            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
+            binEntries_.get(), uint32_t(CLR_SETUP_PASS_COUNT));
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
                                    &countEvent);
     record("setup_count", countEvent);

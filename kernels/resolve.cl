@@ -527,9 +527,15 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     // cache misses): the setup records, then vertex indices and materials,
     // then normals and base colours. Uncovered lanes read record 0 (a tile
     // with a bin has one) and are replaced by the background at the end.
+    // When every lane shows one triangle, lane 0 is gathered and broadcast.
+    bool uniform = true;
+    for (uint lane = 1; lane < CLR_LANES; ++lane) uniform = uniform && index[lane] == index[0];
+    const uint gathered = uniform ? 1 : CLR_LANES;
+#define CLR_GATHERED(array, type) (uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
     uint triId[CLR_LANES], flags[CLR_LANES], clipSlot[CLR_LANES], vertex[3][CLR_LANES];
     float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    CLR_NO_UNROLL
+    for (uint lane = 0; lane < gathered; ++lane) {
       __global const TriSetup* t = &setup[index[lane] != CLR_NONE ? index[lane] : 0];
       triId[lane] = t->triId;
       flags[lane] = t->flags;
@@ -538,11 +544,13 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     }
     const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
     uint material[CLR_LANES];
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    CLR_NO_UNROLL
+    for (uint lane = 0; lane < gathered; ++lane) {
       for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * triId[lane] + j];
       material[lane] = materialsOn ? triMaterial[triId[lane]] : 0;
     }
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    CLR_NO_UNROLL
+    for (uint lane = 0; lane < gathered; ++lane) {
       for (int j = 0; j < 3; ++j) {
         const float3 n = vload3(vertex[j][lane], normals);
         normal[j][0][lane] = n.x;
@@ -556,8 +564,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     }
     // The weight of input vertex j in setup vertex i: identity, vertices 1
     // and 2 swapped for a back face, or ClipBary for a clipped triangle.
-    const uintL flagsL = CLR_LOAD_LANES(flags);
-    const intL clippedL = (CLR_LOAD_LANES(clipSlot) != CLR_NOT_CLIPPED) & covered;
+    const uintL flagsL = CLR_GATHERED(flags, uintL);
+    const intL clippedL = (CLR_GATHERED(clipSlot, uintL) != CLR_NOT_CLIPPED) & covered;
     const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
     const floatL one = 1.0f, zero = 0.0f;
     floatL weight[3][3] = {{one, zero, zero},
@@ -572,7 +580,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       for (uint lane = 0; lane < CLR_LANES; ++lane)
         if (clippedLane[lane])
           for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) w[i][j][lane] = clipBary[clipSlot[lane]].w[i][j];
+            for (int j = 0; j < 3; ++j) w[i][j][lane] = clipBary[clipSlot[uniform ? 0 : lane]].w[i][j];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) weight[i][j] = CLR_LOAD_LANES(w[i][j]);
     }
@@ -581,7 +589,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
     floatL q[3], lambda[3];
-    for (int i = 0; i < 3; ++i) q[i] = CLR_LOAD_LANES(invW[i]);
+    for (int i = 0; i < 3; ++i) q[i] = CLR_GATHERED(invW[i], floatL);
     const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
     for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
     floatL mu[3], n[3];
@@ -591,16 +599,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     }
     for (int k = 0; k < 3; ++k) {
       n[k] = 0.0f;
-      for (int j = 0; j < 3; ++j) n[k] += mu[j] * CLR_LOAD_LANES(normal[j][k]);
+      for (int j = 0; j < 3; ++j) n[k] += mu[j] * CLR_GATHERED(normal[j][k], floatL);
     }
     resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, (flagsL & CLR_FLAG_BACKFACING) != 0u));
     floatL diffuse, specular;
     const floatL p0[3] = {0.0f, 0.0f, 0.0f};
     shade_lights(params, n, p0, false, &diffuse, &specular);
     const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
-    const ColourL lit =
-        colour_make(CLR_LOAD_LANES(albedo[0]) * light + highlight, CLR_LOAD_LANES(albedo[1]) * light + highlight,
-                    CLR_LOAD_LANES(albedo[2]) * light + highlight);
+    const ColourL lit = colour_make(CLR_GATHERED(albedo[0], floatL) * light + highlight,
+                                    CLR_GATHERED(albedo[1], floatL) * light + highlight,
+                                    CLR_GATHERED(albedo[2], floatL) * light + highlight);
+#undef CLR_GATHERED
     const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 8) & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 16) & 0xFFu) / 255.0f)};

@@ -7,17 +7,19 @@
  * zero-area, back-facing (when asked) and sample-free triangles, and orient
  * the survivors counter-clockwise.
  *
- * setup_count writes how many screen triangles each input triangle yields:
- * 0 or 1 when no clipping is needed, and a reservation of CLR_MAX_SUBTRIS
- * when it is (such triangles are also listed for setup_clip). After an
- * exclusive scan, setup_emit writes the unclipped triangles at their
- * offsets and setup_clip clips the listed ones, padding unused reserved
- * slots with CLR_FLAG_DEAD records that binning skips. Output order is input
- * order, whatever the scheduling. setup_count and setup_emit handle
- * CLR_LANES triangles per work-item (lanes.h): 16 in vector types on a CPU.
- * The rare clipping path runs in its own, scalar kernel. Binning (bin.cl)
- * rides on these passes: setup_count and setup_clip count each triangle's
- * tiles, and setup_emit writes the unclipped triangles' bin entries.
+ * setup_triangles runs twice, as two passes of one kernel so that a device
+ * compiles the setup arithmetic once. Pass 1 (setup_count in profiles)
+ * writes how many screen triangles each input triangle yields: 0 or 1 when
+ * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
+ * (such triangles are also listed for setup_clip). After an exclusive scan,
+ * setup_clip clips the listed ones, padding unused reserved slots with
+ * CLR_FLAG_DEAD records that binning skips, and pass 2 (setup_emit) writes
+ * the unclipped triangles at their offsets. Output order is input order,
+ * whatever the scheduling. Both passes handle CLR_LANES triangles per
+ * work-item (lanes.h): 16 in vector types on a CPU. The rare clipping path
+ * runs in its own, scalar kernel. Binning (bin.cl) rides on these passes:
+ * pass 1 and setup_clip count each triangle's tiles, and pass 2 writes the
+ * unclipped triangles' bin entries.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -223,116 +225,55 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
   return (int4)(l->tileX0[lane], l->tileY0[lane], l->tileX1[lane], l->tileY1[lane]);
 }
 
-/* Pass 1: how many screen triangles each input triangle yields, and the
- * unclipped ones' tiles counted (bin_count_tiles). */
-__kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_count(__constant FrameParams* params,
-                                                                          __global const float4* clipPos,  // numVerts
-                                                                          __global const uint* indices,    // 3·numTris
-                                                                          __global uint* triCount,  // numTris + 1
-                                                                          __global uint* counters,  // CLR_NUM_COUNTERS
-                                                                          __global uint* clipList,
-                                                                          uint clipListCapacity,
-                                                                          __global uint* tileCount)  // tiles + 1
+/* Pass 1 for CLR_LANES triangles from `first`: how many screen triangles
+ * each yields (into triCount), and the unclipped ones' tiles counted.
+ * Consecutive one-tile triangles in one tile (common: meshes are coherent)
+ * take one atomic add per run. Returns the culled lanes in *culled and the
+ * clipped ones as bits of *clipMask. */
+CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
+                                  __global uint* triCount, __global uint* tileCount, uint* culled, uint* clipMask)
 {
-  __local uint culledIn[64], clipBits[64];
-  const uint lid = get_local_id(0), first = get_global_id(0) * CLR_LANES;
-  // Step 1: classify and count CLR_LANES triangles.
-  uint culled = 0, clipMask = 0;
-  if (first < params->numTris) {
-    ClipBatch c;
-    setup_load_batch(first, params->numTris, clipPos, indices, &c);
-    const uintL kind = setup_classify(&c, params);
-    SetupBatch b;
-    const intL made = setup_make(&c, params, &b);
-    const uintL count = select(select((uintL)0u, (uintL)1u, (kind == CLR_SETUP_SIMPLE) & made), (uintL)CLR_MAX_SUBTRIS,
-                               kind == CLR_SETUP_CLIP);
-    uint counts[CLR_LANES];
-    CLR_STORE_LANES(count, counts);
-    SetupLanes l;
-    setup_unpack(&b, &l);
-    // Consecutive one-tile triangles in one tile (common: meshes are
-    // coherent) are counted with one atomic add per run.
-    uint runTile = 0, runLength = 0;
-    for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
-      triCount[first + lane] = counts[lane];
-      culled += counts[lane] == 0;
-      clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
-      if (counts[lane] != 1) continue;
-      const int4 r = setup_lane_tiles(&l, lane);
-      if (r.x == r.z && r.y == r.w) {
-        const uint tile = r.y * params->tilesX + r.x;
-        if (runLength > 0 && tile != runTile) {
-          atomic_add(&tileCount[runTile], runLength);
-          runLength = 0;
-        }
-        runTile = tile;
-        ++runLength;
-      } else if (bin_hierarchical(params, r)) {
-        TriSetup t;
-        setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
-        bin_count_tiles(&t, r, params, tileCount);
-      } else {
-        bin_count_tiles(0, r, params, tileCount);
+  uint runTile = 0, runLength = 0;
+  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
+    triCount[first + lane] = counts[lane];
+    *culled += counts[lane] == 0;
+    *clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
+    if (counts[lane] != 1) continue;
+    const int4 r = setup_lane_tiles(l, lane);
+    if (r.x == r.z && r.y == r.w) {
+      const uint tile = r.y * params->tilesX + r.x;
+      if (runLength > 0 && tile != runTile) {
+        atomic_add(&tileCount[runTile], runLength);
+        runLength = 0;
       }
+      runTile = tile;
+      ++runLength;
+      continue;
     }
-    if (runLength > 0) atomic_add(&tileCount[runTile], runLength);
+    TriSetup t;  // read only by hierarchical traversal's tile test
+    if (bin_hierarchical(params, r)) setup_lane(l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+    bin_count_tiles(&t, r, params, tileCount);
   }
-  culledIn[lid] = culled;
-  clipBits[lid] = clipMask;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  // Step 2: one work-item per group updates the counters and the clip list.
-  if (lid != 0) return;
-  const uint groupFirst = get_group_id(0) * 64 * CLR_LANES;
-  uint culledSum = 0, clipped = 0;
-  for (uint i = 0; i < 64; ++i) {
-    culledSum += culledIn[i];
-    clipped += popcount(clipBits[i]);
-  }
-  if (culledSum) atomic_add(&counters[CLR_COUNTER_CULLED_TRIS], culledSum);
-  if (!clipped) return;
-  uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], clipped);
-  for (uint i = 0; i < 64; ++i)
-    for (uint lane = 0; lane < CLR_LANES; ++lane)
-      if (clipBits[i] & (1u << lane)) {
-        if (slot < clipListCapacity) clipList[slot] = groupFirst + i * CLR_LANES + lane;
-        ++slot;
-      }
+  if (runLength > 0) atomic_add(&tileCount[runTile], runLength);
 }
 
-/* Pass 2: writes the unclipped screen triangles at their scanned offsets,
- * and each into its tiles' bins (bin_fill_tiles). */
-__kernel void setup_emit(__constant FrameParams* params,
-                         __global const float4* clipPos,   // numVerts
-                         __global const uint* indices,     // 3·numTris
-                         __global const uint* triOffset,   // numTris + 1, scanned
-                         __global TriSetup* setup,         // triOffset[numTris]
-                         __global const uint* tileOffset,  // tiles + 1, scanned
-                         __global uint* tileCursor,        // tiles, zeroed
-                         __global uint* binEntries)        // tileOffset[tiles]
+/* Pass 2 for the same lanes: writes the unclipped screen triangles (the
+ * `write` lanes) at their scanned offsets, and each into its tiles' bins;
+ * runs of one-tile triangles in one tile take their entries with one atomic
+ * add, as pass 1 counted them. */
+CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const int* write, const SetupLanes* l,
+                                 __global const uint* triOffset, __global TriSetup* setup,
+                                 __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
-  const uint first = get_global_id(0) * CLR_LANES;
-  if (first >= params->numTris) return;
-  ClipBatch c;
-  setup_load_batch(first, params->numTris, clipPos, indices, &c);
-  const uintL kind = setup_classify(&c, params);
-  SetupBatch b;
-  const intL write = setup_make(&c, params, &b) & (kind == CLR_SETUP_SIMPLE);
-  if (!CLR_ANY(write)) return;
-  SetupLanes l;
-  setup_unpack(&b, &l);
-  int writeLane[CLR_LANES];
-  CLR_STORE_LANES(write, writeLane);
-  // Runs of one-tile triangles in one tile take their bin entries with one
-  // atomic add, as setup_count counted them.
   uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
-    if (!writeLane[lane]) continue;
+    if (!write[lane]) continue;
     const uint s = triOffset[first + lane];
-    setup_lane_store(&l, lane, first + lane, CLR_NOT_CLIPPED, &setup[s]);
-    const int4 r = setup_lane_tiles(&l, lane);
+    setup_lane_store(l, lane, first + lane, CLR_NOT_CLIPPED, &setup[s]);
+    const int4 r = setup_lane_tiles(l, lane);
     if (r.x != r.z || r.y != r.w) {
       TriSetup t;  // read only by hierarchical traversal's tile test
-      if (bin_hierarchical(params, r)) setup_lane(&l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+      if (bin_hierarchical(params, r)) setup_lane(l, lane, first + lane, CLR_NOT_CLIPPED, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
       continue;
     }
@@ -345,6 +286,59 @@ __kernel void setup_emit(__constant FrameParams* params,
     runSetup[runLength++] = s;
   }
   if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
+}
+
+/* Passes 1 and 2 are one kernel, launched twice with `pass`
+ * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
+ * device compiles the shared triangle setup once. triCount and tileCount
+ * hold counts in pass 1 and, scanned, offsets in pass 2. */
+__kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_triangles(
+    __constant FrameParams* params,
+    __global const float4* clipPos,  // numVerts
+    __global const uint* indices,    // 3·numTris
+    __global uint* triCount,         // numTris + 1
+    __global uint* counters,         // CLR_NUM_COUNTERS
+    __global uint* clipList,         // clipListCapacity
+    uint clipListCapacity,
+    __global uint* tileCount,   // tiles + 1
+    __global TriSetup* setup,   // pass 2: triOffset[numTris]
+    __global uint* tileCursor,  // pass 2: tiles, zeroed
+    __global uint* binEntries,  // pass 2: tileOffset[tiles]
+    uint pass)
+{
+  const uint first = get_global_id(0) * CLR_LANES;
+  if (first >= params->numTris) return;
+  // Step 1: set up CLR_LANES triangles.
+  ClipBatch c;
+  setup_load_batch(first, params->numTris, clipPos, indices, &c);
+  const uintL kind = setup_classify(&c, params);
+  SetupBatch b;
+  const intL made = setup_make(&c, params, &b);
+  const intL simple = made & (kind == CLR_SETUP_SIMPLE);
+  if (pass == CLR_SETUP_PASS_EMIT && !CLR_ANY(simple)) return;
+  SetupLanes l;
+  setup_unpack(&b, &l);
+  // Step 2 (pass 2): emit.
+  if (pass == CLR_SETUP_PASS_EMIT) {
+    int write[CLR_LANES];
+    CLR_STORE_LANES(simple, write);
+    setup_emit_lanes(params, first, write, &l, triCount, setup, tileCount, tileCursor, binEntries);
+    return;
+  }
+  // Step 2 (pass 1): count; then the counters and the clip list (whose
+  // order follows the scheduling; setup_clip's output places do not).
+  const uintL count = select(select((uintL)0u, (uintL)1u, simple), (uintL)CLR_MAX_SUBTRIS, kind == CLR_SETUP_CLIP);
+  uint counts[CLR_LANES], culled = 0, clipMask = 0;
+  CLR_STORE_LANES(count, counts);
+  setup_count_lanes(params, first, counts, &l, triCount, tileCount, &culled, &clipMask);
+  if (culled) atomic_add(&counters[CLR_COUNTER_CULLED_TRIS], culled);
+  if (!clipMask) return;
+  uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], popcount(clipMask));
+  for (uint lane = 0; lane < CLR_LANES; ++lane)
+    if (clipMask & (1u << lane)) {
+      if (slot < clipListCapacity) clipList[slot] = first + lane;
+      ++slot;
+    }
 }
 
 /* Pass 3 (before the tile scan): clips the listed triangles, fills their

@@ -25,6 +25,9 @@ typedef uint32_t uint;
  * vectorisation, and inlining them at each call site made its first
  * compile take most of a cold start. */
 #define CLR_CALLED __attribute__((noinline))
+/* Keeps a loop rolled where unrolling costs compile time and buys nothing
+ * (clang's pragma; other compilers ignore it). */
+#define CLR_NO_UNROLL _Pragma("nounroll")
 #endif
 
 /* Marks "no triangle" in a visibility sample. */
@@ -117,6 +120,10 @@ typedef uint32_t uint;
   1u /* no depth test between triangles: the one latest in the host's far-to-near  \
       * order (the paintRank buffer) wins; fragments beyond the far plane (failing \
       * the test against the clear value) are still dropped */
+
+/* The pass argument of setup_triangles (setup.cl). */
+#define CLR_SETUP_PASS_COUNT 0u /* count screen triangles and tiles */
+#define CLR_SETUP_PASS_EMIT 1u  /* write setup records and bin entries */
 
 /* Indices into the stats counter buffer. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
