@@ -40,7 +40,16 @@ typedef int16 intL;
 typedef uint16 uintL;
 typedef float16 floatL;
 #define CLR_LANE_INDEX ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-#define CLR_ANY(mask) any(mask)
+/* True when any lane of a mask is set. An OR tree over halves, rather than
+ * the any() builtin, which PoCL compiles to a test and branch per lane. */
+CLR_INLINE bool clr_any16(int16 mask)
+{
+  const int8 a = mask.lo | mask.hi;
+  const int4 b = a.lo | a.hi;
+  const int2 c = b.lo | b.hi;
+  return (c.x | c.y) != 0;
+}
+#define CLR_ANY(mask) clr_any16(as_int16(mask))
 #define convert_longL convert_long16
 #define convert_intL convert_int16
 #define convert_floatL convert_float16
