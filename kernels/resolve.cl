@@ -562,29 +562,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       albedo[1][lane] = materialsOn ? m.baseColor[1] : CLR_GREY_G;
       albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
     }
-    // The weight of input vertex j in setup vertex i: identity, vertices 1
-    // and 2 swapped for a back face, or ClipBary for a clipped triangle.
-    const uintL flagsL = CLR_GATHERED(flags, uintL);
-    const intL clippedL = (CLR_GATHERED(clipSlot, uintL) != CLR_NOT_CLIPPED) & covered;
-    const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
-    const floatL one = 1.0f, zero = 0.0f;
-    floatL weight[3][3] = {{one, zero, zero},
-                           {zero, select(one, zero, swappedL), select(zero, one, swappedL)},
-                           {zero, select(zero, one, swappedL), select(one, zero, swappedL)}};
-    if (CLR_ANY(clippedL)) {
-      int clippedLane[CLR_LANES];
-      CLR_STORE_LANES(clippedL, clippedLane);
-      float w[3][3][CLR_LANES];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) CLR_STORE_LANES(weight[i][j], w[i][j]);
-      for (uint lane = 0; lane < CLR_LANES; ++lane)
-        if (clippedLane[lane])
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) w[i][j][lane] = clipBary[clipSlot[uniform ? 0 : lane]].w[i][j];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) weight[i][j] = CLR_LOAD_LANES(w[i][j]);
-    }
-    // Step 2: resolve_shade's lambert path in lane types.
+    // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
     const floatL b1 = load_float_lanes(&visAttr[plane + p], count);
     const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
@@ -592,11 +570,33 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     for (int i = 0; i < 3; ++i) q[i] = CLR_GATHERED(invW[i], floatL);
     const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
     for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
-    floatL mu[3], n[3];
-    for (int j = 0; j < 3; ++j) {
-      mu[j] = 0.0f;
-      for (int i = 0; i < 3; ++i) mu[j] += lambda[i] * weight[i][j];
+    // then the weights mu_j of the input vertices: lambda itself, with
+    // vertices 1 and 2 swapped for a back face, or through ClipBary for a
+    // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
+    // or swap matrix there, which gives the same floats.)
+    const uintL flagsL = CLR_GATHERED(flags, uintL);
+    const intL clippedL = (CLR_GATHERED(clipSlot, uintL) != CLR_NOT_CLIPPED) & covered;
+    const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
+    floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
+    if (CLR_ANY(clippedL)) {
+      int clippedLane[CLR_LANES];
+      CLR_STORE_LANES(clippedL, clippedLane);
+      float l[3][CLR_LANES], m[3][CLR_LANES];
+      for (int i = 0; i < 3; ++i) {
+        CLR_STORE_LANES(lambda[i], l[i]);
+        CLR_STORE_LANES(mu[i], m[i]);
+      }
+      for (uint lane = 0; lane < CLR_LANES; ++lane) {
+        if (!clippedLane[lane]) continue;
+        __global const ClipBary* w = &clipBary[clipSlot[uniform ? 0 : lane]];
+        for (int j = 0; j < 3; ++j) {
+          m[j][lane] = 0.0f;
+          for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
+        }
+      }
+      for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
     }
+    floatL n[3];
     for (int k = 0; k < 3; ++k) {
       n[k] = 0.0f;
       for (int j = 0; j < 3; ++j) n[k] += mu[j] * CLR_GATHERED(normal[j][k], floatL);
