@@ -113,6 +113,7 @@ class Pipeline {
   std::vector<uint32_t> readBinEntries() const;
   std::vector<VisSample> readVis(uint32_t sample = 0) const;  // one sample plane; empty tiles read as CLR_NONE
   std::vector<uint32_t> readImage() const;
+  void readImage(std::vector<uint32_t>& rgba) const;  // the same, into rgba's memory
   // The painter's draw order of the last painter frame: input triangle
   // indices, farthest first (empty after a z-buffer frame).
   const std::vector<uint32_t>& paintOrder() const { return paintOrder_; }
