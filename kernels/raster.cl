@@ -217,6 +217,52 @@ CLR_INLINE void raster_rows_fixed(__global const TriSetup* t, uint s, intL sx, i
   }
 }
 
+/* Edge function of a→b at the samples in 32 bits: exact when the
+ * triangle's bounds span at most CLR_EDGE32_SPAN fixed units each way
+ * (raster_rows_fixed32). */
+CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
+{
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+/* The widest and tallest triangle bounds (fixed units, 64 pixels) whose
+ * edge functions raster_rows_fixed32 evaluates in 32 bits. Derivation: with
+ * width W and height H of the bounds, |bx − ax| <= W, |by − ay| <= H, and
+ * the samples tested lie in rows inside the bounds (one step past the last
+ * row included: |py − ay| <= H + ONE) and in a 16-lane column that
+ * overlaps them (|px − ax| <= W + 15·ONE + ONE, sample offsets included,
+ * < W + 2^13), so |E| <= W·(H + 2^8) + H·(W + 2^13) < 2^29 + 2^27 + 2^23
+ * for W, H <= 2^14: well inside int32. */
+#define CLR_EDGE32_SPAN (1 << 14)
+
+/* raster_rows_fixed for a triangle within CLR_EDGE32_SPAN: the same
+ * integers in 32-bit lanes, half the vector work of 64-bit ones (the
+ * barycentrics convert the same integers to float, so results are
+ * bit-identical). */
+CLR_INLINE void raster_rows_fixed32(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
+                                    RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)
+{
+  intL e0 = edge_function32(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);
+  intL e1 = edge_function32(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);
+  intL e2 = edge_function32(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);
+  const int step0 = (t->x[2] - t->x[1]) * CLR_FIXED_ONE, step1 = (t->x[0] - t->x[2]) * CLR_FIXED_ONE,
+            step2 = (t->x[1] - t->x[0]) * CLR_FIXED_ONE;
+  const int low0 = -(int)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);
+  const int low1 = -(int)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);
+  const int low2 = -(int)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);
+  const float invArea2 = t->invArea2;
+  for (int row = rowBegin; row <= rowEnd; ++row) {
+    intL inside = (intL)(-1);
+    if (!acceptAll) inside = (e0 > low0) & (e1 > low1) & (e2 > low2);
+    if (acceptAll || CLR_ANY(inside))
+      raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], rule,
+                        rank);
+    e0 += step0;
+    e1 += step1;
+    e2 += step2;
+  }
+}
+
 /* Writes a row segment of samples into sample plane k of the visibility
  * buffer (shared.h) at address a of the plane: one vector store per plane.
  * The tile's block has room for its whole rows, so lanes past the
@@ -316,6 +362,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
     const uint rank = painter ? paintRank[t->triId] : 0u;
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
+    const bool small = maxX - minX <= CLR_EDGE32_SPAN && maxY - minY <= CLR_EDGE32_SPAN;
     const int centreY = CLR_FIXED_HALF + offsetY;
     const int rowBegin = max(0, ((minY - centreY + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);
     const int rowEnd = min(CLR_TILE_SIZE - 1, ((maxY - centreY) >> CLR_SUBPIXEL_BITS) - firstY);
@@ -328,6 +375,11 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
     for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
       const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX;
       if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
+      if (edgeMode == CLR_EDGES_FIXED && small) {
+        raster_rows_fixed32(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+                            &rule, rank, hierarchical && acceptAll);
+        continue;
+      }
       if (edgeMode == CLR_EDGES_FIXED) {
         raster_rows_fixed(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
                           &rule, rank, hierarchical && acceptAll);
