@@ -104,6 +104,36 @@ TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)",
   compare(g);
 }
 
+TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[differential][raster]")
+{
+  // raster evaluates edge functions in 32 bits when a triangle's bounds span
+  // at most 64 pixels each way (CLR_EDGE32_SPAN), in 64 bits otherwise:
+  // overlapping triangles just under, at and over that span, and large ones
+  // whose edge functions overflow 32 bits, wide, tall and sliver-thin, in
+  // both windings, must match the 64-bit oracle. (A bound of 256 pixels
+  // instead makes this test fail.)
+  const uint32_t size = 512;
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), depth(-0.9f, 0.9f);
+  const float spans[] = {63.5f, 63.99f, 64.0f, 64.01f, 64.5f, 30.0f, 200.0f, 400.0f};
+  test::Geometry g;
+  for (int t = 0; t < 1500; ++t) {
+    const float w = spans[t % 8], h = t % 3 == 0 ? w : spans[(t / 8) % 8] * (t % 5 == 0 ? 0.02f : 1.0f);
+    const float x0 = unit(rng) * (float(size) - w), y0 = unit(rng) * (float(size) - h);
+    glm::vec2 v[3] = {{x0, y0}, {x0 + w, y0 + unit(rng) * h}, {x0 + unit(rng) * w, y0 + h}};
+    if (t % 2) std::swap(v[1], v[2]);
+    g.addTriangle(test::screen(v[0].x, v[0].y, depth(rng), size, size),
+                  test::screen(v[1].x, v[1].y, depth(rng), size, size),
+                  test::screen(v[2].x, v[2].y, depth(rng), size, size));
+  }
+  const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(size, size));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {size, size, false});
+  size_t covered = 0;
+  for (uint32_t id : expected.triId) covered += id != ref::kNone;
+  CHECK(covered > size * size / 2);
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+}
+
 TEST_CASE("differential: one-pixel and 16-pixel-row raster kernels agree bit for bit", "[differential][raster]")
 {
   // The GPU shape (one work-item per pixel) is checked here on the test device too.
