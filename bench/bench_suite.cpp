@@ -1,15 +1,16 @@
 // bench_suite.cpp — clraster_bench: one benchmark case, clraster against
 // Mesa llvmpipe, both shading lambert.
 //
-//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|near]
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
-//                  [--peak-int64-gmadds X] [--peak-copy-gbs Y]
+//                  [--peak-lane-gops X] [--peak-copy-gbs Y]
 //
 // The case: SCENE (a file assimp reads; the built-in scene when absent), or
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
 // optionally --grid N (N x N instanced copies of the scene), seen from the
-// --view "far" (whole scene) or "near" (camera close). Each renderer draws K
+// --view "far" (whole scene), "fill" (the scene filling the viewport) or
+// "near" (camera close). Each renderer draws K
 // warm-up then N timed frames: clraster is Pipeline::render (parameter
 // upload to the RGBA8 image in host memory) on the clraster device;
 // llvmpipe is glClear + glDrawElements + glFinish + glReadPixels with
@@ -24,9 +25,12 @@
 //                   device_bytes / min_bytes.
 //   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time: the
 //                   nominal edge-function evaluations of the raster kernel;
-//                   each is two 64-bit multiplies and a subtraction, so
-//                   edge_frac_int64 = 2 x edge_gevals_s / the peak 64-bit
-//                   multiply-add rate (clraster_peak).
+//                   raster steps each edge function from row to row with
+//                   one add per lane (32-bit for triangles within 64
+//                   pixels, 64-bit beyond), so edge_frac_lane_ops =
+//                   edge_gevals_s / the device's 32-bit lane operations per
+//                   second (--peak-lane-gops: half the fp32 FLOP peak of
+//                   clraster_peak, one FMA per lane).
 //   rr_gbs        = (36 B per pixel: visibility sample written and read,
 //                   16 + 16, image written, 4; plus 64 B of TriSetup read per
 //                   bin entry) / (raster + resolve time); rr_frac_copy =
@@ -71,7 +75,7 @@ struct Args {
   std::string name;
   std::string csvPath;
   std::string imagePrefix;
-  std::optional<double> peakInt64Gmadds, peakCopyGbs;
+  std::optional<double> peakLaneGops, peakCopyGbs;
 };
 
 double parsePositive(const std::string& flag, const std::string& text)
@@ -96,7 +100,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.gridSide = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
     } else if (a == "--view") {
       r.view = flagValue(args, i);
-      if (r.view != "far" && r.view != "near") throw Error("--view: '" + r.view + "' is not far or near");
+      if (r.view != "far" && r.view != "fill" && r.view != "near")
+        throw Error("--view: '" + r.view + "' is not far, fill or near");
     } else if (a == "--warmup") {
       r.warmup = uint32_t(parseUnsigned(a, flagValue(args, i), 0, 100000));
     } else if (a == "--frames") {
@@ -111,8 +116,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.csvPath = flagValue(args, i);
     } else if (a == "--images") {
       r.imagePrefix = flagValue(args, i);
-    } else if (a == "--peak-int64-gmadds") {
-      r.peakInt64Gmadds = parsePositive(a, flagValue(args, i));
+    } else if (a == "--peak-lane-gops") {
+      r.peakLaneGops = parsePositive(a, flagValue(args, i));
     } else if (a == "--peak-copy-gbs") {
       r.peakCopyGbs = parsePositive(a, flagValue(args, i));
     } else {
@@ -276,7 +281,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"differing_not_near_edge", r.ids ? std::to_string(r.ids->differingNotNearEdge) : ""},
       {"shade_mad", number(r.shadeDifference, "%.3f")},
       {"edge_gevals_s", number(r.edgeEvalsPerS * 1e-9)},
-      {"edge_frac_int64", fraction(2.0 * r.edgeEvalsPerS * 1e-9, args.peakInt64Gmadds)},
+      {"edge_frac_lane_ops", fraction(r.edgeEvalsPerS * 1e-9, args.peakLaneGops)},
       {"rr_gbs", number(r.rasterResolveBytesPerS * 1e-9)},
       {"rr_frac_copy", fraction(r.rasterResolveBytesPerS * 1e-9, args.peakCopyGbs)},
       {"lp_threads", r.llvmpipeThreads},
@@ -341,7 +346,7 @@ int run(const Args& args)
   const Mesh& mesh = scene.mesh;
   if (mesh.numTris() == 0) throw Error("the scene has no triangles");
   if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
-  const Camera camera = benchCamera(scene, args.view);
+  const Camera camera = benchCamera(scene, args.view, args.width, args.height);
 
   // Step 2: both renderers, one after the other (never concurrently).
   const ClrasterRun clr = runClraster(args, mesh, camera);

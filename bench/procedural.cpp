@@ -116,11 +116,33 @@ BenchScene instancedGrid(const Mesh& mesh, uint32_t copiesPerSide)
   return scene;
 }
 
-Camera benchCamera(const BenchScene& scene, const std::string& view)
+Camera benchCamera(const BenchScene& scene, const std::string& view, uint32_t width, uint32_t height)
 {
   const Bounds all = meshBounds(scene.mesh);
   if (view == "far") return frameCamera(CameraArgs{}, all);
-  if (view != "near") throw Error("--view: '" + view + "' is not far or near");
+  if (view == "fill") {
+    // The far camera moved along its line of sight until the vertices'
+    // projection reaches 90% of the way to the viewport's nearest border
+    // from its centre: projected size goes roughly as 1/distance, so a few
+    // steps of distance · reach / 0.9 settle it.
+    Camera camera = frameCamera(CameraArgs{}, all);
+    for (int step = 0; step < 5; ++step) {
+      const glm::mat4 mvp = camera.viewProjection(width, height);
+      float reach = 0.0f;
+      for (size_t v = 0; v + 2 < scene.mesh.positions.size(); v += 3) {
+        const glm::vec4 c =
+            mvp * glm::vec4(scene.mesh.positions[v], scene.mesh.positions[v + 1], scene.mesh.positions[v + 2], 1.0f);
+        if (c.w > 0.0f) reach = std::max(reach, std::max(std::abs(c.x), std::abs(c.y)) / c.w);
+      }
+      if (!(reach > 0.0f)) break;
+      CameraArgs args;
+      args.target = camera.target;
+      args.eye = camera.target + (camera.eye - camera.target) * (reach / 0.9f);
+      camera = frameCamera(args, all);
+    }
+    return camera;
+  }
+  if (view != "near") throw Error("--view: '" + view + "' is not far, fill or near");
   // The eye 0.75 focus radii from the focus centre, on the CLI's default
   // viewing diagonal; near and far planes from the whole scene's extent.
   const glm::vec3 centre = 0.5f * (scene.focus.min + scene.focus.max);

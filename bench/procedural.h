@@ -9,7 +9,10 @@
 // bounds a "near" view looks at (the whole sphere, the central copy).
 //
 // Views: "far" frames the whole scene as the CLI does (mostly small
-// triangles); "near" puts the eye at 0.75 focus radii from the focus centre
+// triangles; an elongated mesh covers a few percent of the screen); "fill"
+// moves that camera closer until the scene's projection reaches 90% of the
+// way to the viewport's nearest border (the mesh fills a good part of the
+// screen); "near" puts the eye at 0.75 focus radii from the focus centre
 // (mostly large triangles, the near plane clips some).
 #pragma once
 
@@ -29,7 +32,8 @@ BenchScene displacedSphere(size_t targetTriangles);
 
 BenchScene instancedGrid(const Mesh& mesh, uint32_t copiesPerSide);
 
-// view: "far" or "near"; anything else is a clr::Error.
-Camera benchCamera(const BenchScene& scene, const std::string& view);
+// view: "far", "fill" or "near" (fill frames for a width x height
+// viewport); anything else is a clr::Error.
+Camera benchCamera(const BenchScene& scene, const std::string& view, uint32_t width, uint32_t height);
 
 }  // namespace clr::bench

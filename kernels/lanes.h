@@ -27,6 +27,7 @@ typedef float floatL;
 #define CLR_ANY(mask) ((mask) != 0)
 #define convert_longL convert_long
 #define convert_intL convert_int
+#define convert_uintL convert_uint
 #define convert_floatL convert_float
 #define convert_intL_rte convert_int_rte
 #define convert_uintL_sat_rte convert_uint_sat_rte
@@ -52,6 +53,7 @@ CLR_INLINE bool clr_any16(int16 mask)
 #define CLR_ANY(mask) clr_any16(as_int16(mask))
 #define convert_longL convert_long16
 #define convert_intL convert_int16
+#define convert_uintL convert_uint16
 #define convert_floatL convert_float16
 #define convert_intL_rte convert_int16_rte
 #define convert_uintL_sat_rte convert_uint16_sat_rte
@@ -62,3 +64,16 @@ CLR_INLINE bool clr_any16(int16 mask)
 #else
 #error "CLR_LANES must be 1 or 16"
 #endif
+
+/* Rounds to the nearest integer, ties to even, exactly as rint() and the
+ * _rte conversions do: adding 2^23 with x's sign leaves no fraction bits
+ * when |x| < 2^23, and larger floats are integers already. Three vector
+ * instructions, where PoCL emulates rint() and convert_*_rte with a dozen
+ * (the sign of a zero result may differ, which conversions to integers
+ * ignore). */
+CLR_INLINE floatL clr_rint(floatL x)
+{
+  const floatL big = 8388608.0f;  // 2^23
+  const floatL magic = select(big, -big, x < 0.0f);
+  return select((x + magic) - magic, x, fabs(x) >= big);
+}

@@ -47,9 +47,11 @@
 CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 {
   const floatL lo = 0.0f, hi = 1.0f;
-  const uintL qr = convert_uintL_sat_rte(clamp(r, lo, hi) * 255.0f);
-  const uintL qg = convert_uintL_sat_rte(clamp(g, lo, hi) * 255.0f);
-  const uintL qb = convert_uintL_sat_rte(clamp(b, lo, hi) * 255.0f);
+  // Round to nearest even as convert_uint_sat_rte would (the clamp makes
+  // saturation moot), with clr_rint (lanes.h), then an exact conversion.
+  const uintL qr = convert_uintL(clr_rint(clamp(r, lo, hi) * 255.0f));
+  const uintL qg = convert_uintL(clr_rint(clamp(g, lo, hi) * 255.0f));
+  const uintL qb = convert_uintL(clr_rint(clamp(b, lo, hi) * 255.0f));
   return qr | (qg << 8) | (qb << 16) | 0xFF000000u;
 }
 

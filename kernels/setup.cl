@@ -136,8 +136,8 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
     const floatL xs = c->x[v] * invW * params->halfWidth + params->halfWidth;
     const floatL ys = c->y[v] * invW * params->halfHeight + params->halfHeight;
     out->z[v] = reversed ? c->z[v] * invW : c->z[v] * invW * 0.5f + 0.5f;
-    out->x[v] = convert_intL_rte(xs * (float)CLR_FIXED_ONE);
-    out->y[v] = convert_intL_rte(ys * (float)CLR_FIXED_ONE);
+    out->x[v] = convert_intL(clr_rint(xs * (float)CLR_FIXED_ONE));  // = convert_intL_rte, faster (lanes.h)
+    out->y[v] = convert_intL(clr_rint(ys * (float)CLR_FIXED_ONE));
     out->invW[v] = invW;
   }
   // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
