@@ -10,17 +10,12 @@ namespace clr {
 
 void Pipeline::bin()
 {
-  // Step 1: a slot of the visibility buffer for each tile with triangles,
-  // from the counts; then both scans, and their totals in one read.
-  tileSlot_.reserve(numTiles_ + 1, true);
-  cl::Event slotsEvent;
-  setArgs(binSlotsKernel_, tileCount_.get(), numTiles_, tileSlot_.get());
-  cl_.queue.enqueueNDRangeKernel(binSlotsKernel_, cl::NullRange, linear(numTiles_), cl::NDRange(64), nullptr,
-                                 &slotsEvent);
-  record("bin_slots", slotsEvent);
+  // Step 1: a slot of the visibility buffer for each tile with triangles
+  // (the non-zero counts, scanned before the counts are), the tile offsets,
+  // and both totals in one read.
   cl_ulong binTotal = 0, slotTotal = 0;
+  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", &slotTotal);
   scan(tileCount_, numTiles_, "bin_scan", &binTotal);
-  scan(tileSlot_, numTiles_, "bin_slots", &slotTotal);
   cl_.queue.finish();
   numBinEntries_ = binTotal;
   numVisSlots_ = uint32_t(slotTotal);

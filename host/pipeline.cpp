@@ -115,11 +115,10 @@ Pipeline::Pipeline(ClContext& cl)
   setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments
   setupEmitKernel_ = cl::Kernel(cl.program, "setup_triangles");
   setupClipKernel_ = cl::Kernel(cl.program, "setup_clip");
-  scanReduceKernel_ = cl::Kernel(cl.program, "scan_reduce");
+  scanReduceKernel_ = cl::Kernel(cl.program, "scan_chunks");  // its two phases, each with its own arguments
   scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
-  scanApplyKernel_ = cl::Kernel(cl.program, "scan_apply");
+  scanApplyKernel_ = cl::Kernel(cl.program, "scan_chunks");
   binFillClippedKernel_ = cl::Kernel(cl.program, "bin_fill_clipped");
-  binSlotsKernel_ = cl::Kernel(cl.program, "bin_slots");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
   rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
   rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");

@@ -133,6 +133,11 @@ class Pipeline {
  private:
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
   uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total = nullptr);
+  // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
+  uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
+                       cl_ulong* total = nullptr);
+  uint64_t scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint32_t>& dst, bool countNonZero, uint32_t n,
+                    const char* stage, cl_ulong* total);
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
@@ -167,9 +172,9 @@ class Pipeline {
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, binSlotsKernel_, rasterKernel_,
-      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_,
-      linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
+      rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
+      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

@@ -1,5 +1,6 @@
 // scan.cpp — host side of kernels/scan.cl: an exclusive in-place prefix sum
-// over n counts (data has n + 1 slots; data[n] receives the total). The
+// over n counts (data has n + 1 slots; data[n] receives the total), or of
+// the non-zero counts into another buffer (scanNonZero). The
 // 64-bit total is read back, so callers size buffers exactly and detect
 // totals that do not fit in 32 bits; or the read is enqueued, so that
 // several scans share one synchronisation.
@@ -9,20 +10,35 @@ namespace clr {
 
 uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total)
 {
+  return scanInto(data, data, false, n, stage, total);
+}
+
+uint64_t Pipeline::scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n,
+                               const char* stage, cl_ulong* total)
+{
+  out.reserve(uint64_t(n) + 1, true);
+  return scanInto(counts, out, true, n, stage, total);
+}
+
+uint64_t Pipeline::scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint32_t>& dst, bool countNonZero,
+                            uint32_t n, const char* stage, cl_ulong* total)
+{
   // Step 1: at most 4096 chunks of at least 64 counts each.
   const uint32_t chunk = std::max<uint32_t>(64, (n + 4095) / 4096);
   const uint32_t numChunks = std::max<uint32_t>(1, (n + chunk - 1) / chunk);
   scanPartials_.reserve(numChunks + 1);
 
-  // Step 2: chunk sums, their scan, and the rescan of every chunk.
+  // Step 2: chunk sums, their scan, and the rescan of every chunk (one
+  // kernel object per phase, each with its own arguments).
   cl::Event reduceEvent, partialsEvent, applyEvent;
-  setArgs(scanReduceKernel_, data.get(), n, chunk, numChunks, scanPartials_.get());
+  const uint32_t nonZero = countNonZero ? 1u : 0u;
+  setArgs(scanReduceKernel_, src.get(), dst.get(), n, chunk, numChunks, scanPartials_.get(), CLR_SCAN_REDUCE, nonZero);
   cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
                                  &reduceEvent);
   setArgs(scanPartialsKernel_, scanPartials_.get(), numChunks);
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, cl::NDRange(64), cl::NDRange(64), nullptr,
                                  &partialsEvent);
-  setArgs(scanApplyKernel_, data.get(), n, chunk, numChunks, scanPartials_.get());
+  setArgs(scanApplyKernel_, src.get(), dst.get(), n, chunk, numChunks, scanPartials_.get(), CLR_SCAN_APPLY, nonZero);
   cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), cl::NDRange(64), nullptr,
                                  &applyEvent);
   record(stage, reduceEvent);

@@ -2,15 +2,15 @@
  *
  * Two passes with a scan between them, so memory follows the actual counts
  * and no triangle is ever dropped. The passes ride on setup's (setup.cl):
- * setup_count adds one to every tile an unclipped triangle's pixel bounds
- * touch (bin_count_tiles) while it counts screen triangles, and setup_clip
- * does the same for the sub-triangles it writes; the host scans the tile
- * counts into offsets, sizes binEntries from the total and gives each
- * non-empty tile its block of the visibility buffer (bin_slots, shared.h);
- * then setup_emit writes each unclipped triangle's record and its bin
- * entries in one pass (bin_fill_tiles), and bin_fill_clipped fills the
- * entries of the clipped triangles' records. Fusing the passes this way
- * saves reading every setup record twice more. The order inside a tile is
+ * setup_triangles' count pass adds one to every tile an unclipped
+ * triangle's pixel bounds touch (bin_count_tiles) while it counts screen
+ * triangles, and setup_clip does the same for the sub-triangles it writes;
+ * the host scans the tile counts into offsets, sizes binEntries from the
+ * total and gives each non-empty tile its block of the visibility buffer
+ * (host bin.cpp, shared.h); then the emit pass writes each unclipped
+ * triangle's record and its bin entries in one go (bin_fill_tiles), and
+ * bin_fill_clipped fills the entries of the clipped triangles' records.
+ * Fusing the passes this way saves reading every setup record twice more. The order inside a tile is
  * not deterministic; the raster kernel breaks depth ties by setup index,
  * which is input order. With hierarchical traversal (FrameParams.traversal)
  * a tile of the bounds is skipped when all of it lies strictly outside one
@@ -95,7 +95,7 @@ CLR_INLINE bool bin_hierarchical(__constant FrameParams* params, int4 r)
 /* Pass 1: adds one to the count of each tile of r (the triangle's tile
  * range) that hierarchical traversal does not reject; t is read only when
  * bin_hierarchical(params, r). */
-CLR_INLINE void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParams* params, __global uint* tileCount)
+CLR_CALLED void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParams* params, __global uint* tileCount)
 {
   const bool hierarchical = bin_hierarchical(params, r);
   for (int ty = r.y; ty <= r.w; ++ty)
@@ -105,7 +105,7 @@ CLR_INLINE void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParam
 
 /* Pass 2: writes setup index s into the same tiles, at the scanned offset
  * plus a per-tile cursor. */
-CLR_INLINE void bin_fill_tiles(const TriSetup* t, int4 r, uint s, __constant FrameParams* params,
+CLR_CALLED void bin_fill_tiles(const TriSetup* t, int4 r, uint s, __constant FrameParams* params,
                                __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
   const bool hierarchical = bin_hierarchical(params, r);
@@ -142,14 +142,4 @@ __kernel void bin_fill_clipped(__constant FrameParams* params, __global const Tr
   const uint s = triOffset[clipList[i / CLR_MAX_SUBTRIS]] + i % CLR_MAX_SUBTRIS;
   const TriSetup t = setup[s];
   bin_fill_tiles(&t, bin_tile_range(&t, params), s, params, tileOffset, tileCursor, binEntries);
-}
-
-/* One per tile, from the tile counts before their scan: 1 when its bin
- * holds a triangle. The host scans these into each tile's slot in the
- * visibility buffer (shared.h) and sizes the buffer from the total. */
-__kernel void bin_slots(__global const uint* tileCount,          // tiles + 1, not yet scanned
-                        uint numTiles, __global uint* tileSlot)  // tiles + 1
-{
-  const uint t = get_global_id(0);
-  if (t < numTiles) tileSlot[t] = tileCount[t] != 0 ? 1u : 0u;
 }

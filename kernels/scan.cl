@@ -1,26 +1,41 @@
-/* scan.cl — exclusive prefix sum of a uint array, in place.
+/* scan.cl — exclusive prefix sum of a uint array.
  *
- * Used twice a frame: over per-triangle setup counts and over per-tile bin
- * counts. data has n + 1 elements; on return data[i] is the sum of the
- * first i counts and data[n] the total. Sums are accumulated in 64 bits and
- * the 64-bit total is left in partials[numChunks], so the host can detect a
- * total that does not fit in 32 bits and fail loudly instead of wrapping.
- * Three kernels: scan_reduce (a sum per chunk), scan_partials (one
- * work-group scans the chunk sums), scan_apply (each chunk is rescanned).
+ * Used over per-triangle setup counts, per-tile bin counts and (counting
+ * the non-zero tile counts) the visibility buffer's tile slots. src and
+ * dst have n + 1 elements and may be the same buffer; on return dst[i] is
+ * the sum of the first i values and dst[n] the total, where a value is
+ * src[i], or 1 for a non-zero src[i] when countNonZero. Sums are
+ * accumulated in 64 bits and the 64-bit total is left in
+ * partials[numChunks], so the host can detect a total that does not fit in
+ * 32 bits and fail loudly instead of wrapping. Two kernels: scan_chunks,
+ * launched twice (CLR_SCAN_REDUCE: a sum per chunk; then CLR_SCAN_APPLY:
+ * each chunk rescanned from its offset), and between them scan_partials
+ * (one work-group scans the chunk sums). One kernel for both chunk passes
+ * means one compile at a cold start.
  */
 
-__kernel void scan_reduce(__global const uint* data, uint n, uint chunk, uint numChunks,
-                          __global ulong* partials)  // numChunks + 1
+__kernel void scan_chunks(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
+                          __global ulong* partials,  // numChunks + 1
+                          uint phase, uint countNonZero)
 {
   const uint g = get_global_id(0);
   if (g >= numChunks) return;
   const uint begin = g * chunk;
   const uint end = min(begin + chunk, n);
-  ulong sum = 0;
-  for (uint i = begin; i < end; ++i) sum += data[i];
-  partials[g] = sum;
+  if (phase == CLR_SCAN_REDUCE) {
+    ulong sum = 0;
+    for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
+    partials[g] = sum;
+    return;
+  }
+  ulong running = partials[g];
+  for (uint i = begin; i < end; ++i) {
+    const uint v = countNonZero ? (src[i] != 0) : src[i];
+    dst[i] = (uint)running;
+    running += v;
+  }
+  if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];
 }
-
 #define CLR_SCAN_GROUP 64
 
 __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_partials(__global ulong* partials,
@@ -54,19 +69,4 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_p
     partials[i] = running;
     running += v;
   }
-}
-
-__kernel void scan_apply(__global uint* data, uint n, uint chunk, uint numChunks, __global const ulong* partials)
-{
-  const uint g = get_global_id(0);
-  if (g >= numChunks) return;
-  const uint begin = g * chunk;
-  const uint end = min(begin + chunk, n);
-  ulong running = partials[g];
-  for (uint i = begin; i < end; ++i) {
-    const uint v = data[i];
-    data[i] = (uint)running;
-    running += v;
-  }
-  if (g == numChunks - 1) data[n] = (uint)partials[numChunks];
 }

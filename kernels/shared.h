@@ -4,8 +4,8 @@
  * as OpenCL C, where it follows fixed.h in the program sources. Every device
  * buffer of a frame is listed below with its writer, its readers and its
  * size, so a reader can follow data through the pipeline
- *   transform -> setup (count, scan, emit) -> bin (count, scan, fill)
- *   -> raster -> resolve.
+ *   transform -> setup (count, with bin counts) -> scan -> [clip]
+ *   -> bin (scan) -> setup emit (with bin fill) -> raster -> resolve.
  */
 #ifndef CLR_SHARED_H
 #define CLR_SHARED_H
@@ -125,6 +125,10 @@ typedef uint32_t uint;
 #define CLR_SETUP_PASS_COUNT 0u /* count screen triangles and tiles */
 #define CLR_SETUP_PASS_EMIT 1u  /* write setup records and bin entries */
 
+/* The phase argument of scan_chunks (scan.cl). */
+#define CLR_SCAN_REDUCE 0u /* a sum per chunk */
+#define CLR_SCAN_APPLY 1u  /* each chunk rescanned from its offset */
+
 /* Indices into the stats counter buffer. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* input triangles that produced nothing */
@@ -222,7 +226,7 @@ typedef struct TextureDesc {
 /* The visibility buffer: the nearest fragment of each pixel sample. Only
  * tiles that hold a triangle have room in it: tile t, when its bin is not
  * empty, owns slot tileSlot[t] (an exclusive scan over the non-empty tiles,
- * bin_slots), a block of CLR_TILE_SIZE² entries in row order, so a row of a
+ * host bin.cpp), a block of CLR_TILE_SIZE² entries in row order, so a row of a
  * tile is one vector load or store and memory follows the covered tiles,
  * not the viewport. With S = FrameParams.samples and the plane size
  * V = slots · CLR_TILE_SIZE² (the kernels' visPlane argument), sample k of
@@ -267,20 +271,24 @@ typedef struct VisSample {
  *  texels     uint[all levels of all textures] host upload, once; resolve
  *  indices    uint[3·numTris]     host upload;  read by setup, resolve
  *  clipPos    float4[numVerts]    transform;    read by setup, resolve
- *  triCount   uint[numTris + 1]   setup_count writes counts, the scan turns
- *                                 them into offsets (last = total); read by
- *                                 setup_emit and setup_clip
- *  clipList   uint[CLIPPED_TRIS]  setup_count lists triangles to clip (the
+ *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
+ *                                 the scan turns them into offsets (last =
+ *                                 total); read by the emit pass and setup_clip
+ *  clipList   uint[CLIPPED_TRIS]  the count pass lists triangles to clip (the
  *                                 host grows it and recounts if it was
- *                                 short); read by setup_clip
- *  tileCount  uint[tiles + 1]     bin_count, then scanned to offsets; read
- *                                 by bin_fill, raster and resolve
- *  tileCursor uint[tiles]         bin_fill (atomic cursors)
- *  tileSlot   uint[tiles + 1]     bin_slots flags the non-empty tiles, the
- *                                 scan turns them into visibility-buffer
- *                                 slots (last = slot count); read by raster,
- *                                 resolve, lines_draw and aov
- *  binEntries uint[total]         bin_fill writes setup indices; raster reads
+ *                                 short); read by setup_clip, bin_fill_clipped
+ *  tileCount  uint[tiles + 1]     the count pass and setup_clip count each
+ *                                 tile's triangles (bin.cl), then scanned to
+ *                                 offsets; read by the emit pass,
+ *                                 bin_fill_clipped, raster and resolve
+ *  tileCursor uint[tiles]         the emit pass and bin_fill_clipped (atomic
+ *                                 cursors)
+ *  tileSlot   uint[tiles + 1]     scan_chunks counts the non-zero tile counts
+ *                                 into visibility-buffer slots (last = slot
+ *                                 count); read by raster, resolve,
+ *                                 lines_draw and aov
+ *  binEntries uint[total]         the emit pass and bin_fill_clipped write
+ *                                 setup indices; raster reads
  *  scanPartials ulong[chunks + 1] scan internals (at most 4097)
  *  paintRank  uint[numTris]       host upload with CLR_VISIBILITY_PAINTER
  *                                 (position of each input triangle in the
