@@ -190,7 +190,7 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
  * once, then stepped by their exact y increment (bx − ax)·CLR_FIXED_ONE per
  * row, so each row costs additions instead of 64-bit multiplies and gives
  * the same integers. */
-CLR_CALLED void raster_rows_fixed(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
+CLR_INLINE void raster_rows_fixed(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
                                   RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)
 {
   // Step 1: the three edge functions at the first row, their row steps and
