@@ -32,8 +32,8 @@ void Pipeline::bin()
   setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
           clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
           binEntries_.get(), uint32_t(CLR_SETUP_PASS_EMIT));
-  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
-                                 &emitEvent);
+  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches),
+                                 cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &emitEvent);
   record("setup_emit", emitEvent);
 
   // Step 3: the clipped triangles' bins.

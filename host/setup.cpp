@@ -27,8 +27,8 @@ void Pipeline::setup()
     setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
             clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
             binEntries_.get(), uint32_t(CLR_SETUP_PASS_COUNT));
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches), cl::NDRange(64), nullptr,
-                                   &countEvent);
+    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches),
+                                   cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
     record("setup_count", countEvent);
     cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_CLIPPED_TRIS * sizeof(uint32_t), sizeof clipped,
                                 &clipped);

@@ -292,7 +292,7 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
  * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
  * device compiles the shared triangle setup once. triCount and tileCount
  * hold counts in pass 1 and, scanned, offsets in pass 2. */
-__kernel __attribute__((reqd_work_group_size(64, 1, 1))) void setup_triangles(
+__kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1))) void setup_triangles(
     __constant FrameParams* params,
     __global const float4* clipPos,  // numVerts
     __global const uint* indices,    // 3·numTris

@@ -121,6 +121,11 @@ typedef uint32_t uint;
       * order (the paintRank buffer) wins; fragments beyond the far plane (failing \
       * the test against the clear value) are still dropped */
 
+/* Work-group size of setup_triangles: 64 work-items on a GPU; one on a CPU,
+ * where each handles 16 triangles in vector types and a bigger group only
+ * adds a work-item loop for PoCL to compile. */
+#define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
+
 /* The pass argument of setup_triangles (setup.cl). */
 #define CLR_SETUP_PASS_COUNT 0u /* count screen triangles and tiles */
 #define CLR_SETUP_PASS_EMIT 1u  /* write setup records and bin entries */
