@@ -185,41 +185,8 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
 }
 
-/* raster_row with fixed edges over rows rowBegin .. rowEnd of one column of
- * a tile, the first at sample y firstSy: the edge functions are evaluated
- * once, then stepped by their exact y increment (bx − ax)·CLR_FIXED_ONE per
- * row, so each row costs additions instead of 64-bit multiplies and gives
- * the same integers. */
-CLR_INLINE void raster_rows_fixed(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
-                                  RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)
-{
-  // Step 1: the three edge functions at the first row, their row steps and
-  // the fill rule's thresholds (inside when e > −bias).
-  longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);
-  longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);
-  longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);
-  const long step0 = (long)(t->x[2] - t->x[1]) * CLR_FIXED_ONE, step1 = (long)(t->x[0] - t->x[2]) * CLR_FIXED_ONE,
-             step2 = (long)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;
-  const long low0 = -edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);
-  const long low1 = -edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);
-  const long low2 = -edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);
-  const float invArea2 = t->invArea2;
-  // Step 2: each row: coverage, barycentrics, depth test; then step.
-  for (int row = rowBegin; row <= rowEnd; ++row) {
-    intL inside = (intL)(-1);
-    if (!acceptAll) inside = convert_intL((e0 > low0) & (e1 > low1) & (e2 > low2));
-    if (acceptAll || CLR_ANY(inside))
-      raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], rule,
-                        rank);
-    e0 += step0;
-    e1 += step1;
-    e2 += step2;
-  }
-}
-
-/* Edge function of a→b at the samples in 32 bits: exact when the
- * triangle's bounds span at most CLR_EDGE32_SPAN fixed units each way
- * (raster_rows_fixed32). */
+/* The edge function of a→b at the samples in 32 bits: exact when the
+ * triangle's bounds span at most CLR_EDGE32_SPAN fixed units each way. */
 CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
 {
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
@@ -235,33 +202,46 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
  * for W, H <= 2^14: well inside int32. */
 #define CLR_EDGE32_SPAN (1 << 14)
 
-/* raster_rows_fixed for a triangle within CLR_EDGE32_SPAN: the same
- * integers in 32-bit lanes, half the vector work of 64-bit ones (the
- * barycentrics convert the same integers to float, so results are
- * bit-identical). */
-CLR_INLINE void raster_rows_fixed32(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
-                                    RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)
-{
-  intL e0 = edge_function32(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);
-  intL e1 = edge_function32(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);
-  intL e2 = edge_function32(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);
-  const int step0 = (t->x[2] - t->x[1]) * CLR_FIXED_ONE, step1 = (t->x[0] - t->x[2]) * CLR_FIXED_ONE,
-            step2 = (t->x[1] - t->x[0]) * CLR_FIXED_ONE;
-  const int low0 = -(int)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);
-  const int low1 = -(int)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);
-  const int low2 = -(int)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);
-  const float invArea2 = t->invArea2;
-  for (int row = rowBegin; row <= rowEnd; ++row) {
-    intL inside = (intL)(-1);
-    if (!acceptAll) inside = (e0 > low0) & (e1 > low1) & (e2 > low2);
-    if (acceptAll || CLR_ANY(inside))
-      raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], rule,
-                        rank);
-    e0 += step0;
-    e1 += step1;
-    e2 += step2;
+/* raster_row with fixed edges over rows rowBegin .. rowEnd of one column of
+ * a tile, the first at sample y firstSy: the edge functions are evaluated
+ * once, then stepped by their exact y increment (bx − ax)·CLR_FIXED_ONE per
+ * row, so each row costs additions instead of multiplies and gives the same
+ * integers. Defined twice by the macro below, with the same body:
+ * raster_rows_fixed in 64-bit lanes for any triangle, and
+ * raster_rows_fixed32 in 32-bit lanes (half the vector work) for one within
+ * CLR_EDGE32_SPAN; the barycentrics convert the same integers to float, so
+ * both give bit-identical results. */
+#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, edgeFunction, toEdgeL)                                          \
+  CLR_INLINE void name(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,        \
+                       RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)                     \
+  {                                                                                                               \
+    /* Step 1: the edge functions at the first row, their row steps, and the */                                   \
+    /* fill rule's thresholds (inside when e > −bias). */                                                       \
+    edgeL e0 = edgeFunction(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);                                     \
+    edgeL e1 = edgeFunction(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);                                     \
+    edgeL e2 = edgeFunction(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);                                     \
+    const edge step0 = (edge)(t->x[2] - t->x[1]) * CLR_FIXED_ONE;                                                 \
+    const edge step1 = (edge)(t->x[0] - t->x[2]) * CLR_FIXED_ONE;                                                 \
+    const edge step2 = (edge)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;                                                 \
+    const edge low0 = -(edge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                                       \
+    const edge low1 = -(edge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                                       \
+    const edge low2 = -(edge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                                       \
+    const float invArea2 = t->invArea2;                                                                           \
+    /* Step 2: each row: coverage, barycentrics, depth test; then step. */                                        \
+    for (int row = rowBegin; row <= rowEnd; ++row) {                                                              \
+      intL inside = (intL)(-1);                                                                                   \
+      if (!acceptAll) inside = toEdgeL((e0 > low0) & (e1 > low1) & (e2 > low2));                                  \
+      if (acceptAll || CLR_ANY(inside))                                                                           \
+        raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], \
+                          rule, rank);                                                                            \
+      e0 += step0;                                                                                                \
+      e1 += step1;                                                                                                \
+      e2 += step2;                                                                                                \
+    }                                                                                                             \
   }
-}
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, edge_function, convert_intL)
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, )
+#undef CLR_DEFINE_RASTER_ROWS
 
 /* Writes a row segment of samples into sample plane k of the visibility
  * buffer (shared.h) at address a of the plane: one vector store per plane.

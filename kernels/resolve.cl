@@ -216,6 +216,19 @@ CLR_INLINE floatL load_float_lanes(__global const float* row, uint count)
   return CLR_LOAD_LANES(lanes);
 }
 
+/* Stores the first `count` lanes of a row of RGBA8 pixels (the row may end
+ * at the viewport's edge). */
+CLR_INLINE void store_row(uintL colour, uint count, __global uint* out)
+{
+  if (count == CLR_LANES) {
+    CLR_STORE_LANES(colour, out);
+    return;
+  }
+  uint result[CLR_LANES];
+  CLR_STORE_LANES(colour, result);
+  for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
+}
+
 /* The unit normal of the lanes (two-sided: back faces flip it); a zero
  * normal becomes the one facing the eye in window space. */
 CLR_INLINE void resolve_unit_normal(floatL n[3], floatL sign)
@@ -481,13 +494,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
     colour = pack_rgba(sum.r * weight, sum.g * weight, sum.b * weight);
   }
   // Step 4: write.
-  if (count == CLR_LANES) {
-    CLR_STORE_LANES(colour, out);
-    return;
-  }
-  uint result[CLR_LANES];
-  CLR_STORE_LANES(colour, result);
-  for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
+  store_row(colour, count, out);
 }
 
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE_SIZE, 1))) void resolve(
@@ -619,11 +626,5 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     colour = pack_rgba(c.r, c.g, c.b);
   }
   // Step 3: store the row.
-  if (count == CLR_LANES) {
-    CLR_STORE_LANES(colour, out);
-    return;
-  }
-  uint result[CLR_LANES];
-  CLR_STORE_LANES(colour, result);
-  for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
+  store_row(colour, count, out);
 }
