@@ -185,8 +185,9 @@ typedef struct FrameParams {
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
- * counter-clockwise (y up). Written by setup_emit and setup_clip, read by
- * bin_count, bin_fill, raster and resolve. Array size: the scanned setup
+ * counter-clockwise (y up). Written by setup_triangles' emit pass and
+ * setup_clip, read by bin_fill_clipped, raster, resolve, lines_from_setup
+ * and aov. Array size: the scanned setup
  * count (records flagged CLR_FLAG_DEAD are padding). */
 typedef struct TriSetup {
   int x[3];       /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
@@ -275,7 +276,8 @@ typedef struct VisSample {
  *  texDescs   TextureDesc[numTextures] host upload, once per scene; resolve
  *  texels     uint[all levels of all textures] host upload, once; resolve
  *  indices    uint[3·numTris]     host upload;  read by setup, resolve
- *  clipPos    float4[numVerts]    transform;    read by setup, resolve
+ *  clipPos    float4[numVerts]    transform;    read by setup (the host reads
+ *                                 it to sort for the painter's algorithm)
  *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
  *                                 the scan turns them into offsets (last =
  *                                 total); read by the emit pass and setup_clip
