@@ -528,6 +528,15 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
   load_index_lanes(&visIndex[p], count, index);
+#ifdef CLR_PREFETCH
+  // The setup records the tile's next row shows, fetched while this row is
+  // gathered: scattered records are the kernel's cache misses.
+  if (py % CLR_TILE_SIZE != CLR_TILE_SIZE - 1 && py + 1 < params->height)
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      const uint next = visIndex[p + CLR_TILE_SIZE + lane];
+      if (next != CLR_NONE) __builtin_prefetch(&setup[next]);
+    }
+#endif
   const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
