@@ -529,12 +529,20 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   uint index[CLR_LANES];
   load_index_lanes(&visIndex[p], count, index);
 #ifdef CLR_PREFETCH
-  // The setup records the tile's next row shows, fetched while this row is
-  // gathered: scattered records are the kernel's cache misses.
-  if (py % CLR_TILE_SIZE != CLR_TILE_SIZE - 1 && py + 1 < params->height)
+  // Scattered records are the kernel's cache misses: while this row is
+  // gathered, fetch the setup records the tile's row after next shows, and
+  // the vertex indices of the next row's triangles (whose records the row
+  // before fetched).
+  const uint rowInTile = py % CLR_TILE_SIZE;
+  if (rowInTile + 2 < CLR_TILE_SIZE)
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      const uint next = visIndex[p + 2 * CLR_TILE_SIZE + lane];
+      if (next != CLR_NONE) __builtin_prefetch(&setup[next]);
+    }
+  if (rowInTile + 1 < CLR_TILE_SIZE)
     for (uint lane = 0; lane < CLR_LANES; ++lane) {
       const uint next = visIndex[p + CLR_TILE_SIZE + lane];
-      if (next != CLR_NONE) __builtin_prefetch(&setup[next]);
+      if (next != CLR_NONE) __builtin_prefetch(&indices[3 * setup[next].triId]);
     }
 #endif
   const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
