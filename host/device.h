@@ -46,8 +46,9 @@ struct ClContext {
 };
 
 // The compile options every build uses (also the key of PoCL's cache).
-// prefetch: the compiler takes __builtin_prefetch (PoCL's clang does; the
-// raster kernel then fetches bin records ahead, -D CLR_PREFETCH).
+// prefetch: the compiler takes __builtin_prefetch (PoCL's clang does; with
+// -D CLR_PREFETCH raster fetches the setup records of later bin entries,
+// and resolve_lambert those of later rows, while it works).
 std::string kernelBuildOptions(int lanes, bool prefetch = false);
 
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
