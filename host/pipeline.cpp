@@ -94,6 +94,7 @@ Pipeline::Pipeline(ClContext& cl)
       counters_(memory_, "counters"),
       clipList_(memory_, "clip list"),
       setup_(memory_, "setup triangles"),
+      setupSource_(memory_, "setup record sources"),
       clipBary_(memory_, "clipped-triangle barycentrics"),
       tileCount_(memory_, "tile counts"),
       tileCursor_(memory_, "tile cursors"),
@@ -115,6 +116,7 @@ Pipeline::Pipeline(ClContext& cl)
   setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments
   setupEmitKernel_ = cl::Kernel(cl.program, "setup_triangles");
   setupClipKernel_ = cl::Kernel(cl.program, "setup_clip");
+  setupSourcesKernel_ = cl::Kernel(cl.program, "setup_sources");
   scanReduceKernel_ = cl::Kernel(cl.program, "scan_chunks");  // its two phases, each with its own arguments
   scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_chunks");

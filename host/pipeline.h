@@ -171,10 +171,10 @@ class Pipeline {
   uint32_t resident_ = 0;     // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 
-  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
-      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
-      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, setupSourcesKernel_,
+      scanReduceKernel_, scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_,
+      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_,
+      linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
@@ -187,6 +187,7 @@ class Pipeline {
   DeviceBuffer<uint32_t> counters_;
   DeviceBuffer<uint32_t> clipList_;
   DeviceBuffer<TriSetup> setup_;
+  DeviceBuffer<uint32_t> setupSource_;  // input triangle of each setup record (shared.h)
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
   DeviceBuffer<cl_ulong> scanPartials_;

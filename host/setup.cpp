@@ -1,8 +1,9 @@
 // setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
 // triangles each input triangle yields (and, for binning, the tiles each
 // unclipped one touches), scan the counts into offsets, size the setup and
-// ClipBary buffers from the totals, and clip the listed triangles (counting
-// their tiles too). The unclipped triangles are emitted by bin() once the
+// ClipBary buffers from the totals, list the input triangle behind each
+// record (setup_sources), and clip the listed triangles (counting their
+// tiles too). The unclipped triangles are emitted by bin() once the
 // tile offsets are known, because setup_emit also fills their bins.
 #include "pipeline.h"
 
@@ -24,9 +25,10 @@ void Pipeline::setup()
     setup_.reserve(1);
     tileCursor_.reserve(1);
     binEntries_.reserve(1);
+    setupSource_.reserve(1);
     setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
             clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-            binEntries_.get(), uint32_t(CLR_SETUP_PASS_COUNT));
+            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT));
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches),
                                    cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
     record("setup_count", countEvent);
@@ -45,7 +47,15 @@ void Pipeline::setup()
   setup_.reserve(numSetup_);
   clipBary_.reserve(uint64_t(clipped) * CLR_MAX_SUBTRIS);
 
-  // Step 3: clip the listed triangles into their reserved slots.
+  // Step 3: the input triangle behind each record, for the emit pass.
+  setupSource_.reserve(numSetup_);
+  cl::Event sourcesEvent;
+  setArgs(setupSourcesKernel_, paramsBuf_.get(), triCount_.get(), setupSource_.get());
+  cl_.queue.enqueueNDRangeKernel(setupSourcesKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
+                                 &sourcesEvent);
+  record("setup_scan", sourcesEvent);
+
+  // Step 4: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
   setArgs(setupClipKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), clipList_.get(),

@@ -12,11 +12,15 @@
  * writes how many screen triangles each input triangle yields: 0 or 1 when
  * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
  * (such triangles are also listed for setup_clip). After an exclusive scan,
- * setup_clip clips the listed ones, padding unused reserved slots with
- * CLR_FLAG_DEAD records that binning skips, and pass 2 (setup_emit) writes
- * the unclipped triangles at their offsets. Output order is input order,
- * whatever the scheduling. Both passes handle CLR_LANES triangles per
- * work-item (lanes.h): 16 in vector types on a CPU. The rare clipping path
+ * setup_sources lists the input triangle behind each record, setup_clip
+ * clips the listed ones, padding unused reserved slots with CLR_FLAG_DEAD
+ * records that binning skips, and pass 2 (setup_emit) sets up the
+ * unclipped survivors again, 16 consecutive records at a time, and writes
+ * them at their offsets: it runs over the records, not the input, which
+ * matters when most triangles are culled (a 10M-triangle sphere keeps
+ * 1.5M). Output order is input order, whatever the scheduling. Both passes
+ * handle CLR_LANES triangles per work-item (lanes.h): 16 in vector types
+ * on a CPU. The rare clipping path
  * runs in its own, scalar kernel. Binning (bin.cl) rides on these passes:
  * pass 1 and setup_clip count each triangle's tiles, and pass 2 writes the
  * unclipped triangles' bin entries.
@@ -51,17 +55,16 @@ typedef struct SetupLanes {
 #define CLR_SETUP_SIMPLE 1u
 #define CLR_SETUP_CLIP 2u
 
-/* Loads the clip positions of triangles first .. first + CLR_LANES − 1
- * (lanes past the last triangle repeat it). With 16 lanes the 16 float4 of
- * a vertex are transposed in registers by swizzles, which the compiler
- * turns into a few permutes; going through a private array instead stalls
- * the CPU on every wide load of narrow stores. */
-CLR_INLINE void setup_load_batch(uint first, uint numTris, __global const float4* clipPos, __global const uint* indices,
+/* Loads the clip positions of the triangles tri[0 .. CLR_LANES − 1]. With
+ * 16 lanes the 16 float4 of a vertex are transposed in registers by
+ * swizzles, which the compiler turns into a few permutes; going through a
+ * private array instead stalls the CPU on every wide load of narrow stores. */
+CLR_INLINE void setup_load_batch(const uint* tri, __global const float4* clipPos, __global const uint* indices,
                                  ClipBatch* c)
 {
   for (int v = 0; v < 3; ++v) {
     float4 q[CLR_LANES];
-    for (int lane = 0; lane < CLR_LANES; ++lane) q[lane] = clipPos[indices[3 * min(first + lane, numTris - 1) + v]];
+    for (int lane = 0; lane < CLR_LANES; ++lane) q[lane] = clipPos[indices[3 * tri[lane] + v]];
 #if CLR_LANES == 1
     c->x[v] = q[0].x;
     c->y[v] = q[0].y;
@@ -261,19 +264,19 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
  * `write` lanes) at their scanned offsets, and each into its tiles' bins;
  * runs of one-tile triangles in one tile take their entries with one atomic
  * add, as pass 1 counted them. */
-CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const int* write, const SetupLanes* l,
-                                 __global const uint* triOffset, __global TriSetup* setup,
-                                 __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
+CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
+                                 const SetupLanes* l, __global TriSetup* setup, __global const uint* tileOffset,
+                                 __global uint* tileCursor, __global uint* binEntries)
 {
   uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
-  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
     if (!write[lane]) continue;
-    const uint s = triOffset[first + lane];
-    setup_lane_store(l, lane, first + lane, CLR_NOT_CLIPPED, &setup[s]);
+    const uint s = first + lane;
+    setup_lane_store(l, lane, tri[lane], CLR_NOT_CLIPPED, &setup[s]);
     const int4 r = setup_lane_tiles(l, lane);
     if (r.x != r.z || r.y != r.w) {
       TriSetup t;  // read only by hierarchical traversal's tile test
-      if (bin_hierarchical(params, r)) setup_lane(l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+      if (bin_hierarchical(params, r)) setup_lane(l, lane, tri[lane], CLR_NOT_CLIPPED, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
       continue;
     }
@@ -288,6 +291,22 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
   if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
 }
 
+/* Between the passes: the input triangle behind each setup record, so that
+ * pass 2 runs over the surviving triangles only (at 10M small triangles most
+ * are culled). One work-item per input triangle t: an unclipped survivor
+ * owns record triOffset[t]; a clipped one's CLR_MAX_SUBTRIS reserved records
+ * get CLR_NONE (setup_clip writes them); culled ones own none. */
+__kernel void setup_sources(__constant FrameParams* params,
+                            __global const uint* triOffset,  // numTris + 1, scanned
+                            __global uint* source)           // triOffset[numTris]
+{
+  const uint t = get_global_id(0);
+  if (t >= params->numTris) return;
+  const uint begin = triOffset[t], count = triOffset[t + 1] - begin;
+  if (count == 1) source[begin] = t;
+  for (uint k = 0; count == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) source[begin + k] = CLR_NONE;
+}
+
 /* Passes 1 and 2 are one kernel, launched twice with `pass`
  * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
  * device compiles the shared triangle setup once. triCount and tileCount
@@ -300,29 +319,42 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global uint* counters,         // CLR_NUM_COUNTERS
     __global uint* clipList,         // clipListCapacity
     uint clipListCapacity,
-    __global uint* tileCount,   // tiles + 1
-    __global TriSetup* setup,   // pass 2: triOffset[numTris]
-    __global uint* tileCursor,  // pass 2: tiles, zeroed
-    __global uint* binEntries,  // pass 2: tileOffset[tiles]
-    uint pass)
+    __global uint* tileCount,     // tiles + 1
+    __global TriSetup* setup,     // pass 2: triOffset[numTris]
+    __global uint* tileCursor,    // pass 2: tiles, zeroed
+    __global uint* binEntries,    // pass 2: tileOffset[tiles]
+    __global const uint* source,  // pass 2: numSetup (setup_sources)
+    uint numSetup, uint pass)
 {
+  // Step 1: the CLR_LANES triangles: in pass 1 input triangles from
+  // `first`; in pass 2 the sources of setup records from `first` (lanes of
+  // clipped triangles' records and past the end are not written).
   const uint first = get_global_id(0) * CLR_LANES;
-  if (first >= params->numTris) return;
-  // Step 1: set up CLR_LANES triangles.
+  const bool emit = pass == CLR_SETUP_PASS_EMIT;
+  if (first >= (emit ? numSetup : params->numTris)) return;
+  uint tri[CLR_LANES], from[CLR_LANES];
+  if (emit) {
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      from[lane] = first + lane < numSetup ? source[first + lane] : CLR_NONE;
+    for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = from[lane] != CLR_NONE ? from[lane] : 0;
+  } else {
+    for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = min(first + lane, params->numTris - 1);
+  }
   ClipBatch c;
-  setup_load_batch(first, params->numTris, clipPos, indices, &c);
+  setup_load_batch(tri, clipPos, indices, &c);
   const uintL kind = setup_classify(&c, params);
   SetupBatch b;
   const intL made = setup_make(&c, params, &b);
   const intL simple = made & (kind == CLR_SETUP_SIMPLE);
-  if (pass == CLR_SETUP_PASS_EMIT && !CLR_ANY(simple)) return;
   SetupLanes l;
   setup_unpack(&b, &l);
-  // Step 2 (pass 2): emit.
-  if (pass == CLR_SETUP_PASS_EMIT) {
+  // Step 2 (pass 2): emit; a source's recomputed setup is the one pass 1
+  // counted (same arithmetic), so every valid lane is a simple survivor.
+  if (emit) {
     int write[CLR_LANES];
     CLR_STORE_LANES(simple, write);
-    setup_emit_lanes(params, first, write, &l, triCount, setup, tileCount, tileCursor, binEntries);
+    for (uint lane = 0; lane < CLR_LANES; ++lane) write[lane] = write[lane] && from[lane] != CLR_NONE;
+    setup_emit_lanes(params, first, tri, write, &l, setup, tileCount, tileCursor, binEntries);
     return;
   }
   // Step 2 (pass 1): count; then the counters and the clip list (whose

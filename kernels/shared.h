@@ -280,7 +280,11 @@ typedef struct VisSample {
  *                                 it to sort for the painter's algorithm)
  *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
  *                                 the scan turns them into offsets (last =
- *                                 total); read by the emit pass and setup_clip
+ *                                 total); read by setup_sources, setup_clip
+ *                                 and bin_fill_clipped
+ *  setupSource uint[numSetup]     setup_sources: the input triangle behind
+ *                                 each setup record (CLR_NONE for a clipped
+ *                                 triangle's); read by the emit pass
  *  clipList   uint[CLIPPED_TRIS]  the count pass lists triangles to clip (the
  *                                 host grows it and recounts if it was
  *                                 short); read by setup_clip, bin_fill_clipped
