@@ -34,18 +34,34 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
 {
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  // Assimp takes any case of the magic ("pLy" too).
-  if (!std::getline(in, line) || line.size() < 3 || std::tolower(static_cast<unsigned char>(line[0])) != 'p' ||
-      std::tolower(static_cast<unsigned char>(line[1])) != 'l' ||
-      std::tolower(static_cast<unsigned char>(line[2])) != 'y')
+  // Step 1: the magic. Assimp skips blank lines before it and takes any case
+  // ("pLy" too), and it hung (the fuzzer found it) on a magic followed by
+  // more text on its line, so that is an error here.
+  int magicLine = 0;
+  auto trimmed = [](std::string s) {
+    const size_t first = s.find_first_not_of(" \t\r\v\f");
+    if (first == std::string::npos) return std::string();
+    return s.substr(first, s.find_last_not_of(" \t\r\v\f") - first + 1);
+  };
+  std::string magic;
+  while (magic.empty() && std::getline(in, line)) {
+    ++magicLine;
+    magic = trimmed(line);
+  }
+  if (magic.size() < 3 || std::tolower(static_cast<unsigned char>(magic[0])) != 'p' ||
+      std::tolower(static_cast<unsigned char>(magic[1])) != 'l' ||
+      std::tolower(static_cast<unsigned char>(magic[2])) != 'y')
     return;  // not PLY: assimp decides
+  if (magic.size() > 3)
+    throw Error(oneLine(path + ": PLY header line " + std::to_string(magicLine) + ": text after the magic 'ply'"));
+  // Step 2: the header lines up to end_header.
   static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
                                        "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   auto known = [](const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
   };
   bool haveFormat = false, haveElement = false;
-  for (int lineNo = 2; std::getline(in, line) && lineNo < 10000; ++lineNo) {
+  for (int lineNo = magicLine + 1; std::getline(in, line) && lineNo < 10000; ++lineNo) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string key, a, b, c;
@@ -62,9 +78,16 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
         throw Error(oneLine(where + "unknown format '" + a + " " + b + "'"));
       haveFormat = true;
     } else if (key == "element") {
-      long long count = -1;
-      words >> a >> count;
-      if (a.empty() || count < 0) throw Error(oneLine(where + "malformed element line"));
+      // A name, then a count of decimal digits only: assimp read the count
+      // out of a name like "4294967295roperty" (found by the fuzzer).
+      std::string countText;
+      words >> a >> countText;
+      const bool digits = !countText.empty() && countText.size() <= 18 &&
+                          std::all_of(countText.begin(), countText.end(),
+                                      [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) != 0; });
+      if (a.empty() || std::isdigit(static_cast<unsigned char>(a[0])) || !digits)
+        throw Error(oneLine(where + "malformed element line"));
+      const long long count = std::stoll(countText);
       if (uint64_t(count) > fileSize)
         throw Error(oneLine(where + "element '" + a + "' has " + std::to_string(count) +
                             " items, more than the file's " + std::to_string(fileSize) + " bytes hold"));

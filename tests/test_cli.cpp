@@ -127,6 +127,14 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
       "garbage.ply: PLY header line 4: unknown property type 'banana'");
   expectError("render '" + writeFile("noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n") + "'" + out,
               "noend.ply: PLY header has no end_header");
+  // Blank lines before a magic with text after it: assimp looped for minutes
+  // on such a header (found by the fuzzer, tests/fuzz_corpus/ply_magic_run_on).
+  expectError("render '" + writeFile("runon.ply", "\nplyformat ascii 1.0\nelement vertex 3\nend_header\n") + "'" + out,
+              "runon.ply: PLY header line 2: text after the magic 'ply'");
+  // Blank lines before a well-formed header are still PLY, checked as such.
+  expectError("render '" + writeFile("blank.ply", "\n\nply\nformat ascii 1.0\nelement vertex 3\nproperty banana x\n") +
+                  "'" + out,
+              "blank.ply: PLY header line 6: unknown property type 'banana'");
   expectError("render '" +
                   writeFile("truncated.ply",
                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
