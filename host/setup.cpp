@@ -53,7 +53,7 @@ void Pipeline::setup()
   setArgs(setupSourcesKernel_, paramsBuf_.get(), triCount_.get(), setupSource_.get());
   cl_.queue.enqueueNDRangeKernel(setupSourcesKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
                                  &sourcesEvent);
-  record("setup_scan", sourcesEvent);
+  record("setup_sources", sourcesEvent);
 
   // Step 4: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;

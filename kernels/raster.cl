@@ -147,11 +147,11 @@ CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL insid
 }
 
 /* Tests setup triangle s against the row segment of samples (sx, sy) and
- * keeps the nearest fragment in *best. edgeMode and acceptAll are constant
- * at every call site, so each combination compiles to its own loop body;
- * acceptAll skips the inside test for a tile inside all three edges. */
+ * keeps the nearest fragment in *best. edgeMode is constant at every call
+ * site, so each method compiles to its own loop body. (The CPU shape's
+ * fixed-edge rows, with hierarchical acceptance, are raster_rows_fixed.) */
 CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, RowBest* best, const DepthRule* rule,
-                           uint rank, const uint edgeMode, const bool acceptAll)
+                           uint rank, const uint edgeMode)
 {
   if (edgeMode == CLR_EDGES_FLOAT) {
     // Coverage and barycentrics from float edge functions; a sample on an
@@ -171,16 +171,13 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
     return;
   }
   // Step 1: coverage by the three edge functions and the fill rule.
+  const longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
   const longL e1 = edge_function(t->x[2], t->y[2], t->x[0], t->y[0], sx, sy);
   const longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
-  intL inside = (intL)(-1);
-  if (!acceptAll) {
-    const longL e0 = edge_function(t->x[1], t->y[1], t->x[2], t->y[2], sx, sy);
-    inside = convert_intL((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
-                          (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
-                          (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
-    if (!CLR_ANY(inside)) return;
-  }
+  const intL inside = convert_intL((e0 + edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]) > 0) &
+                                   (e1 + edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]) > 0) &
+                                   (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
+  if (!CLR_ANY(inside)) return;
   // Step 2: barycentrics, then the depth test.
   raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
 }
@@ -290,7 +287,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode)
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
     const uint rank = painter ? paintRank[setup[s].triId] : 0u;
-    raster_row(&setup[s], s, sx, sy, &best, &rule, rank, edgeMode, false);
+    raster_row(&setup[s], s, sx, sy, &best, &rule, rank, edgeMode);
   }
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
@@ -367,7 +364,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
       }
       for (int row = rowBegin; row <= rowEnd; ++row) {
         const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
-        raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode, false);
+        raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode);
       }
     }
   }
