@@ -431,7 +431,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   // Step 1: a tile without triangles is background; raster left it unwritten.
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
-    store_row((uintL)background, count, out);
+    for (uint lane = 0; lane < count; ++lane) out[lane] = background;
     return;
   }
   // The row's entries in the tile's block of each sample plane (shared.h).
@@ -551,7 +551,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   const uint background = 0xFF261F1Au;
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
-    store_row((uintL)background, count, out);
+    for (uint lane = 0; lane < count; ++lane) out[lane] = background;
     return;
   }
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
