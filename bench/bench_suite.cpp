@@ -31,8 +31,9 @@
 //                   edge_gevals_s / the device's 32-bit lane operations per
 //                   second (--peak-lane-gops: half the fp32 FLOP peak of
 //                   clraster_peak, one FMA per lane).
-//   rr_gbs        = (36 B per pixel: visibility sample written and read,
-//                   16 + 16, image written, 4; plus 64 B of TriSetup read per
+//   rr_gbs        = (12 B per pixel: the visibility sample's setup index
+//                   written and read, 4 + 4 (resolve recomputes the
+//                   barycentrics), image written, 4; plus 64 B of TriSetup read per
 //                   bin entry) / (raster + resolve time); rr_frac_copy =
 //                   rr_gbs / the peak copy bandwidth (read + write bytes).
 // Every failure is one line on stderr and exit status 1.
@@ -388,7 +389,7 @@ int run(const Args& args)
   const double tilePixels = double(CLR_TILE_SIZE) * CLR_TILE_SIZE;
   r.edgeEvalsPerS = double(clr.last.binEntries) * tilePixels * 3.0 / (r.rasterMs * 1e-3);
   r.rasterResolveBytesPerS =
-      (36.0 * double(r.pixels) + 64.0 * double(clr.last.binEntries)) / ((r.rasterMs + r.resolveMs) * 1e-3);
+      (12.0 * double(r.pixels) + 64.0 * double(clr.last.binEntries)) / ((r.rasterMs + r.resolveMs) * 1e-3);
 
   // Step 5: output.
   if (!args.imagePrefix.empty()) {

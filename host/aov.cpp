@@ -18,6 +18,8 @@ namespace clr {
 
 void Pipeline::aov()
 {
+  if (!params_.visAttributes)
+    throw Error("aov: the frame has no depth and barycentric planes (set FrameSettings.keepVisAttributes)");
   aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
   cl::Event event;
   setArgs(aovKernel_, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(),

@@ -10,6 +10,7 @@
 
 #include "cl.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,11 +36,12 @@ class DeviceBuffer {
   // buffer). Buffers whose size changes from frame to frame grow with 1/8
   // slack so that small changes do not reallocate; `exact` buffers, sized
   // once per scene or viewport (uploads, the image), take what they need.
-  void reserve(uint64_t n, bool exact = false)
+  // The slack stops at `most`, a bound on what the buffer can ever need.
+  void reserve(uint64_t n, bool exact = false, uint64_t most = UINT64_MAX)
   {
     n = n == 0 ? 1 : n;
     if (n <= capacity_) return;
-    const uint64_t grown = exact ? n : n + n / 8;
+    const uint64_t grown = exact ? n : std::max(n, std::min(n + n / 8, most));
     const uint64_t bytes = grown * sizeof(T);
     const uint64_t needed = n * sizeof(T);
     if (needed > memory_->maxAllocBytes)

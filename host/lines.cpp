@@ -49,6 +49,8 @@ void Pipeline::drawLineSegments(uint32_t n)
   // Step 1: the line constants. Without a wireframe mode (caller's
   // segments), lines are drawn over the image.
   const FrameSettings& s = settings_;
+  if (!params_.visAttributes)
+    throw Error("lines: the frame has no depth plane to test against (set FrameSettings.keepVisAttributes)");
   if (s.lineMethod > CLR_LINE_BRESENHAM || s.wireframe > CLR_WIREFRAME_ONLY)
     throw Error("unknown line method or wireframe mode");
   if (!(s.lineWidth > 0.0f && s.lineWidth <= 16.0f)) throw Error("line width must lie in (0, 16] pixels");

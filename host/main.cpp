@@ -181,6 +181,7 @@ int renderCommand(const std::vector<std::string>& argList)
   const DepthChoice depth = chooseDepth(args, camera);
   FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
   applyMethods(args, settings, sceneRadius(mesh));
+  settings.keepVisAttributes = !args.aovPath.empty();  // the AOVs read the depth and barycentric planes
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace clr {
 
@@ -73,6 +74,10 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
     throw Error("unknown depth format or visibility method");
   p.depthMode = s.depthMode;
   p.visibility = s.visibility;
+  // The depth and barycentric planes of the visibility buffer, only for the
+  // frames whose readers need them (shared.h): lines test against the depth
+  // plane, and resolve recomputes only the fixed edges' barycentrics.
+  p.visAttributes = s.keepVisAttributes || s.wireframe != CLR_WIREFRAME_OFF || s.edgeMode == CLR_EDGES_FLOAT ? 1u : 0u;
   return p;
 }
 
@@ -283,7 +288,9 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
   if (sample >= params_.samples) throw Error("readVis: no sample " + std::to_string(sample));
   const uint64_t n = uint64_t(params_.width) * params_.height, v = visPlane();
   const std::vector<uint32_t> index = visIndex_.download(v, sample * v);
-  const std::vector<float> attr = visAttr_.download(3 * v, 3 * sample * v);
+  const bool attributes = params_.visAttributes != 0;
+  const std::vector<float> attr = attributes ? visAttr_.download(3 * v, 3 * sample * v) : std::vector<float>();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::vector<uint32_t> offsets = readTileOffsets();
   const std::vector<uint32_t> slots = tileSlot_.download(numTiles_);
   // Step 2: samples; raster leaves empty tiles unwritten, so they read as empty.
@@ -294,8 +301,11 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
       const uint32_t tile = (y / CLR_TILE_SIZE) * params_.tilesX + x / CLR_TILE_SIZE;
       const float clearDepth = params_.depthMode == CLR_DEPTH_REVERSED ? 0.0f : 1.0f;
       const size_t a = offsets[tile] == offsets[tile + 1] ? 0 : vis_address(slots[tile], x, y);
-      vis[p] = offsets[tile] == offsets[tile + 1] ? VisSample{CLR_NONE, clearDepth, 0.0f, 0.0f}
-                                                  : VisSample{index[a], attr[a], attr[v + a], attr[2 * v + a]};
+      if (offsets[tile] == offsets[tile + 1])
+        vis[p] = attributes ? VisSample{CLR_NONE, clearDepth, 0.0f, 0.0f} : VisSample{CLR_NONE, nan, nan, nan};
+      else
+        vis[p] = attributes ? VisSample{index[a], attr[a], attr[v + a], attr[2 * v + a]}
+                            : VisSample{index[a], nan, nan, nan};
     }
   return vis;
 }

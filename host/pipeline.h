@@ -49,6 +49,11 @@ struct FrameSettings {
   uint32_t wireframe = CLR_WIREFRAME_OFF;
   uint32_t lineMethod = CLR_LINE_AA;
   float lineWidth = 1.0f;
+  // Raster also writes the depth and barycentric planes of the visibility
+  // buffer (12 more bytes per sample), for aov() and for the depth and
+  // barycentrics of readVis(). Frames with lines or float edges have them
+  // anyway; otherwise resolve recomputes the barycentrics (shared.h).
+  bool keepVisAttributes = false;
   // Lets resolve use its lean lambert kernel when the frame qualifies
   // (Pipeline::resolve); tests turn it off to compare the two kernels.
   bool leanResolve = true;
@@ -111,7 +116,9 @@ class Pipeline {
   std::vector<ClipBary> readClipBary() const;
   std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
   std::vector<uint32_t> readBinEntries() const;
-  std::vector<VisSample> readVis(uint32_t sample = 0) const;  // one sample plane; empty tiles read as CLR_NONE
+  // One sample plane; empty tiles read as CLR_NONE. Depth, b1 and b2 are NaN
+  // unless the frame kept them (FrameSettings.keepVisAttributes).
+  std::vector<VisSample> readVis(uint32_t sample = 0) const;
   std::vector<uint32_t> readImage() const;
   void readImage(std::vector<uint32_t>& rgba) const;  // the same, into rgba's memory
   // The painter's draw order of the last painter frame: input triangle
@@ -121,11 +128,13 @@ class Pipeline {
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
   // Bytes per pixel of the per-sample buffers and the image of this frame:
-  // 16 per sample of a covered tile (the visibility buffer), 4 for the image.
+  // per sample of a covered tile 4 (the visibility buffer's setup index) or
+  // 16 (with its depth and barycentric planes), and 4 for the image.
   double bytesPerPixel() const
   {
     const double pixels = double(params_.width) * params_.height;
-    return 16.0 * params_.samples * numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
+    const double perSample = params_.visAttributes ? 16.0 : 4.0;
+    return perSample * params_.samples * numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
   const ClContext& cl() const { return cl_; }

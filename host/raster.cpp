@@ -46,8 +46,10 @@ void Pipeline::raster()
   const uint64_t samples = uint64_t(visPlane()) * params_.samples;
   if (samples > UINT32_MAX / 3)
     throw Error("the frame needs " + std::to_string(samples) + " visibility samples, more than 32-bit offsets address");
-  visIndex_.reserve(samples);
-  visAttr_.reserve(3 * samples);
+  // At most the whole viewport's tiles: no growth slack past that.
+  const uint64_t most = uint64_t(numTiles_) * CLR_TILE_SIZE * CLR_TILE_SIZE * params_.samples;
+  visIndex_.reserve(samples, false, most);
+  visAttr_.reserve(params_.visAttributes ? 3 * samples : 1, false, 3 * most);  // else a 1-element dummy
   if (params_.visibility == CLR_VISIBILITY_PAINTER)
     sortForPainter();
   else {

@@ -32,6 +32,7 @@ typedef float floatL;
 #define convert_intL_rte convert_int_rte
 #define convert_uintL_sat_rte convert_uint_sat_rte
 #define as_uintL as_uint
+#define as_intL as_int
 #define as_floatL as_float
 #define CLR_STORE_LANES(value, array) ((array)[0] = (value))
 #define CLR_LOAD_LANES(array) ((array)[0])
@@ -58,6 +59,7 @@ CLR_INLINE bool clr_any16(int16 mask)
 #define convert_intL_rte convert_int16_rte
 #define convert_uintL_sat_rte convert_uint16_sat_rte
 #define as_uintL as_uint16
+#define as_intL as_int16
 #define as_floatL as_float16
 #define CLR_STORE_LANES(value, array) vstore16((value), 0, (array))
 #define CLR_LOAD_LANES(array) vload16(0, (array))

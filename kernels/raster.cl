@@ -17,7 +17,9 @@
  * inside for a left edge (dy < 0 on a counter-clockwise triangle) or a
  * horizontal bottom edge (dy = 0, dx > 0), outside otherwise. Inside samples get barycentrics
  * b_i = E_i / (2·area) and window depth z = z0 + b1·(z1 − z0) + b2·(z2 − z0);
- * the nearest is kept and written to the visibility buffer. The depth test
+ * the nearest is kept and written to the visibility buffer (its setup index;
+ * its depth and barycentrics too when FrameParams.visAttributes asks for
+ * them, shared.h; vis_barycentrics recomputes them). The depth test
  * follows FrameParams.depthMode (shared.h), as a LESS compare of a key:
  * float32 key z (GL LESS against the clear value 1), unorm24 key
  * rint(clamp(z, 0, 1)·(2^24 − 1)) in float (LESS against 2^24 − 1), reversed
@@ -241,17 +243,56 @@ CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, )
 #undef CLR_DEFINE_RASTER_ROWS
 
 /* Writes a row segment of samples into sample plane k of the visibility
- * buffer (shared.h) at address a of the plane: one vector store per plane.
- * The tile's block has room for its whole rows, so lanes past the
- * viewport's edge are stored too (and never read). */
+ * buffer (shared.h) at address a of the plane: one vector store per plane,
+ * the depth and barycentric planes only when the frame has them. The
+ * tile's block has room for its whole rows, so lanes past the viewport's
+ * edge are stored too (and never read). */
 CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, uint k, uint a, const RowBest* best,
                                  __global uint* visIndex, __global float* visAttr)
 {
-  const floatL windowDepth = raster_key_depth(best->depth, params->depthMode, params->visibility);
   CLR_STORE_LANES(best->index, &visIndex[k * visPlane + a]);
+  if (!params->visAttributes) return;
+  const floatL windowDepth = raster_key_depth(best->depth, params->depthMode, params->visibility);
   CLR_STORE_LANES(windowDepth, &visAttr[3 * k * visPlane + a]);
   CLR_STORE_LANES(best->b1, &visAttr[(3 * k + 1) * visPlane + a]);
   CLR_STORE_LANES(best->b2, &visAttr[(3 * k + 2) * visPlane + a]);
+}
+
+/* The edge function of a→b at the samples, with a and b per lane: the
+ * integers of edge_function, exact in 64 bits. */
+CLR_INLINE longL edge_function_lanes(intL ax, intL ay, intL bx, intL by, intL px, int py)
+{
+  return convert_longL(bx - ax) * convert_longL(py - ay) - convert_longL(by - ay) * convert_longL(px - ax);
+}
+
+/* The screen barycentrics b1, b2 that raster kept for the samples
+ * (sx + lane·CLR_FIXED_ONE, sy) with fixed edges, of the lanes' triangles
+ * with snapped vertices (x_i, y_i) and 1 / (2·area) `scale`: the same integer
+ * edge functions E1, E2, converted to float and scaled as in raster_row and
+ * raster_rows_fixed, so the floats are bit-identical. Resolve calls this
+ * when the frame has no barycentric planes (shared.h). Lanes outside
+ * `covered` give values the caller discards. */
+CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2, floatL scale, intL covered,
+                                 intL sx, int sy, floatL* b1, floatL* b2)
+{
+  // E1 of edge 2→0 and E2 of edge 0→1, as raster_row has them. In 32 bits
+  // when every covered lane's triangle spans at most CLR_EDGE32_SPAN each
+  // way: unsigned arithmetic is exact modulo 2^32, and a covered sample's E
+  // lies in [0, 2·area] ⊂ [0, 2^28], so the low 32 bits read as int are E
+  // (uncovered lanes may wrap; they are discarded). Else in 64 bits. Either
+  // way the same integers, so the same floats.
+  const intL spanX = max(x0, max(x1, x2)) - min(x0, min(x1, x2));
+  const intL spanY = max(y0, max(y1, y2)) - min(y0, min(y1, y2));
+  if (!CLR_ANY(covered & ((spanX > CLR_EDGE32_SPAN) | (spanY > CLR_EDGE32_SPAN)))) {
+    const uintL py = (uintL)(uint)sy, px = as_uintL(sx);
+    const uintL ax0 = as_uintL(x0), ax1 = as_uintL(x1), ax2 = as_uintL(x2);
+    const uintL ay0 = as_uintL(y0), ay1 = as_uintL(y1), ay2 = as_uintL(y2);
+    *b1 = convert_floatL(as_intL((ax0 - ax2) * (py - ay2) - (ay0 - ay2) * (px - ax2))) * scale;
+    *b2 = convert_floatL(as_intL((ax1 - ax0) * (py - ay0) - (ay1 - ay0) * (px - ax0))) * scale;
+    return;
+  }
+  *b1 = convert_floatL(edge_function_lanes(x2, y2, x0, y0, sx, sy)) * scale;
+  *b2 = convert_floatL(edge_function_lanes(x0, y0, x1, y1, sx, sy)) * scale;
 }
 
 /* The raster kernels' parameters, the same for every variant below:

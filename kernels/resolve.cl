@@ -3,8 +3,10 @@
  * One work-item per CLR_LANES pixels of a row (lanes.h), shaded together in
  * lane types after the per-pixel gathers. Pixels of a tile that binning
  * left empty are background, without a visibility read. Per covered sample
- * it reads the visibility sample, turns its screen-space barycentrics b_i
- * into perspective-correct ones with the 1/w rule of the notes,
+ * it reads the visible triangle, recomputes its screen-space barycentrics
+ * b_i from the setup record at the sample as raster computed them (or reads
+ * them from the barycentric planes when the frame has them, shared.h),
+ * turns them into perspective-correct ones with the 1/w rule of the notes,
  * λ_i = (b_i / w_i) / Σ_j (b_j / w_j) (or keeps λ_i = b_i with
  * CLR_INTERP_AFFINE, the weaker method), maps them to the input triangle's
  * vertices (through ClipBary when the triangle was clipped, through the
@@ -216,6 +218,65 @@ CLR_INLINE floatL load_float_lanes(__global const float* row, uint count)
   return CLR_LOAD_LANES(lanes);
 }
 
+/* The sample positions of a row's lanes for sample k, in fixed point. */
+CLR_INLINE intL resolve_sample_x(__constant FrameParams* params, uint firstX, uint k)
+{
+  return ((int)firstX + CLR_LANE_INDEX) * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleX[k];
+}
+CLR_INLINE int resolve_sample_y(__constant FrameParams* params, uint py, uint k)
+{
+  return (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
+}
+
+/* The lanes' screen barycentrics at sample k, recomputed from the setup
+ * records (vis_barycentrics, raster.cl), the same floats raster kept. A row
+ * shows few triangles, in runs: each run's record is read once and its
+ * values are selected into the lanes that show it (cheaper than a scalar
+ * gather per lane). A lane with CLR_NONE reads record 0 (a covered tile
+ * has one); its value is discarded. */
+CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, __global const TriSetup* setup,
+                                               const uint* index, uint firstX, uint py, uint k, floatL* b1, floatL* b2)
+{
+  // Step 1: the first run's record in every lane, then each later run's
+  // selected into its lanes (none when the row shows one triangle).
+  const uintL lanes = CLR_LOAD_LANES(index);
+  __global const TriSetup* t = &setup[index[0] != CLR_NONE ? index[0] : 0];
+  intL x0 = t->x[0], y0 = t->y[0], x1 = t->x[1], y1 = t->y[1], x2 = t->x[2], y2 = t->y[2];
+  floatL scale = t->invArea2;
+  if (CLR_ANY(lanes != index[0])) {
+    CLR_NO_UNROLL
+    for (uint lane = 1; lane < CLR_LANES; ++lane) {
+      if (index[lane] == index[lane - 1]) continue;
+      t = &setup[index[lane] != CLR_NONE ? index[lane] : 0];
+      const intL run = lanes == index[lane];
+      x0 = select(x0, (intL)t->x[0], run);
+      y0 = select(y0, (intL)t->y[0], run);
+      x1 = select(x1, (intL)t->x[1], run);
+      y1 = select(y1, (intL)t->y[1], run);
+      x2 = select(x2, (intL)t->x[2], run);
+      y2 = select(y2, (intL)t->y[2], run);
+      scale = select(scale, (floatL)t->invArea2, run);
+    }
+  }
+  // Step 2: the edge functions and barycentrics, as raster has them.
+  vis_barycentrics(x0, y0, x1, y1, x2, y2, scale, lanes != CLR_NONE, resolve_sample_x(params, firstX, k),
+                   resolve_sample_y(params, py, k), b1, b2);
+}
+
+/* The lanes' screen barycentrics at sample k: read from the barycentric
+ * planes when raster wrote them, else recomputed. */
+CLR_INLINE void resolve_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
+                                     uint p, uint count, uint k, __global const TriSetup* setup, const uint* index,
+                                     uint firstX, uint py, floatL* b1, floatL* b2)
+{
+  if (params->visAttributes) {
+    *b1 = load_float_lanes(&visAttr[(3 * k + 1) * visPlane + p], count);
+    *b2 = load_float_lanes(&visAttr[(3 * k + 2) * visPlane + p], count);
+    return;
+  }
+  resolve_recompute_barycentrics(params, setup, index, firstX, py, k, b1, b2);
+}
+
 /* Stores the first `count` lanes of a row of RGBA8 pixels (the row may end
  * at the viewport's edge). */
 CLR_INLINE void store_row(uintL colour, uint count, __global uint* out)
@@ -398,7 +459,8 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
 
 /* The resolve kernel's parameters:
  *   params; visIndex (samples · visPlane), visAttr (3 · samples · visPlane:
- *   depth, b1, b2), visibility-buffer planes of the non-empty tiles;
+ *   depth, b1, b2; read only with FrameParams.visAttributes), the
+ *   visibility-buffer planes of the non-empty tiles;
  *   tileOffset (tiles + 1); setup; clipBary; indices (3·numTris);
  *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
  *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
@@ -453,8 +515,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
     if (CLR_ANY(covered)) {
       ResolveLanes g;
       resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
-      const floatL b1 = load_float_lanes(&visAttr[plane + p], count);
-      const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
+      floatL b1, b2;
+      resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, firstX, py, &b1, &b2);
       c = colour_select(backgroundColour, resolve_shade(params, &g, &inputs, b1, b2), covered);
     }
     colour = pack_rgba(c.r, c.g, c.b);
@@ -481,8 +543,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
       } else {
         ResolveLanes g;
         resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
-        const floatL b1 = load_float_lanes(&visAttr[(3 * k + 1) * plane + p], count);
-        const floatL b2 = load_float_lanes(&visAttr[(3 * k + 2) * plane + p], count);
+        floatL b1, b2;
+        resolve_barycentrics(params, visAttr, plane, p, count, k, setup, index, firstX, py, &b1, &b2);
         sampleColour[k] = colour_select(resolve_shade(params, &g, &inputs, b1, b2), c, done);
       }
       sum.r += sampleColour[k].r;
@@ -605,8 +667,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
       albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
     }
     // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
-    const floatL b1 = load_float_lanes(&visAttr[plane + p], count);
-    const floatL b2 = load_float_lanes(&visAttr[2 * plane + p], count);
+    floatL b1, b2;
+    resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, firstX, py, &b1, &b2);
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
     floatL q[3], lambda[3];
     for (int i = 0; i < 3; ++i) q[i] = CLR_GATHERED(invW[i], floatL);

@@ -172,10 +172,10 @@ typedef struct FrameParams {
    * light at pointLight.xyz with attenuation 1 / (1 + (d / pointLight.w)²). */
   float eye[4];
   float pointLight[4];
-  uint pointLightOn; /* 1: the point light shines (besides lightDir) */
-  uint texFilter;    /* CLR_FILTER_* */
-  uint sceneFlags;   /* CLR_SCENE_*: what the host bound for this frame */
-  uint pad2;
+  uint pointLightOn;  /* 1: the point light shines (besides lightDir) */
+  uint texFilter;     /* CLR_FILTER_* */
+  uint sceneFlags;    /* CLR_SCENE_*: what the host bound for this frame */
+  uint visAttributes; /* 1: raster also writes the depth and barycentric planes */
   /* Sample k of a pixel lies at its centre + (sampleX[k], sampleY[k]) in
    * fixed-point units (y up); the host fills them (host/aa.cpp). */
   int sampleX[CLR_MAX_SAMPLES];
@@ -241,10 +241,16 @@ typedef struct TextureDesc {
  *  visAttr  float[3·S·V]  at (3k + c)·V + a: c = 0 window depth, 1 b1, 2 b2
  * (the depth plane holds the depth as its format stores it: unorm24 reads
  * back as q / (2^24 − 1); with CLR_VISIBILITY_PAINTER it holds the paint
- * rank of the visible triangle, as uint bits)
- * Written by raster, read by resolve, lines_draw and aov; 4 + 12 bytes per
- * sample of a covered tile. Entries of a tile's block outside the viewport
- * are written but never read.
+ * rank of the visible triangle, as uint bits).
+ * visIndex is written by raster and read by resolve, lines_draw and aov: 4
+ * bytes per sample of a covered tile. The visAttr planes exist only when
+ * FrameParams.visAttributes is 1 (the host sets it for frames whose readers
+ * need them: lines, AOVs, float edges, Pipeline::readVis's depth and
+ * barycentrics); raster then writes them, 12 more bytes per sample. Without
+ * them resolve recomputes b1 and b2 from the setup record at the sample
+ * (vis_barycentrics in raster.cl), the same integers and floats raster
+ * computed. Entries of a tile's block outside the viewport are written but
+ * never read.
  * VisSample is one sample as Pipeline::readVis() returns it. */
 #ifdef __OPENCL_VERSION__
 CLR_INLINE uint vis_address(uint slot, uint x, uint y)

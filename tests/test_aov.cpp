@@ -47,7 +47,7 @@ struct AovScene {
 std::vector<float> renderAov(clr::Pipeline& pipeline, const AovScene& scene)
 {
   pipeline.uploadScene(scene.mesh);
-  clr::FrameSettings s = test::idSettings(W, H, scene.mvp);
+  clr::FrameSettings s = test::keepingVis(test::idSettings(W, H, scene.mvp));  // the AOVs read the planes
   s.shadeMode = CLR_SHADE_NORMAL;
   std::vector<uint32_t> rgba;
   pipeline.render(s, rgba);

@@ -24,7 +24,7 @@ const uint32_t kModes[] = {CLR_DEPTH_FLOAT32, CLR_DEPTH_UNORM24, CLR_DEPTH_REVER
 clr::FrameSettings depthSettings(uint32_t width, uint32_t height, uint32_t depthMode,
                                  const glm::mat4& mvp = glm::mat4(1.0f))
 {
-  clr::FrameSettings s = test::idSettings(width, height, mvp);
+  clr::FrameSettings s = test::keepingVis(test::idSettings(width, height, mvp));  // the tests read the depth plane
   s.depthMode = depthMode;
   return s;
 }

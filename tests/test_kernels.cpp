@@ -190,7 +190,7 @@ TEST_CASE("barycentrics match the exact edge-function ratios and sum to 1", "[ra
                   {coord(rng), coord(rng), depth(rng)});
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
-  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(96, 80));
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::keepingVis(test::idSettings(96, 80)));
   const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {96, 80, false});
   REQUIRE(test::countDifferences(ids, expected.triId) == 0);
   const std::vector<VisSample> vis = pipeline.readVis();
@@ -294,7 +294,7 @@ TEST_CASE("near-plane clipping: no projection through w <= 0, same pixels as the
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
-  const clr::FrameStats stats = pipeline.render(test::idSettings(W, H, mvp), rgba);
+  const clr::FrameStats stats = pipeline.render(test::keepingVis(test::idSettings(W, H, mvp)), rgba);
   CHECK(stats.trianglesClipped == 2);
   CHECK(stats.trianglesCulled == 1);
   CHECK(stats.setupTriangles == 3);

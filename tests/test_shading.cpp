@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <set>
@@ -304,19 +305,27 @@ TEST_CASE("only the attributes the shading reads are uploaded, each once", "[sha
         uint32_t(P::kResidentColors | P::kResidentUvs | P::kResidentMaterials | P::kResidentTextures));
 }
 
-TEST_CASE("the lean lambert resolve gives the general resolve's pixels bit for bit", "[shade]")
-{
-  // Step 1: a bumpy grid seen at a grazing angle, the near plane cutting
-  // into it (clipped triangles), every third triangle wound the other way
-  // (back faces, drawn two-sided), three untextured materials, tilted
-  // normals, and a viewport whose width is not a multiple of 16.
+namespace {
+
+// A bumpy grid seen at a grazing angle, the near plane cutting into it
+// (clipped triangles), every third triangle wound the other way (back faces,
+// drawn two-sided), three untextured materials and tilted normals, in a
+// width x height viewport.
+struct GrazingGrid {
   clr::Mesh mesh;
+  clr::FrameSettings settings;
+};
+GrazingGrid grazingGrid(uint32_t width, uint32_t height)
+{
+  GrazingGrid g;
+  clr::Mesh& mesh = g.mesh;
   const int n = 24;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const float x = -2.0f + 4.0f * float(i) / n, z = -2.0f + 4.0f * float(j) / n;
       mesh.positions.insert(mesh.positions.end(), {x, 0.15f * std::sin(3.0f * x) * std::cos(2.0f * z), z});
       mesh.normals.insert(mesh.normals.end(), {0.3f * std::sin(5.0f * z), 1.0f, 0.2f * std::cos(4.0f * x)});
+      mesh.uvs.insert(mesh.uvs.end(), {float(i) / n, float(j) / n});
     }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -336,11 +345,22 @@ TEST_CASE("the lean lambert resolve gives the general resolve's pixels bit for b
     mat.texture = -1;
     mesh.materials.push_back(mat);
   }
-  const glm::mat4 mvp = glm::perspective(glm::radians(70.0f), 100.0f / 70.0f, 0.6f, 20.0f) *
+  const glm::mat4 mvp = glm::perspective(glm::radians(70.0f), float(width) / float(height), 0.6f, 20.0f) *
                         glm::lookAt(glm::vec3(0.2f, 0.35f, 1.2f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0, 1, 0));
-  clr::FrameSettings settings = test::idSettings(100, 70, mvp);
-  settings.shadeMode = CLR_SHADE_LAMBERT;
-  settings.lightDir = glm::normalize(glm::vec3(0.3f, 0.8f, 0.4f));
+  g.settings = test::idSettings(width, height, mvp);
+  g.settings.shadeMode = CLR_SHADE_LAMBERT;
+  g.settings.lightDir = glm::normalize(glm::vec3(0.3f, 0.8f, 0.4f));
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("the lean lambert resolve gives the general resolve's pixels bit for bit", "[shade]")
+{
+  // Step 1: the grazing grid in a viewport whose width is not a multiple of 16.
+  const GrazingGrid grid = grazingGrid(100, 70);
+  const clr::Mesh& mesh = grid.mesh;
+  clr::FrameSettings settings = grid.settings;
 
   // Step 2: both kernels on the same frame.
   clr::Pipeline pipeline(test::context());
@@ -379,4 +399,136 @@ TEST_CASE("the lean lambert resolve gives the general resolve's pixels bit for b
   settings.pointLightOn = false;
   settings.interpMode = CLR_INTERP_AFFINE;
   CHECK_FALSE(pipeline.render(settings, general).leanResolve);
+}
+
+namespace {
+
+struct RecomputeCase {
+  const char* name;
+  uint32_t shadeMode, samples;
+  bool everySample, lean;
+  uint32_t visibility, depthMode;
+};
+
+// Renders each case with the barycentric planes kept (resolve reads
+// raster's barycentrics) and without (resolve recomputes them), and requires
+// identical pixels.
+void checkRecomputedBarycentrics(const std::vector<RecomputeCase>& cases)
+{
+  // Step 1: the grazing grid at 160 x 100 (triangles within 64 pixels:
+  // raster's 32-bit edge rows) and a large backdrop triangle behind it
+  // (its 64-bit rows).
+  GrazingGrid grid = grazingGrid(160, 100);
+  clr::Mesh& mesh = grid.mesh;
+  const uint32_t first = uint32_t(mesh.positions.size() / 3);
+  mesh.positions.insert(mesh.positions.end(), {-9.0f, -2.0f, -7.0f, 9.0f, -2.0f, -7.0f, 0.0f, 9.0f, -7.0f});
+  mesh.normals.insert(mesh.normals.end(), {-0.2f, 0.1f, 1.0f, 0.3f, 0.0f, 1.0f, 0.0f, 0.4f, 0.9f});
+  mesh.uvs.insert(mesh.uvs.end(), {0.0f, 0.0f, 1.0f, 0.0f, 0.5f, 1.0f});
+  mesh.indices.insert(mesh.indices.end(), {first, first + 1, first + 2});
+  mesh.triMaterial.push_back(1);
+  clr::Pipeline kept(test::context()), recomputed(test::context());
+  kept.uploadScene(grid.mesh);
+  recomputed.uploadScene(grid.mesh);
+  for (const RecomputeCase& c : cases) {
+    INFO(c.name);
+    clr::FrameSettings settings = grid.settings;
+    settings.shadeMode = c.shadeMode;
+    settings.samples = c.samples;
+    settings.shadeEverySample = c.everySample;
+    settings.leanResolve = c.lean;
+    settings.visibility = c.visibility;
+    settings.depthMode = c.depthMode;
+    // Step 2: the same frame with and without the planes.
+    std::vector<uint32_t> withPlanes, withoutPlanes;
+    settings.keepVisAttributes = true;
+    const clr::FrameStats stats = kept.render(settings, withPlanes);
+    settings.keepVisAttributes = false;
+    recomputed.render(settings, withoutPlanes);
+    CHECK(stats.trianglesClipped > 0);
+    // Step 3: the frame exercises both raster paths and many colours, and
+    // the pixels agree exactly.
+    bool wide = false, narrow = false;
+    for (const TriSetup& t : kept.readSetup()) {
+      if (t.flags & CLR_FLAG_DEAD) continue;
+      const int w = std::max({t.x[0], t.x[1], t.x[2]}) - std::min({t.x[0], t.x[1], t.x[2]});
+      (w > 64 * CLR_FIXED_ONE ? wide : narrow) = true;
+    }
+    CHECK(wide);
+    CHECK(narrow);
+    const size_t distinct = std::set<uint32_t>(withPlanes.begin(), withPlanes.end()).size();
+    CHECK(distinct > (c.shadeMode == CLR_SHADE_DEPTH ? 5u : 100u));  // depth shades in a narrow grey range
+    CHECK(withPlanes == withoutPlanes);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("resolve recomputes raster's barycentrics: lambert frames without the attribute planes are bit-identical",
+          "[shade][resolve]")
+{
+  // Both resolve kernels; this one also runs under Oclgrind in both shapes.
+  checkRecomputedBarycentrics({
+      {"lean lambert", CLR_SHADE_LAMBERT, 1, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+      {"general lambert", CLR_SHADE_LAMBERT, 1, false, false, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+  });
+}
+
+TEST_CASE("resolve recomputes raster's barycentrics for every sample, shading mode and visibility method",
+          "[shade][aa]")
+{
+  checkRecomputedBarycentrics({
+      {"phong", CLR_SHADE_PHONG, 1, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+      {"uv", CLR_SHADE_UV, 1, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_UNORM24},
+      {"depth", CLR_SHADE_DEPTH, 1, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+      {"msaa 4", CLR_SHADE_LAMBERT, 4, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+      {"ssaa 8", CLR_SHADE_GOURAUD, 8, true, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
+      {"painter", CLR_SHADE_LAMBERT, 1, false, true, CLR_VISIBILITY_PAINTER, CLR_DEPTH_FLOAT32},
+  });
+}
+
+TEST_CASE("the visibility buffer keeps its depth and barycentric planes only when a reader needs them", "[shade]")
+{
+  const GrazingGrid grid = grazingGrid(160, 100);
+  clr::Pipeline lean(test::context()), full(test::context());
+  lean.uploadScene(grid.mesh);
+  full.uploadScene(grid.mesh);
+  std::vector<uint32_t> rgba;
+  clr::FrameSettings settings = grid.settings;
+  // Step 1: 4 bytes per sample of a covered tile without the planes, 16 with.
+  lean.render(settings, rgba);
+  settings.keepVisAttributes = true;
+  full.render(settings, rgba);
+  const uint64_t plane = lean.visPlane();
+  REQUIRE(plane > 0);
+  CHECK(full.deviceBytes() - lean.deviceBytes() >= 12 * plane);
+  CHECK(full.bytesPerPixel() - lean.bytesPerPixel() ==
+        Approx(12.0 * plane / (160.0 * 100.0)).epsilon(1e-9));  // the same formula, exact up to rounding
+  // Step 2: readVis gives the setup indices either way, and depth and
+  // barycentrics only with the planes (NaN without).
+  const std::vector<VisSample> leanVis = lean.readVis(), fullVis = full.readVis();
+  REQUIRE(leanVis.size() == fullVis.size());
+  size_t covered = 0;
+  for (size_t p = 0; p < leanVis.size(); ++p) {
+    REQUIRE(leanVis[p].setupIndex == fullVis[p].setupIndex);
+    REQUIRE(std::isnan(leanVis[p].depth));
+    REQUIRE(std::isfinite(fullVis[p].depth));
+    covered += fullVis[p].setupIndex != CLR_NONE;
+  }
+  CHECK(covered > 1000);
+  // Step 3: the readers that need the planes say so instead of reading garbage.
+  CHECK_THROWS_WITH(lean.aov(), Catch::Contains("keepVisAttributes"));
+  CHECK_THROWS_WITH(lean.lines({}), Catch::Contains("keepVisAttributes"));
+  full.aov();
+  // Frames with lines or float edges keep the planes without being asked.
+  settings.keepVisAttributes = false;
+  settings.wireframe = CLR_WIREFRAME_OVERLAY;
+  lean.render(settings, rgba);
+  CHECK(lean.params().visAttributes == 1u);
+  settings.wireframe = CLR_WIREFRAME_OFF;
+  settings.edgeMode = CLR_EDGES_FLOAT;
+  lean.render(settings, rgba);
+  CHECK(lean.params().visAttributes == 1u);
+  settings.edgeMode = CLR_EDGES_FIXED;
+  lean.render(settings, rgba);
+  CHECK(lean.params().visAttributes == 0u);
 }

@@ -120,7 +120,7 @@ TEST_CASE("stability: huge finite vertices are clipped to the guard band exactly
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
-  const clr::FrameStats stats = pipeline.render(test::idSettings(W, H), rgba);
+  const clr::FrameStats stats = pipeline.render(test::keepingVis(test::idSettings(W, H)), rgba);
   CHECK(stats.trianglesClipped == 2);
   // The guard band is the square |x_s|, |y_s| <= 2^16 around the viewport;
   // both triangles contain it, so each clips to it: two sub-triangles each.
@@ -279,7 +279,7 @@ TEST_CASE("stability: triangles through the camera plane and behind the eye clip
     clr::Pipeline pipeline(test::context());
     pipeline.uploadScene(all.mesh());
     std::vector<uint32_t> rgba;
-    const clr::FrameStats stats = pipeline.render(test::idSettings(W, H, mvp), rgba);
+    const clr::FrameStats stats = pipeline.render(test::keepingVis(test::idSettings(W, H, mvp)), rgba);
     const std::vector<uint32_t> ids = test::readTriIds(pipeline);
     CHECK(stats.trianglesClipped > 0);
     CHECK(pipeline.readClipBary().size() > 0);

@@ -31,6 +31,14 @@ struct Geometry {
 };
 glm::vec3 screen(float sx, float sy, float z, uint32_t width, uint32_t height);
 
+// The settings with FrameSettings.keepVisAttributes on: for tests that read
+// the depth and barycentrics raster writes (Pipeline::readVis, aov()).
+inline clr::FrameSettings keepingVis(clr::FrameSettings s)
+{
+  s.keepVisAttributes = true;
+  return s;
+}
+
 // Settings for an ID render of a width×height viewport.
 clr::FrameSettings idSettings(uint32_t width, uint32_t height, const glm::mat4& mvp = glm::mat4(1.0f),
                               bool cullBack = false);
