@@ -29,7 +29,7 @@ void Pipeline::bin()
   tileCursor_.zero(numTiles_, &fills);
   const uint32_t batches = (numSetup_ + cl_.lanes - 1) / cl_.lanes;  // over the records, not the input
   cl::Event emitEvent;
-  setArgs(setupEmitKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
+  setArgs(setupEmitKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
           clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
           binEntries_.get(), setupSource_.get(), numSetup_, uint32_t(CLR_SETUP_PASS_EMIT));
   cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches),

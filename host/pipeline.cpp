@@ -168,7 +168,6 @@ void Pipeline::uploadScene(const Mesh& mesh)
   paintOrder_.clear();
   scene_ = mesh;
   resident_ = 0;
-  clipPos_.reserve(mesh.numVerts(), true);
   triCount_.reserve(mesh.numTris() + 1, true);
   params_.numVerts = uint32_t(mesh.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
@@ -232,8 +231,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
 FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
 {
   beginFrame(settings);
-  transform();
-  setup();
+  setup();  // transforms the vertices it reads (transform.cl)
   bin();
   raster();
   resolve();

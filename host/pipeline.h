@@ -1,7 +1,9 @@
 // pipeline.h — the frame pipeline: buffers, stages and per-frame statistics.
 //
 // A Pipeline owns every device buffer of a scene and runs the stages in
-// order: transform -> setup -> bin -> raster -> resolve. Each stage is a
+// order: (transform) -> setup -> bin -> raster -> resolve, where setup
+// transforms the vertices it reads, so a frame needs no clip-position
+// buffer (transform() writes one for tests and the painter's sort). Each stage is a
 // member function defined in the host file named after its kernel file
 // (host/transform.cpp runs kernels/transform.cl, and so on), so tests can
 // run and inspect one stage at a time. Buffers grow to the counts of the
@@ -95,7 +97,7 @@ class Pipeline {
 
   // The stages, in order (each defined in its own host file).
   void beginFrame(const FrameSettings& settings);
-  void transform();
+  void transform();  // optional: fills readClipPositions()
   void setup();
   void bin();
   void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)

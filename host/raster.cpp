@@ -4,7 +4,8 @@
 // (CLR_VISIBILITY_PAINTER) it first sorts the triangles on the host, far to
 // near by each triangle's farthest vertex: the largest window-depth
 // direction z/w over its vertices with w > 0 (−z/w with the reversed
-// projection), read back from the transform stage. Equal keys put the later
+// projection), from the transform kernel's clip positions (run here: a
+// frame otherwise transforms the vertices inside setup). Equal keys put the later
 // input triangle first, so the earlier one is drawn last and wins, as an
 // exact tie does in the z-buffer. The ranks go to the kernel, which keeps
 // the fragment of the latest-drawn triangle.
@@ -21,6 +22,7 @@ void Pipeline::sortForPainter()
   // Step 1: this frame's clip positions (the indices are the host copy of the scene).
   const uint32_t numTris = params_.numTris;
   const std::vector<uint32_t>& indices = scene_.indices;
+  transform();
   const std::vector<cl_float4> clip = clipPos_.download(params_.numVerts);
   // Step 2: each triangle's farthest vertex depth (−inf when all w <= 0).
   const float sign = params_.depthMode == CLR_DEPTH_REVERSED ? -1.0f : 1.0f;

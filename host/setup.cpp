@@ -26,7 +26,7 @@ void Pipeline::setup()
     tileCursor_.reserve(1);
     binEntries_.reserve(1);
     setupSource_.reserve(1);
-    setArgs(setupCountKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), counters_.get(),
+    setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
             clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
             binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT));
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches),
@@ -58,7 +58,7 @@ void Pipeline::setup()
   // Step 4: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
-  setArgs(setupClipKernel_, paramsBuf_.get(), clipPos_.get(), indices_.get(), triCount_.get(), clipList_.get(),
+  setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), clipList_.get(),
           setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
   cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
                                  &clipEvent);

@@ -55,28 +55,34 @@ typedef struct SetupLanes {
 #define CLR_SETUP_SIMPLE 1u
 #define CLR_SETUP_CLIP 2u
 
-/* Loads the clip positions of the triangles tri[0 .. CLR_LANES − 1]. With
- * 16 lanes the 16 float4 of a vertex are transposed in registers by
- * swizzles, which the compiler turns into a few permutes; going through a
- * private array instead stalls the CPU on every wide load of narrow stores. */
-CLR_INLINE void setup_load_batch(const uint* tri, __global const float4* clipPos, __global const uint* indices,
-                                 ClipBatch* c)
+/* Loads the positions of the triangles tri[0 .. CLR_LANES − 1] and
+ * transforms them to clip space (transform.cl). With 16 lanes the 16
+ * positions of a vertex are transposed in registers by swizzles, which the
+ * compiler turns into a few permutes; going through a private array instead
+ * stalls the CPU on every wide load of narrow stores. */
+CLR_INLINE void setup_load_batch(const uint* tri, __constant FrameParams* params, __global const float* positions,
+                                 __global const uint* indices, ClipBatch* c)
 {
   for (int v = 0; v < 3; ++v) {
-    float4 q[CLR_LANES];
-    for (int lane = 0; lane < CLR_LANES; ++lane) q[lane] = clipPos[indices[3 * tri[lane] + v]];
 #if CLR_LANES == 1
-    c->x[v] = q[0].x;
-    c->y[v] = q[0].y;
-    c->z[v] = q[0].z;
-    c->w[v] = q[0].w;
+    const float4 q = transform_vertex(params, positions, indices[3 * tri[0] + v]);
+    c->x[v] = q.x;
+    c->y[v] = q.y;
+    c->z[v] = q.z;
+    c->w[v] = q.w;
 #else
+    float4 q[CLR_LANES];
+    for (int lane = 0; lane < CLR_LANES; ++lane)
+      q[lane] = (float4)(vload3(indices[3 * tri[lane] + v], positions), 0.0f);
     const float16 a = (float16)(q[0], q[1], q[2], q[3]), b = (float16)(q[4], q[5], q[6], q[7]);
     const float16 d = (float16)(q[8], q[9], q[10], q[11]), e = (float16)(q[12], q[13], q[14], q[15]);
-    c->x[v] = (float16)(a.s048c, b.s048c, d.s048c, e.s048c);
-    c->y[v] = (float16)(a.s159d, b.s159d, d.s159d, e.s159d);
-    c->z[v] = (float16)(a.s26ae, b.s26ae, d.s26ae, e.s26ae);
-    c->w[v] = (float16)(a.s37bf, b.s37bf, d.s37bf, e.s37bf);
+    const float16 px = (float16)(a.s048c, b.s048c, d.s048c, e.s048c);
+    const float16 py = (float16)(a.s159d, b.s159d, d.s159d, e.s159d);
+    const float16 pz = (float16)(a.s26ae, b.s26ae, d.s26ae, e.s26ae);
+    c->x[v] = transform_lanes(params, 0, px, py, pz);
+    c->y[v] = transform_lanes(params, 1, px, py, pz);
+    c->z[v] = transform_lanes(params, 2, px, py, pz);
+    c->w[v] = transform_lanes(params, 3, px, py, pz);
 #endif
   }
 }
@@ -313,11 +319,11 @@ __kernel void setup_sources(__constant FrameParams* params,
  * hold counts in pass 1 and, scanned, offsets in pass 2. */
 __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1))) void setup_triangles(
     __constant FrameParams* params,
-    __global const float4* clipPos,  // numVerts
-    __global const uint* indices,    // 3·numTris
-    __global uint* triCount,         // numTris + 1
-    __global uint* counters,         // CLR_NUM_COUNTERS
-    __global uint* clipList,         // clipListCapacity
+    __global const float* positions,  // 3·numVerts
+    __global const uint* indices,     // 3·numTris
+    __global uint* triCount,          // numTris + 1
+    __global uint* counters,          // CLR_NUM_COUNTERS
+    __global uint* clipList,          // clipListCapacity
     uint clipListCapacity,
     __global uint* tileCount,     // tiles + 1
     __global TriSetup* setup,     // pass 2: triOffset[numTris]
@@ -341,7 +347,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = min(first + lane, params->numTris - 1);
   }
   ClipBatch c;
-  setup_load_batch(tri, clipPos, indices, &c);
+  setup_load_batch(tri, params, positions, indices, &c);
   const uintL kind = setup_classify(&c, params);
   SetupBatch b;
   const intL made = setup_make(&c, params, &b);
@@ -377,12 +383,12 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
  * reserved slots and counts the sub-triangles' tiles (bin_fill_clipped
  * fills their bins after the scan). */
 __kernel void setup_clip(__constant FrameParams* params,
-                         __global const float4* clipPos,  // numVerts
-                         __global const uint* indices,    // 3·numTris
-                         __global const uint* triOffset,  // numTris + 1, scanned
-                         __global const uint* clipList,   // CLIPPED_TRIS counter
-                         __global TriSetup* setup,        // triOffset[numTris]
-                         __global ClipBary* clipBary,     // CLR_MAX_SUBTRIS · CLIPPED_TRIS
+                         __global const float* positions,  // 3·numVerts
+                         __global const uint* indices,     // 3·numTris
+                         __global const uint* triOffset,   // numTris + 1, scanned
+                         __global const uint* clipList,    // CLIPPED_TRIS counter
+                         __global TriSetup* setup,         // triOffset[numTris]
+                         __global ClipBary* clipBary,      // CLR_MAX_SUBTRIS · CLIPPED_TRIS
                          __global uint* counters,
                          __global uint* tileCount)  // tiles + 1
 {
@@ -394,7 +400,7 @@ __kernel void setup_clip(__constant FrameParams* params,
   uint planes = 0;
   const float nearSign = clip_near_sign(params->depthMode);
   for (int v = 0; v < 3; ++v) {
-    poly[v].pos = clipPos[indices[3 * tri + v]];
+    poly[v].pos = transform_vertex(params, positions, indices[3 * tri + v]);
     poly[v].bary = (float3)((float)(v == 0), (float)(v == 1), (float)(v == 2));
     planes |= clip_outcode(poly[v].pos, params->guardX, params->guardY, nearSign) & 0x1Fu;
   }

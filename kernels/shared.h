@@ -269,7 +269,9 @@ typedef struct VisSample {
 } VisSample;
 
 /* The remaining buffers of a frame, all typed:
- *  positions  float[3·numVerts]   host upload;  read by transform, resolve
+ *  positions  float[3·numVerts]   host upload;  read by setup (which
+ *                                 transforms them, transform.cl), resolve
+ *                                 and transform_vertices
  * The next ones are uploaded only when a frame's shading reads them (host
  * pipeline.cpp, Pipeline::bindAttributes); otherwise a 1-element dummy is
  * bound and resolve never reads it:
@@ -282,8 +284,9 @@ typedef struct VisSample {
  *  texDescs   TextureDesc[numTextures] host upload, once per scene; resolve
  *  texels     uint[all levels of all textures] host upload, once; resolve
  *  indices    uint[3·numTris]     host upload;  read by setup, resolve
- *  clipPos    float4[numVerts]    transform;    read by setup (the host reads
- *                                 it to sort for the painter's algorithm)
+ *  clipPos    float4[numVerts]    transform_vertices, only when the host
+ *                                 sorts for the painter's algorithm (which
+ *                                 reads it) or a test asks; not a frame's
  *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
  *                                 the scan turns them into offsets (last =
  *                                 total); read by setup_sources, setup_clip
