@@ -486,7 +486,10 @@ TEST_CASE("resolve recomputes raster's barycentrics for every sample, shading mo
   });
 }
 
-TEST_CASE("the visibility buffer keeps its depth and barycentric planes only when a reader needs them", "[shade]")
+TEST_CASE(
+    "a frame holds the visibility buffer's depth and barycentric planes only when a reader needs them, and no clip "
+    "positions",
+    "[shade]")
 {
   const GrazingGrid grid = grazingGrid(160, 100);
   clr::Pipeline lean(test::context()), full(test::context());
@@ -531,4 +534,9 @@ TEST_CASE("the visibility buffer keeps its depth and barycentric planes only whe
   settings.edgeMode = CLR_EDGES_FIXED;
   lean.render(settings, rgba);
   CHECK(lean.params().visAttributes == 0u);
+  // Step 4: a frame holds no clip positions either (setup transforms the
+  // vertices it reads); the transform kernel allocates them when asked.
+  const size_t before = lean.deviceBytes();
+  lean.transform();
+  CHECK(lean.deviceBytes() - before == 16 * (grid.mesh.positions.size() / 3));
 }
