@@ -209,8 +209,13 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
  * raster_rows_fixed in 64-bit lanes for any triangle, and
  * raster_rows_fixed32 in 32-bit lanes (half the vector work) for one within
  * CLR_EDGE32_SPAN; the barycentrics convert the same integers to float, so
- * both give bit-identical results. */
-#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, edgeFunction, toEdgeL)                                          \
+ * both give bit-identical results. skipEmptyRows: a row no sample of which
+ * is inside skips the depth test. That pays on large triangles, whose empty
+ * rows come in long runs; a small triangle's empty rows are few and
+ * unpredictable, and the branch's mispredictions cost more than testing
+ * them with an all-false mask (measured on 252k- and 121k-triangle meshes at
+ * 1080p: raster 37% and 18% faster with the 32-bit rows branch-free). */
+#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, edgeFunction, toEdgeL, skipEmptyRows)                           \
   CLR_INLINE void name(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,        \
                        RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)                     \
   {                                                                                                               \
@@ -230,7 +235,7 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
     for (int row = rowBegin; row <= rowEnd; ++row) {                                                              \
       intL inside = (intL)(-1);                                                                                   \
       if (!acceptAll) inside = toEdgeL((e0 > low0) & (e1 > low1) & (e2 > low2));                                  \
-      if (acceptAll || CLR_ANY(inside))                                                                           \
+      if (acceptAll || !(skipEmptyRows) || CLR_ANY(inside))                                                       \
         raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], \
                           rule, rank);                                                                            \
       e0 += step0;                                                                                                \
@@ -238,8 +243,8 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
       e2 += step2;                                                                                                \
     }                                                                                                             \
   }
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, edge_function, convert_intL)
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, )
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, edge_function, convert_intL, true)
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, , false)
 #undef CLR_DEFINE_RASTER_ROWS
 
 /* Writes a row segment of samples into sample plane k of the visibility
