@@ -67,6 +67,15 @@ class DeviceBuffer {
     if (!data.empty()) memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
   }
 
+  // upload, then `pad` zero elements after the data (so that a kernel may
+  // read a whole vector at the last element).
+  void uploadPadded(const std::vector<T>& data, uint64_t pad)
+  {
+    reserve(data.size() + pad, true);
+    if (!data.empty()) memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+    if (pad) memory_->queue.enqueueFillBuffer(buffer_, T{}, data.size() * sizeof(T), pad * sizeof(T));
+  }
+
   std::vector<T> download(uint64_t n, uint64_t first = 0) const
   {
     std::vector<T> out(n);

@@ -163,7 +163,7 @@ void Pipeline::uploadScene(const Mesh& mesh)
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
   // Step 2: what every mode reads, now; the rest when a frame reads it.
-  positions_.upload(mesh.positions);
+  positions_.uploadPadded(mesh.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
   indices_.upload(mesh.indices);
   paintOrder_.clear();
   scene_ = mesh;

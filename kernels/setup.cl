@@ -71,9 +71,10 @@ CLR_INLINE void setup_load_batch(const uint* tri, __constant FrameParams* params
     c->z[v] = q.z;
     c->w[v] = q.w;
 #else
+    // One 16-byte load per vertex: x, y, z and the next vertex's x (unused;
+    // the host pads the buffer by one float for the last vertex).
     float4 q[CLR_LANES];
-    for (int lane = 0; lane < CLR_LANES; ++lane)
-      q[lane] = (float4)(vload3(indices[3 * tri[lane] + v], positions), 0.0f);
+    for (int lane = 0; lane < CLR_LANES; ++lane) q[lane] = vload4(0, positions + 3 * indices[3 * tri[lane] + v]);
     const float16 a = (float16)(q[0], q[1], q[2], q[3]), b = (float16)(q[4], q[5], q[6], q[7]);
     const float16 d = (float16)(q[8], q[9], q[10], q[11]), e = (float16)(q[12], q[13], q[14], q[15]);
     const float16 px = (float16)(a.s048c, b.s048c, d.s048c, e.s048c);
