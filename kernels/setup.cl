@@ -1,6 +1,7 @@
 /* setup.cl — stage 3: triangle setup: count, scan, emit.
  *
- * Per input triangle: cull non-finite and trivially outside triangles,
+ * Per input triangle: transform its vertices (transform.cl; a frame keeps
+ * no clip positions), cull non-finite and trivially outside triangles,
  * clip those that cross the near plane or the guard band (clip.cl), apply
  * the viewport matrix of the notes (x_s = x_ndc·W/2 + W/2, y up), snap to
  * the CLR_SUBPIXEL_BITS grid, compute the exact 64-bit doubled area, cull
