@@ -106,11 +106,12 @@ std::string kernelBuildOptions(int lanes, bool prefetch)
 {
   std::ostringstream options;
   options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
-  // Raster fetches 4 bin entries ahead: measured 10-20% off raster on the
-  // 2-core development machine (Suzanne and a 1M-triangle sphere at 1080p),
-  // and resolve_lambert's row-ahead fetches 40% off its time on the sphere;
-  // other drivers' compilers need not know the clang builtin.
-  if (prefetch) options << " -D CLR_PREFETCH=4";
+  // Raster fetches 12 bin entries ahead: measured 10-20% off raster on the
+  // 2-core development machine against no prefetch (Suzanne and a
+  // 1M-triangle sphere at 1080p), and 13-20% more against 4 entries (24 gave
+  // nothing more); resolve_lambert's row-ahead fetches took 40% off its time
+  // on the sphere. Other drivers' compilers need not know the clang builtin.
+  if (prefetch) options << " -D CLR_PREFETCH=12";
   return options.str();
 }
 
