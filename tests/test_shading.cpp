@@ -408,6 +408,7 @@ struct RecomputeCase {
   uint32_t shadeMode, samples;
   bool everySample, lean;
   uint32_t visibility, depthMode;
+  uint32_t traversal = CLR_TRAVERSAL_BBOX;
 };
 
 // Renders each case with the barycentric planes kept (resolve reads
@@ -438,6 +439,7 @@ void checkRecomputedBarycentrics(const std::vector<RecomputeCase>& cases)
     settings.leanResolve = c.lean;
     settings.visibility = c.visibility;
     settings.depthMode = c.depthMode;
+    settings.traversal = c.traversal;
     // Step 2: the same frame with and without the planes.
     std::vector<uint32_t> withPlanes, withoutPlanes;
     settings.keepVisAttributes = true;
@@ -473,7 +475,7 @@ TEST_CASE("resolve recomputes raster's barycentrics: lambert frames without the 
   });
 }
 
-TEST_CASE("resolve recomputes raster's barycentrics for every sample, shading mode and visibility method",
+TEST_CASE("resolve recomputes raster's barycentrics for every sample, shading mode, visibility method and traversal",
           "[shade][aa]")
 {
   checkRecomputedBarycentrics({
@@ -483,6 +485,8 @@ TEST_CASE("resolve recomputes raster's barycentrics for every sample, shading mo
       {"msaa 4", CLR_SHADE_LAMBERT, 4, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
       {"ssaa 8", CLR_SHADE_GOURAUD, 8, true, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32},
       {"painter", CLR_SHADE_LAMBERT, 1, false, true, CLR_VISIBILITY_PAINTER, CLR_DEPTH_FLOAT32},
+      {"hierarchical msaa 4", CLR_SHADE_LAMBERT, 4, false, true, CLR_VISIBILITY_ZBUFFER, CLR_DEPTH_FLOAT32,
+       CLR_TRAVERSAL_HIERARCHICAL},
   });
 }
 
