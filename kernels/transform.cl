@@ -11,21 +11,27 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
+/* Clip coordinate `row` (0 x, 1 y, 2 z, 3 w) of the position (x, y, z):
+ * row `row` of the column-major mvp times (x, y, z, 1), summed left to
+ * right. The one formula of both functions below, which must agree bit for
+ * bit (the painter's sort and tests read the kernel's; frames use setup's). */
+#define CLR_TRANSFORM_ROW(m, row, x, y, z) \
+  ((m)[row] * (x) + (m)[4 + (row)] * (y) + (m)[8 + (row)] * (z) + (m)[12 + (row)])
+
 /* The clip position of vertex v. */
 CLR_INLINE float4 transform_vertex(__constant FrameParams* params, __global const float* positions, uint v)
 {
   const float3 p = (float3)(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
   __constant const float* m = params->mvp;
-  return (float4)(m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
-                  m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14], m[3] * p.x + m[7] * p.y + m[11] * p.z + m[15]);
+  return (float4)(CLR_TRANSFORM_ROW(m, 0, p.x, p.y, p.z), CLR_TRANSFORM_ROW(m, 1, p.x, p.y, p.z),
+                  CLR_TRANSFORM_ROW(m, 2, p.x, p.y, p.z), CLR_TRANSFORM_ROW(m, 3, p.x, p.y, p.z));
 }
 
-/* Clip coordinate `row` (0 x, 1 y, 2 z, 3 w) of the lanes' positions
- * (px, py, pz): the same operations as transform_vertex, in lane types. */
+/* Clip coordinate `row` of the lanes' positions (px, py, pz): the same
+ * operations as transform_vertex, in lane types. */
 CLR_INLINE floatL transform_lanes(__constant FrameParams* params, int row, floatL px, floatL py, floatL pz)
 {
-  __constant const float* m = params->mvp;
-  return m[row] * px + m[4 + row] * py + m[8 + row] * pz + m[12 + row];
+  return CLR_TRANSFORM_ROW(params->mvp, row, px, py, pz);
 }
 
 __kernel void transform_vertices(__global const float* positions,  // 3·numVerts
