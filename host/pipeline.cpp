@@ -121,9 +121,8 @@ Pipeline::Pipeline(ClContext& cl)
   setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments
   setupEmitKernel_ = cl::Kernel(cl.program, "setup_triangles");
   setupClipKernel_ = cl::Kernel(cl.program, "setup_clip");
-  setupSourcesKernel_ = cl::Kernel(cl.program, "setup_sources");
-  scanReduceKernel_ = cl::Kernel(cl.program, "scan_chunks");  // its two phases, each with its own arguments
-  scanPartialsKernel_ = cl::Kernel(cl.program, "scan_partials");
+  scanReduceKernel_ = cl::Kernel(cl.program, "scan_chunks");  // its three phases, each with its own arguments
+  scanPartialsKernel_ = cl::Kernel(cl.program, "scan_chunks");
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_chunks");
   binFillClippedKernel_ = cl::Kernel(cl.program, "bin_fill_clipped");
   rasterKernel_ = cl::Kernel(cl.program, "raster");

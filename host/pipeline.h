@@ -147,8 +147,12 @@ class Pipeline {
   // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
   uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
                        cl_ulong* total = nullptr);
+  // scan() of setup counts that also lists the input triangle behind each
+  // setup record into `sources`, sized to the total (shared.h, setupSource).
+  uint64_t scanListingSources(DeviceBuffer<uint32_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
+                              const char* stage);
   uint64_t scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint32_t>& dst, bool countNonZero, uint32_t n,
-                    const char* stage, cl_ulong* total);
+                    const char* stage, cl_ulong* total, DeviceBuffer<uint32_t>* sources = nullptr);
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
@@ -182,10 +186,10 @@ class Pipeline {
   uint32_t resident_ = 0;     // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 
-  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, setupSourcesKernel_,
-      scanReduceKernel_, scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_,
-      rasterHierarchicalKernel_, rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_,
-      linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
+      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
+      rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
+      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

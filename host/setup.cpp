@@ -1,8 +1,8 @@
 // setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
 // triangles each input triangle yields (and, for binning, the tiles each
 // unclipped one touches), scan the counts into offsets, size the setup and
-// ClipBary buffers from the totals, list the input triangle behind each
-// record (setup_sources), and clip the listed triangles (counting their
+// ClipBary buffers from the totals (the scan also lists the input triangle
+// behind each record), and clip the listed triangles (counting their
 // tiles too). The unclipped triangles are emitted by bin() once the
 // tile offsets are known, because setup_emit also fills their bins.
 #include "pipeline.h"
@@ -34,7 +34,9 @@ void Pipeline::setup()
     record("setup_count", countEvent);
     cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_CLIPPED_TRIS * sizeof(uint32_t), sizeof clipped,
                                 &clipped);
-    total = scan(triCount_, numTris, "setup_scan");  // blocks; the in-order queue has read `clipped` by then
+    // Blocks; the in-order queue has read `clipped` by then. The scan also
+    // lists the input triangle behind each record, for the emit pass.
+    total = scanListingSources(triCount_, numTris, setupSource_, "setup_scan");
     if (clipped <= clipList_.capacity()) break;
     clipList_.reserve(clipped);
     counters_.zero(CLR_NUM_COUNTERS);
@@ -47,15 +49,7 @@ void Pipeline::setup()
   setup_.reserve(numSetup_);
   clipBary_.reserve(uint64_t(clipped) * CLR_MAX_SUBTRIS);
 
-  // Step 3: the input triangle behind each record, for the emit pass.
-  setupSource_.reserve(numSetup_);
-  cl::Event sourcesEvent;
-  setArgs(setupSourcesKernel_, paramsBuf_.get(), triCount_.get(), setupSource_.get());
-  cl_.queue.enqueueNDRangeKernel(setupSourcesKernel_, cl::NullRange, linear(numTris), cl::NDRange(64), nullptr,
-                                 &sourcesEvent);
-  record("setup_sources", sourcesEvent);
-
-  // Step 4: clip the listed triangles into their reserved slots.
+  // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
   setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), clipList_.get(),

@@ -7,43 +7,26 @@
  * src[i], or 1 for a non-zero src[i] when countNonZero. Sums are
  * accumulated in 64 bits and the 64-bit total is left in
  * partials[numChunks], so the host can detect a total that does not fit in
- * 32 bits and fail loudly instead of wrapping. Two kernels: scan_chunks,
- * launched twice (CLR_SCAN_REDUCE: a sum per chunk; then CLR_SCAN_APPLY:
- * each chunk rescanned from its offset), and between them scan_partials
- * (one work-group scans the chunk sums). One kernel for both chunk passes
- * means one compile at a cold start.
+ * 32 bits and fail loudly instead of wrapping. One kernel, scan_chunks,
+ * launched three times with its phase: CLR_SCAN_REDUCE (a sum per chunk),
+ * CLR_SCAN_PARTIALS (one work-group scans the chunk sums) and
+ * CLR_SCAN_APPLY (each chunk rescanned from its offset). One kernel means
+ * one compile at a cold start (about 70 ms each for PoCL on the 2-core
+ * development machine). Over the setup counts the apply phase also lists the input
+ * triangle behind each setup record (listSources; shared.h, setupSource),
+ * which saves the emit pass a kernel of its own.
  */
 
-__kernel void scan_chunks(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
-                          __global ulong* partials,  // numChunks + 1
-                          uint phase, uint countNonZero)
+/* CLR_SCAN_PARTIALS: the exclusive scan of partials[0 .. numChunks), the
+ * total into partials[numChunks]. On a GPU one work-group shares it out
+ * (with barriers); on a CPU (CLR_LANES > 1) one work-item scans the at
+ * most 4096 sums in a few microseconds, and the kernel has no barrier,
+ * which PoCL compiles at twice the cost (measured: 180 against 75 ms). */
+#if CLR_LANES == 1
+CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums)
 {
-  const uint g = get_global_id(0);
-  if (g >= numChunks) return;
-  const uint begin = g * chunk;
-  const uint end = min(begin + chunk, n);
-  if (phase == CLR_SCAN_REDUCE) {
-    ulong sum = 0;
-    for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
-    partials[g] = sum;
-    return;
-  }
-  ulong running = partials[g];
-  for (uint i = begin; i < end; ++i) {
-    const uint v = countNonZero ? (src[i] != 0) : src[i];
-    dst[i] = (uint)running;
-    running += v;
-  }
-  if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];
-}
-#define CLR_SCAN_GROUP 64
-
-__kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_partials(__global ulong* partials,
-                                                                                        uint numChunks)
-{
-  __local ulong groupSums[CLR_SCAN_GROUP];
   const uint lid = get_local_id(0);
-  const uint per = (numChunks + CLR_SCAN_GROUP - 1) / CLR_SCAN_GROUP;
+  const uint per = (numChunks + CLR_SCAN_GROUP(1) - 1) / CLR_SCAN_GROUP(1);
   const uint begin = min(lid * per, numChunks);
   const uint end = min(begin + per, numChunks);
   // Step 1: each work-item sums its run of chunk sums.
@@ -54,7 +37,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_p
   // Step 2: one work-item scans the 64 run sums.
   if (lid == 0) {
     ulong running = 0;
-    for (uint i = 0; i < CLR_SCAN_GROUP; ++i) {
+    for (uint i = 0; i < CLR_SCAN_GROUP(1); ++i) {
       const ulong v = groupSums[i];
       groupSums[i] = running;
       running += v;
@@ -69,4 +52,58 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP, 1, 1))) void scan_p
     partials[i] = running;
     running += v;
   }
+}
+#else
+CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks)
+{
+  if (get_global_id(0) != 0) return;
+  ulong running = 0;
+  for (uint i = 0; i < numChunks; ++i) {
+    const ulong v = partials[i];
+    partials[i] = running;
+    running += v;
+  }
+  partials[numChunks] = running;
+}
+#endif
+
+__kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) void scan_chunks(
+    __global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
+    __global ulong* partials,  // numChunks + 1
+    __global uint* sources,    // listSources: the total (setup records); else unused
+    uint phase, uint countNonZero, uint listSources)
+{
+#if CLR_LANES == 1
+  __local ulong groupSums[CLR_SCAN_GROUP(1)];
+#endif
+  if (phase == CLR_SCAN_PARTIALS) {  // the same phase for the whole group, so its barriers are safe
+#if CLR_LANES == 1
+    scan_partials(partials, numChunks, groupSums);
+#else
+    scan_partials(partials, numChunks);
+#endif
+    return;
+  }
+  const uint g = get_global_id(0);
+  if (g >= numChunks) return;
+  const uint begin = g * chunk;
+  const uint end = min(begin + chunk, n);
+  if (phase == CLR_SCAN_REDUCE) {
+    ulong sum = 0;
+    for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
+    partials[g] = sum;
+    return;
+  }
+  ulong running = partials[g];
+  for (uint i = begin; i < end; ++i) {
+    const uint v = countNonZero ? (src[i] != 0) : src[i];
+    dst[i] = (uint)running;
+    // Setup counts: an unclipped survivor (1) owns its record; a clipped
+    // triangle's CLR_MAX_SUBTRIS reserved records get CLR_NONE (setup_clip
+    // writes them); a culled one (0) owns none.
+    if (listSources && v == 1) sources[running] = i;
+    for (uint k = 0; listSources && v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) sources[running + k] = CLR_NONE;
+    running += v;
+  }
+  if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];
 }

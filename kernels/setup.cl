@@ -12,8 +12,9 @@
  * compiles the setup arithmetic once. Pass 1 (setup_count in profiles)
  * writes how many screen triangles each input triangle yields: 0 or 1 when
  * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
- * (such triangles are also listed for setup_clip). After an exclusive scan,
- * setup_sources lists the input triangle behind each record, setup_clip
+ * (such triangles are also listed for setup_clip). An exclusive scan
+ * (scan.cl) turns the counts into offsets and lists the input triangle
+ * behind each record (setupSource), setup_clip
  * clips the listed ones, padding unused reserved slots with CLR_FLAG_DEAD
  * records that binning skips, and pass 2 (setup_emit) sets up the
  * unclipped survivors again, 16 consecutive records at a time, and writes
@@ -299,22 +300,6 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
   if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
 }
 
-/* Between the passes: the input triangle behind each setup record, so that
- * pass 2 runs over the surviving triangles only (at 10M small triangles most
- * are culled). One work-item per input triangle t: an unclipped survivor
- * owns record triOffset[t]; a clipped one's CLR_MAX_SUBTRIS reserved records
- * get CLR_NONE (setup_clip writes them); culled ones own none. */
-__kernel void setup_sources(__constant FrameParams* params,
-                            __global const uint* triOffset,  // numTris + 1, scanned
-                            __global uint* source)           // triOffset[numTris]
-{
-  const uint t = get_global_id(0);
-  if (t >= params->numTris) return;
-  const uint begin = triOffset[t], count = triOffset[t + 1] - begin;
-  if (count == 1) source[begin] = t;
-  for (uint k = 0; count == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) source[begin + k] = CLR_NONE;
-}
-
 /* Passes 1 and 2 are one kernel, launched twice with `pass`
  * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
  * device compiles the shared triangle setup once. triCount and tileCount
@@ -331,7 +316,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global TriSetup* setup,     // pass 2: triOffset[numTris]
     __global uint* tileCursor,    // pass 2: tiles, zeroed
     __global uint* binEntries,    // pass 2: tileOffset[tiles]
-    __global const uint* source,  // pass 2: numSetup (setup_sources)
+    __global const uint* source,  // pass 2: numSetup (the scan lists them)
     uint numSetup, uint pass)
 {
   // Step 1: the CLR_LANES triangles: in pass 1 input triangles from

@@ -126,13 +126,18 @@ typedef uint32_t uint;
  * adds a work-item loop for PoCL to compile. */
 #define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
 
+/* Work-group size of scan_chunks (scan.cl): 64 on a GPU, one on a CPU,
+ * for the same reason (PoCL compiled it in 120 ms with 64, 81 ms with 1). */
+#define CLR_SCAN_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
+
 /* The pass argument of setup_triangles (setup.cl). */
 #define CLR_SETUP_PASS_COUNT 0u /* count screen triangles and tiles */
 #define CLR_SETUP_PASS_EMIT 1u  /* write setup records and bin entries */
 
 /* The phase argument of scan_chunks (scan.cl). */
-#define CLR_SCAN_REDUCE 0u /* a sum per chunk */
-#define CLR_SCAN_APPLY 1u  /* each chunk rescanned from its offset */
+#define CLR_SCAN_REDUCE 0u   /* a sum per chunk */
+#define CLR_SCAN_PARTIALS 2u /* one work-group scans the chunk sums */
+#define CLR_SCAN_APPLY 1u    /* each chunk rescanned from its offset */
 
 /* Indices into the stats counter buffer. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
@@ -289,9 +294,10 @@ typedef struct VisSample {
  *                                 reads it) or a test asks; not a frame's
  *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
  *                                 the scan turns them into offsets (last =
- *                                 total); read by setup_sources, setup_clip
- *                                 and bin_fill_clipped
- *  setupSource uint[numSetup]     setup_sources: the input triangle behind
+ *                                 total); read by setup_clip and
+ *                                 bin_fill_clipped
+ *  setupSource uint[numSetup]     the scan of triCount (scan.cl,
+ *                                 listSources): the input triangle behind
  *                                 each setup record (CLR_NONE for a clipped
  *                                 triangle's); read by the emit pass
  *  clipList   uint[CLIPPED_TRIS]  the count pass lists triangles to clip (the
