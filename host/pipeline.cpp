@@ -284,7 +284,16 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
   // Step 1: the planes of the sample, and each tile's block in them.
   if (sample >= params_.samples) throw Error("readVis: no sample " + std::to_string(sample));
   const uint64_t n = uint64_t(params_.width) * params_.height, v = visPlane();
-  const std::vector<uint32_t> index = visIndex_.download(v, sample * v);
+  std::vector<uint32_t> index(v);
+  if (params_.visIndex16) {  // two 16-bit entries per word; v is a whole number of tiles, so even
+    const std::vector<uint32_t> words = visIndex_.download(v / 2, sample * v / 2);
+    for (uint64_t i = 0; i < v; ++i) {
+      const uint32_t entry = (words[i / 2] >> (16 * (i % 2))) & 0xFFFFu;  // little-endian device
+      index[i] = entry == 0xFFFFu ? CLR_NONE : entry;
+    }
+  } else {
+    index = visIndex_.download(v, sample * v);
+  }
   const bool attributes = params_.visAttributes != 0;
   const std::vector<float> attr = attributes ? visAttr_.download(3 * v, 3 * sample * v) : std::vector<float>();
   const float nan = std::numeric_limits<float>::quiet_NaN();

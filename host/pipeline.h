@@ -59,6 +59,9 @@ struct FrameSettings {
   // Lets resolve use its lean lambert kernel when the frame qualifies
   // (Pipeline::resolve); tests turn it off to compare the two kernels.
   bool leanResolve = true;
+  // 32-bit visibility indices even when 16 bits would do (fewer than 0xFFFF
+  // setup records, shared.h); tests compare the two.
+  bool wideVisIndex = false;
 };
 
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
@@ -130,12 +133,13 @@ class Pipeline {
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
   // Bytes per pixel of the per-sample buffers and the image of this frame:
-  // per sample of a covered tile 4 (the visibility buffer's setup index) or
-  // 16 (with its depth and barycentric planes), and 4 for the image.
+  // per sample of a covered tile 2 or 4 (the visibility buffer's setup
+  // index, 16 bits wide when the frame has fewer than 0xFFFF setup records),
+  // 12 more with its depth and barycentric planes, and 4 for the image.
   double bytesPerPixel() const
   {
     const double pixels = double(params_.width) * params_.height;
-    const double perSample = params_.visAttributes ? 16.0 : 4.0;
+    const double perSample = (params_.visIndex16 ? 2.0 : 4.0) + (params_.visAttributes ? 12.0 : 0.0);
     return perSample * params_.samples * numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }

@@ -12,6 +12,7 @@
 #include "pipeline.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <numeric>
 
@@ -44,13 +45,20 @@ void Pipeline::sortForPainter()
 
 void Pipeline::raster()
 {
-  // The visibility buffer: a block per non-empty tile and sample (shared.h).
+  // The visibility buffer: a block per non-empty tile and sample (shared.h),
+  // with 16-bit indices when setup made fewer than 0xFFFF records (0xFFFF
+  // stands for none), which the parameters learn only now.
   const uint64_t samples = uint64_t(visPlane()) * params_.samples;
   if (samples > UINT32_MAX / 3)
     throw Error("the frame needs " + std::to_string(samples) + " visibility samples, more than 32-bit offsets address");
-  // At most the whole viewport's tiles: no growth slack past that.
+  params_.visIndex16 = numSetup_ < 0xFFFFu && !settings_.wideVisIndex ? 1u : 0u;
+  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, offsetof(FrameParams, visIndex16), sizeof params_.visIndex16,
+                               &params_.visIndex16);
+  // At most the whole viewport's tiles: no growth slack past that. (The
+  // buffer counts 32-bit words: two 16-bit indices each.)
   const uint64_t most = uint64_t(numTiles_) * CLR_TILE_SIZE * CLR_TILE_SIZE * params_.samples;
-  visIndex_.reserve(samples, false, most);
+  const uint64_t perWord = params_.visIndex16 ? 2 : 1;
+  visIndex_.reserve((samples + perWord - 1) / perWord, false, (most + perWord - 1) / perWord);
   visAttr_.reserve(params_.visAttributes ? 3 * samples : 1, false, 3 * most);  // else a 1-element dummy
   if (params_.visibility == CLR_VISIBILITY_PAINTER)
     sortForPainter();

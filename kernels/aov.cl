@@ -44,7 +44,7 @@ __kernel void aov(__constant FrameParams* params,
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + px / CLR_TILE_SIZE;
   const bool empty = tileOffset[tile] == tileOffset[tile + 1];
   const uint v = empty ? 0u : vis_address(tileSlot[tile], px, py);  // in plane 0 of the visibility buffer
-  const uint index = empty ? CLR_NONE : visIndex[v];
+  const uint index = empty ? CLR_NONE : vis_index_at(params, visIndex, v);
   if (index == CLR_NONE) {
     for (int c = 0; c < CLR_AOV_CHANNELS; ++c) out[c * plane + p] = 0.0f;
     out[CLR_AOV_TRIANGLE_ID * plane + p] = -1.0f;

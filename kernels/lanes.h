@@ -20,6 +20,7 @@
 
 #if CLR_LANES == 1
 typedef long longL;
+typedef ushort ushortL;
 typedef int intL;
 typedef uint uintL;
 typedef float floatL;
@@ -28,6 +29,7 @@ typedef float floatL;
 #define convert_longL convert_long
 #define convert_intL convert_int
 #define convert_uintL convert_uint
+#define convert_ushortL convert_ushort
 #define convert_floatL convert_float
 #define convert_intL_rte convert_int_rte
 #define convert_uintL_sat_rte convert_uint_sat_rte
@@ -38,6 +40,7 @@ typedef float floatL;
 #define CLR_LOAD_LANES(array) ((array)[0])
 #elif CLR_LANES == 16
 typedef long16 longL;
+typedef ushort16 ushortL;
 typedef int16 intL;
 typedef uint16 uintL;
 typedef float16 floatL;
@@ -55,6 +58,7 @@ CLR_INLINE bool clr_any16(int16 mask)
 #define convert_longL convert_long16
 #define convert_intL convert_int16
 #define convert_uintL convert_uint16
+#define convert_ushortL convert_ushort16
 #define convert_floatL convert_float16
 #define convert_intL_rte convert_int16_rte
 #define convert_uintL_sat_rte convert_uint16_sat_rte

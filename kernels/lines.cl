@@ -340,7 +340,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
       t.limit[row][col] = -INFINITY;
       if (px >= params->width || py >= params->height || begin == end) continue;
       const uint p = vis_address(slot, px, py);
-      const uint index = noTriangles ? CLR_NONE : visIndex[p];
+      const uint index = noTriangles ? CLR_NONE : vis_index_at(params, visIndex, p);
       t.limit[row][col] = index == CLR_NONE ? 1.0f + lp->depthBias
                                             : visAttr[p] + lp->depthBias + line_depth_slope(&setup[index]) * slopeReach;
     }

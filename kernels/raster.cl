@@ -247,6 +247,40 @@ CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, edge_function, convert_in
 CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, , false)
 #undef CLR_DEFINE_RASTER_ROWS
 
+/* The visibility buffer's index planes (shared.h): 16-bit entries, 0xFFFF
+ * for none, when FrameParams.visIndex16, else 32-bit ones; i counts
+ * entries either way. vis_index_at reads one entry, vis_load_index_lanes
+ * CLR_LANES from i (CLR_NONE past `count`), vis_store_index_lanes writes
+ * them (a setup index is below 0xFFFF when the entries are 16-bit). */
+CLR_INLINE uint vis_index_at(__constant FrameParams* params, __global const uint* visIndex, uint i)
+{
+  if (!params->visIndex16) return visIndex[i];
+  const uint v = ((__global const ushort*)visIndex)[i];
+  return v == 0xFFFFu ? CLR_NONE : v;
+}
+CLR_INLINE void vis_load_index_lanes(__constant FrameParams* params, __global const uint* visIndex, uint i, uint count,
+                                     uint* lanes)
+{
+  if (count < CLR_LANES) {
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      lanes[lane] = lane < count ? vis_index_at(params, visIndex, i + lane) : CLR_NONE;
+    return;
+  }
+  if (!params->visIndex16) {
+    CLR_STORE_LANES(CLR_LOAD_LANES(visIndex + i), lanes);
+    return;
+  }
+  const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i));
+  CLR_STORE_LANES(select(wide, (uintL)CLR_NONE, wide == 0xFFFFu), lanes);
+}
+CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL index, __global uint* visIndex, uint i)
+{
+  if (params->visIndex16)
+    CLR_STORE_LANES(convert_ushortL(index), (__global ushort*)visIndex + i);  // CLR_NONE keeps its low 16 bits, 0xFFFF
+  else
+    CLR_STORE_LANES(index, visIndex + i);
+}
+
 /* Writes a row segment of samples into sample plane k of the visibility
  * buffer (shared.h) at address a of the plane: one vector store per plane,
  * the depth and barycentric planes only when the frame has them. The
@@ -255,7 +289,7 @@ CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, , false)
 CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, uint k, uint a, const RowBest* best,
                                  __global uint* visIndex, __global float* visAttr)
 {
-  CLR_STORE_LANES(best->index, &visIndex[k * visPlane + a]);
+  vis_store_index_lanes(params, best->index, visIndex, k * visPlane + a);
   if (!params->visAttributes) return;
   const floatL windowDepth = raster_key_depth(best->depth, params->depthMode, params->visibility);
   CLR_STORE_LANES(windowDepth, &visAttr[3 * k * visPlane + a]);

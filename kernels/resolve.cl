@@ -201,15 +201,7 @@ CLR_INLINE ColourL colour_select(ColourL a, ColourL b, intL mask)
   return c;
 }
 
-/* Loads lanes of a plane row, past the viewport's edge as fill. */
-CLR_INLINE void load_index_lanes(__global const uint* row, uint count, uint* lanes)
-{
-  if (count == CLR_LANES) {
-    CLR_STORE_LANES(CLR_LOAD_LANES(row), lanes);
-    return;
-  }
-  for (uint lane = 0; lane < CLR_LANES; ++lane) lanes[lane] = lane < count ? row[lane] : CLR_NONE;
-}
+/* Loads lanes of a float plane row, past the viewport's edge as 0. */
 CLR_INLINE floatL load_float_lanes(__global const float* row, uint count)
 {
   if (count == CLR_LANES) return CLR_LOAD_LANES(row);
@@ -434,10 +426,10 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   // Step 1: the most frequent setup index per lane (CLR_NONE counts too).
   const uint plane = visPlane, samples = params->samples;
   uint winner[CLR_LANES];
-  load_index_lanes(&visIndex[p], count, winner);
+  vis_load_index_lanes(params, visIndex, p, count, winner);
   if (samples > 1) {
     uint lanes[CLR_MAX_SAMPLES][CLR_LANES];
-    for (uint k = 0; k < samples; ++k) load_index_lanes(&visIndex[k * plane + p], count, lanes[k]);
+    for (uint k = 0; k < samples; ++k) vis_load_index_lanes(params, visIndex, k * plane + p, count, lanes[k]);
     for (uint lane = 0; lane < count; ++lane) {
       uint best = 0;
       for (uint k = 0; k < samples; ++k) {
@@ -509,7 +501,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   } else if (samples == 1) {
     // Step 2a: one sample per pixel, shaded where covered.
     uint index[CLR_LANES];
-    load_index_lanes(&visIndex[p], count, index);
+    vis_load_index_lanes(params, visIndex, p, count, index);
     const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
     ColourL c = backgroundColour;
     if (CLR_ANY(covered)) {
@@ -528,7 +520,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
     ColourL sum = {0.0f, 0.0f, 0.0f};
     for (uint k = 0; k < samples; ++k) {
       uint index[CLR_LANES];
-      load_index_lanes(&visIndex[k * plane + p], count, index);
+      vis_load_index_lanes(params, visIndex, k * plane + p, count, index);
       sampleIndex[k] = CLR_LOAD_LANES(index);
       const intL covered = sampleIndex[k] != CLR_NONE;
       ColourL c = backgroundColour;
@@ -576,18 +568,18 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
  * cached and prefetching costs more than it saves (measured: +0.3 ms on a
  * 116k-triangle mesh at 1080p). Called, not inlined, so that the common
  * path compiles as it does without it. */
-CLR_CALLED void resolve_prefetch(__global const uint* visIndex, uint p, uint rowInTile, __global const TriSetup* setup,
-                                 __global const uint* indices)
+CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
+                                 __global const TriSetup* setup, __global const uint* indices)
 {
   uint previous = CLR_NONE;
   for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
-    const uint next = visIndex[p + 2 * CLR_TILE_SIZE + lane];
+    const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
     if (next != CLR_NONE && next != previous) __builtin_prefetch(&setup[next]);
     previous = next;
   }
   previous = CLR_NONE;
   for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
-    const uint next = visIndex[p + CLR_TILE_SIZE + lane];
+    const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
     if (next != CLR_NONE && next != previous) __builtin_prefetch(&indices[3 * setup[next].triId]);
     previous = next;
   }
@@ -618,10 +610,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   }
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
-  load_index_lanes(&visIndex[p], count, index);
+  vis_load_index_lanes(params, visIndex, p, count, index);
 #ifdef CLR_PREFETCH
   if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 32)
-    resolve_prefetch(visIndex, p, py % CLR_TILE_SIZE, setup, indices);
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
 #endif
   const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
   uintL colour = (uintL)background;

@@ -186,7 +186,8 @@ typedef struct FrameParams {
   int sampleX[CLR_MAX_SAMPLES];
   int sampleY[CLR_MAX_SAMPLES];
   uint visibility; /* CLR_VISIBILITY_* */
-  uint pad1[3];
+  uint visIndex16; /* 1: the visibility buffer's index planes are 16 bits wide (shared.h) */
+  uint pad1[2];
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
@@ -242,13 +243,17 @@ typedef struct TextureDesc {
  * not the viewport. With S = FrameParams.samples and the plane size
  * V = slots · CLR_TILE_SIZE² (the kernels' visPlane argument), sample k of
  * pixel (x, y) in tile t is, with a = vis_address(tileSlot[t], x, y),
- *  visIndex uint[S·V]     at k·V + a: setup index, or CLR_NONE
+ *  visIndex uint[S·V]     at k·V + a: setup index, or CLR_NONE; as ushort
+ *                         (0xFFFF for none) when FrameParams.visIndex16
  *  visAttr  float[3·S·V]  at (3k + c)·V + a: c = 0 window depth, 1 b1, 2 b2
  * (the depth plane holds the depth as its format stores it: unorm24 reads
  * back as q / (2^24 − 1); with CLR_VISIBILITY_PAINTER it holds the paint
  * rank of the visible triangle, as uint bits).
- * visIndex is written by raster and read by resolve, lines_draw and aov: 4
- * bytes per sample of a covered tile. The visAttr planes exist only when
+ * visIndex is written by raster and read by resolve, lines_draw and aov
+ * (through vis_index_at and its kin in raster.cl): 2 bytes per sample of a
+ * covered tile when the frame has fewer than 2^16 − 1 setup records (the
+ * host sets visIndex16 once setup has counted them), else 4. The visAttr
+ * planes exist only when
  * FrameParams.visAttributes is 1 (the host sets it for frames whose readers
  * need them: lines, AOVs, float edges, Pipeline::readVis's depth and
  * barycentrics); raster then writes them, 12 more bytes per sample. Without

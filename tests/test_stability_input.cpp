@@ -262,15 +262,17 @@ TEST_CASE("stability: a thousand full-screen triangles at 1920x1080, none droppe
   // Step 2: the same number of triangles in one tile: every buffer but the
   // bins and the visibility buffer (a block per covered tile, shared.h) has
   // the same size, so the device bytes differ by those alone. The visibility
-  // buffer is the setup-index plane (no depth and barycentric planes), and
-  // its growth slack stops at the viewport's tiles (buffer.h).
+  // buffer is the setup-index plane (no depth and barycentric planes), of
+  // 16-bit entries (fewer than 0xFFFF setup records), two per 32-bit word,
+  // and its growth slack stops at the viewport's tiles (buffer.h).
   clr::Pipeline small(test::context());
   small.uploadScene(stackedTriangles(n, false).mesh());
   const clr::FrameStats smallStats = small.render(test::idSettings(W, H), rgba);
   CHECK(smallStats.binEntries == n);
   const uint64_t fullVis = tiles * 256, smallVis = 256;  // entries per sample plane
+  CHECK(full.params().visIndex16 == 1u);
   CHECK(full.deviceBytes() - small.deviceBytes() ==
-        grownBytes(stats.binEntries) - grownBytes(n) + 4 * fullVis - grownBytes(smallVis));
+        grownBytes(stats.binEntries) - grownBytes(n) + 2 * fullVis - grownBytes(smallVis / 2));
 }
 
 TEST_CASE("stability: bins larger than the device's largest allocation are a clear error", "[stability][load]")
