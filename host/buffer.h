@@ -1,8 +1,9 @@
 // buffer.h — typed device buffers that grow to what the scene needs.
 //
 // DeviceBuffer<T> owns a cl::Buffer of `capacity` elements of T. reserve(n)
-// keeps the buffer when it is large enough and otherwise reallocates it to
-// n plus 1/8 slack (so a moving camera does not reallocate every frame). A
+// keeps the buffer when it is large enough and otherwise reallocates it: to
+// n the first time, then to n plus 1/8 slack (so a moving camera does not
+// reallocate every frame). A
 // request larger than the device's maximum single allocation is a clr::Error
 // naming the buffer, never a crash. The shared byte counter is what
 // --stats reports as device_bytes.
@@ -33,15 +34,19 @@ class DeviceBuffer {
   ~DeviceBuffer() { memory_->bytesAllocated -= capacity_ * sizeof(T); }
 
   // Ensures room for n elements (at least one, so kernels always get a
-  // buffer). Buffers whose size changes from frame to frame grow with 1/8
-  // slack so that small changes do not reallocate; `exact` buffers, sized
-  // once per scene or viewport (uploads, the image), take what they need.
-  // The slack stops at `most`, a bound on what the buffer can ever need.
+  // buffer). A buffer's first allocation takes what the frame needs, so a
+  // still camera's memory is what its scene uses; a buffer whose size
+  // changes from frame to frame (it must grow again: a moving camera) then
+  // grows with 1/8 slack, so that small changes do not reallocate. `exact`
+  // buffers, sized once per scene or viewport (uploads, the image), never
+  // take slack. The slack stops at `most`, a bound on what the buffer can
+  // ever need.
   void reserve(uint64_t n, bool exact = false, uint64_t most = UINT64_MAX)
   {
     n = n == 0 ? 1 : n;
     if (n <= capacity_) return;
-    const uint64_t grown = exact ? n : std::max(n, std::min(n + n / 8, most));
+    const bool growingAgain = capacity_ > 1;  // not the one-element placeholder of an unused buffer
+    const uint64_t grown = exact || !growingAgain ? n : std::max(n, std::min(n + n / 8, most));
     const uint64_t bytes = grown * sizeof(T);
     const uint64_t needed = n * sizeof(T);
     if (needed > memory_->maxAllocBytes)

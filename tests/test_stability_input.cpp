@@ -91,12 +91,6 @@ struct AllocCap {
   ~AllocCap() { test::context().maxAllocBytes = saved; }
 };
 
-// The device bytes DeviceBuffer::reserve(n) takes for n uint32 (buffer.h).
-uint64_t grownBytes(uint64_t n)
-{
-  return 4 * (n + n / 8);
-}
-
 }  // namespace
 
 TEST_CASE("stability: degenerate and non-finite triangles are culled or drawn and disturb nothing", "[stability]")
@@ -263,16 +257,16 @@ TEST_CASE("stability: a thousand full-screen triangles at 1920x1080, none droppe
   // bins and the visibility buffer (a block per covered tile, shared.h) has
   // the same size, so the device bytes differ by those alone. The visibility
   // buffer is the setup-index plane (no depth and barycentric planes), of
-  // 16-bit entries (fewer than 0xFFFF setup records), two per 32-bit word,
-  // and its growth slack stops at the viewport's tiles (buffer.h).
+  // 16-bit entries (fewer than 0xFFFF setup records), two per 32-bit word.
+  // Each pipeline's first frame allocates what it needs, without growth
+  // slack (buffer.h).
   clr::Pipeline small(test::context());
   small.uploadScene(stackedTriangles(n, false).mesh());
   const clr::FrameStats smallStats = small.render(test::idSettings(W, H), rgba);
   CHECK(smallStats.binEntries == n);
   const uint64_t fullVis = tiles * 256, smallVis = 256;  // entries per sample plane
   CHECK(full.params().visIndex16 == 1u);
-  CHECK(full.deviceBytes() - small.deviceBytes() ==
-        grownBytes(stats.binEntries) - grownBytes(n) + 2 * fullVis - grownBytes(smallVis / 2));
+  CHECK(full.deviceBytes() - small.deviceBytes() == 4 * stats.binEntries - 4 * n + 2 * fullVis - 2 * smallVis);
 }
 
 TEST_CASE("stability: bins larger than the device's largest allocation are a clear error", "[stability][load]")
@@ -310,4 +304,31 @@ TEST_CASE("stability: CLRASTER_MAX_ALLOC_BYTES makes the command line report the
   test::expectError("render -o '" + png + "' --size 64x64", "CLRASTER_MAX_ALLOC_BYTES must be a positive number");
   unsetenv("CLRASTER_MAX_ALLOC_BYTES");
   CHECK(!test::exists(png));
+}
+
+TEST_CASE(
+    "stability: a buffer's first allocation is what the frame needs; growing again adds 1/8 slack up to its bound",
+    "[stability]")
+{
+  clr::DeviceMemory memory;
+  memory.context = test::context().context;
+  memory.queue = test::context().queue;
+  memory.maxAllocBytes = test::context().maxAllocBytes;
+  clr::DeviceBuffer<uint32_t> buffer(memory, "test buffer");
+  buffer.reserve(1);  // the placeholder of a buffer a frame does not use
+  CHECK(buffer.capacity() == 1);
+  buffer.reserve(800);  // first use: exact
+  CHECK(buffer.capacity() == 800);
+  CHECK(memory.bytesAllocated == 4 * 800);
+  buffer.reserve(700);  // room enough: kept
+  CHECK(buffer.capacity() == 800);
+  buffer.reserve(900);  // growing again: 1/8 slack
+  CHECK(buffer.capacity() == 900 + 900 / 8);
+  buffer.reserve(1000);
+  CHECK(buffer.capacity() == 900 + 900 / 8);
+  buffer.reserve(2000, false, 2100);  // the slack stops at the bound
+  CHECK(buffer.capacity() == 2100);
+  buffer.reserve(3000, true);  // exact buffers never take slack
+  CHECK(buffer.capacity() == 3000);
+  CHECK(memory.bytesAllocated == 4 * 3000);
 }
