@@ -250,28 +250,35 @@ CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, , false)
 /* The visibility buffer's index planes (shared.h): 16-bit entries, 0xFFFF
  * for none, when FrameParams.visIndex16, else 32-bit ones; i counts
  * entries either way. vis_index_at reads one entry, vis_load_index_lanes
- * CLR_LANES from i (CLR_NONE past `count`), vis_store_index_lanes writes
- * them (a setup index is below 0xFFFF when the entries are 16-bit). */
+ * CLR_LANES from i (CLR_NONE past `count`) into `lanes` and returns them
+ * as a vector too (use that, not a load of `lanes`: the compiler splits the
+ * store, and a wide load right after it waits for all the pieces; that
+ * took a fifth of resolve's time on a screen of large triangles),
+ * vis_store_index_lanes writes them (a setup index is below 0xFFFF when the
+ * entries are 16-bit). */
 CLR_INLINE uint vis_index_at(__constant FrameParams* params, __global const uint* visIndex, uint i)
 {
   if (!params->visIndex16) return visIndex[i];
   const uint v = ((__global const ushort*)visIndex)[i];
   return v == 0xFFFFu ? CLR_NONE : v;
 }
-CLR_INLINE void vis_load_index_lanes(__constant FrameParams* params, __global const uint* visIndex, uint i, uint count,
-                                     uint* lanes)
+CLR_INLINE uintL vis_load_index_lanes(__constant FrameParams* params, __global const uint* visIndex, uint i, uint count,
+                                      uint* lanes)
 {
   if (count < CLR_LANES) {
     for (uint lane = 0; lane < CLR_LANES; ++lane)
       lanes[lane] = lane < count ? vis_index_at(params, visIndex, i + lane) : CLR_NONE;
-    return;
+    return CLR_LOAD_LANES(lanes);  // the viewport's edge: rare
   }
-  if (!params->visIndex16) {
-    CLR_STORE_LANES(CLR_LOAD_LANES(visIndex + i), lanes);
-    return;
+  uintL v;
+  if (params->visIndex16) {
+    const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i));
+    v = select(wide, (uintL)CLR_NONE, wide == 0xFFFFu);
+  } else {
+    v = CLR_LOAD_LANES(visIndex + i);
   }
-  const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i));
-  CLR_STORE_LANES(select(wide, (uintL)CLR_NONE, wide == 0xFFFFu), lanes);
+  CLR_STORE_LANES(v, lanes);
+  return v;
 }
 CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL index, __global uint* visIndex, uint i)
 {

@@ -227,11 +227,12 @@ CLR_INLINE int resolve_sample_y(__constant FrameParams* params, uint py, uint k)
  * gather per lane). A lane with CLR_NONE reads record 0 (a covered tile
  * has one); its value is discarded. */
 CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, __global const TriSetup* setup,
-                                               const uint* index, uint firstX, uint py, uint k, floatL* b1, floatL* b2)
+                                               const uint* index, uintL lanes, uint firstX, uint py, uint k, floatL* b1,
+                                               floatL* b2)
 {
   // Step 1: the first run's record in every lane, then each later run's
-  // selected into its lanes (none when the row shows one triangle).
-  const uintL lanes = CLR_LOAD_LANES(index);
+  // selected into its lanes (none when the row shows one triangle). lanes:
+  // index as a vector.
   __global const TriSetup* t = &setup[index[0] != CLR_NONE ? index[0] : 0];
   intL x0 = t->x[0], y0 = t->y[0], x1 = t->x[1], y1 = t->y[1], x2 = t->x[2], y2 = t->y[2];
   floatL scale = t->invArea2;
@@ -259,14 +260,14 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
  * planes when raster wrote them, else recomputed. */
 CLR_INLINE void resolve_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
                                      uint p, uint count, uint k, __global const TriSetup* setup, const uint* index,
-                                     uint firstX, uint py, floatL* b1, floatL* b2)
+                                     uintL indexLanes, uint firstX, uint py, floatL* b1, floatL* b2)
 {
   if (params->visAttributes) {
     *b1 = load_float_lanes(&visAttr[(3 * k + 1) * visPlane + p], count);
     *b2 = load_float_lanes(&visAttr[(3 * k + 2) * visPlane + p], count);
     return;
   }
-  resolve_recompute_barycentrics(params, setup, index, firstX, py, k, b1, b2);
+  resolve_recompute_barycentrics(params, setup, index, indexLanes, firstX, py, k, b1, b2);
 }
 
 /* Stores the first `count` lanes of a row of RGBA8 pixels (the row may end
@@ -501,14 +502,14 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
   } else if (samples == 1) {
     // Step 2a: one sample per pixel, shaded where covered.
     uint index[CLR_LANES];
-    vis_load_index_lanes(params, visIndex, p, count, index);
-    const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
+    const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
+    const intL covered = indexLanes != CLR_NONE;
     ColourL c = backgroundColour;
     if (CLR_ANY(covered)) {
       ResolveLanes g;
       resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
       floatL b1, b2;
-      resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, firstX, py, &b1, &b2);
+      resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, indexLanes, firstX, py, &b1, &b2);
       c = colour_select(backgroundColour, resolve_shade(params, &g, &inputs, b1, b2), covered);
     }
     colour = pack_rgba(c.r, c.g, c.b);
@@ -520,8 +521,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
     ColourL sum = {0.0f, 0.0f, 0.0f};
     for (uint k = 0; k < samples; ++k) {
       uint index[CLR_LANES];
-      vis_load_index_lanes(params, visIndex, k * plane + p, count, index);
-      sampleIndex[k] = CLR_LOAD_LANES(index);
+      sampleIndex[k] = vis_load_index_lanes(params, visIndex, k * plane + p, count, index);
       const intL covered = sampleIndex[k] != CLR_NONE;
       ColourL c = backgroundColour;
       intL done = CLR_NOT(covered);
@@ -536,7 +536,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS)
         ResolveLanes g;
         resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
         floatL b1, b2;
-        resolve_barycentrics(params, visAttr, plane, p, count, k, setup, index, firstX, py, &b1, &b2);
+        resolve_barycentrics(params, visAttr, plane, p, count, k, setup, index, sampleIndex[k], firstX, py, &b1, &b2);
         sampleColour[k] = colour_select(resolve_shade(params, &g, &inputs, b1, b2), c, done);
       }
       sum.r += sampleColour[k].r;
@@ -610,12 +610,12 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   }
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
-  vis_load_index_lanes(params, visIndex, p, count, index);
+  const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
 #ifdef CLR_PREFETCH
   if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 32)
     resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
 #endif
-  const intL covered = CLR_LOAD_LANES(index) != CLR_NONE;
+  const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
     // Step 1: gathers in stages, each a branch-free loop over the lanes
@@ -660,7 +660,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     }
     // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
     floatL b1, b2;
-    resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, firstX, py, &b1, &b2);
+    resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, indexLanes, firstX, py, &b1, &b2);
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
     floatL q[3], lambda[3];
     for (int i = 0; i < 3; ++i) q[i] = CLR_GATHERED(invW[i], floatL);
