@@ -115,7 +115,7 @@ std::string kernelBuildOptions(int lanes, bool prefetch)
   return options.str();
 }
 
-cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options)
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options, bool extras)
 {
   // Step 1: the embedded sources, in dependency order.
   cl::Program::Sources sources;
@@ -123,7 +123,7 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   cl::Program program(context, sources);
   // Step 2: build; on failure report the device's log.
   try {
-    program.build({device}, options.c_str());
+    program.build({device}, (options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0")).c_str());
   } catch (const cl::Error& e) {
     std::string log;
     try {
@@ -147,7 +147,8 @@ ClContext::ClContext(const std::string& selector, int lanesOverride) : info(sele
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   const std::string platform = cl::Platform(info.device.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_NAME>();
   const bool prefetch = platform.find("Portable Computing Language") != std::string::npos;
-  program = buildProgram(context, info.device, kernelBuildOptions(lanes, prefetch));
+  buildOptions_ = kernelBuildOptions(lanes, prefetch);
+  program = buildProgram(context, info.device, buildOptions_);
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests
@@ -158,6 +159,12 @@ ClContext::ClContext(const std::string& selector, int lanesOverride) : info(sele
     if (!*cap || *end || bytes == 0) throw Error("CLRASTER_MAX_ALLOC_BYTES must be a positive number of bytes");
     maxAllocBytes = std::min<size_t>(maxAllocBytes, bytes);
   }
+}
+
+const cl::Program& ClContext::extras()
+{
+  if (!extras_()) extras_ = buildProgram(context, info.device, buildOptions_, true);
+  return extras_;
 }
 
 }  // namespace clr

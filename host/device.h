@@ -40,17 +40,28 @@ struct ClContext {
   int lanes = 1;  // CLR_LANES the program was built with
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
-  cl::Program program;
+  cl::Program program;     // the frame program (CLR_EXTRAS 0, shared.h)
+  // The extras program (CLR_EXTRAS 1, shared.h: the other raster variants,
+  // lines, AOVs), built at its first use, so a cold start compiles only the
+  // kernels a default frame runs.
+  const cl::Program& extras();
   size_t maxAllocBytes = 0;  // the device's, or CLRASTER_MAX_ALLOC_BYTES when lower
   size_t globalMemBytes = 0;
+
+ private:
+  std::string buildOptions_;  // without CLR_EXTRAS
+  cl::Program extras_;
 };
 
-// The compile options every build uses (also the key of PoCL's cache).
+// The compile options every build uses (also the key of PoCL's cache), but
+// -D CLR_EXTRAS, which buildProgram adds.
 // prefetch: the compiler takes __builtin_prefetch (PoCL's clang does; with
 // -D CLR_PREFETCH raster fetches the setup records of later bin entries,
 // and resolve_lambert those of later rows, while it works).
 std::string kernelBuildOptions(int lanes, bool prefetch = false);
 
-cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options);
+// extras: the extras program rather than the frame program (shared.h).
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options,
+                         bool extras = false);
 
 }  // namespace clr

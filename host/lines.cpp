@@ -29,9 +29,9 @@ void Pipeline::lines()
   lineSegs_.reserve(n);
   if (numSetup_ > 0) {
     cl::Event event;
-    setArgs(linesFromSetupKernel_, setup_.get(), numSetup_, clipBary_.get(), lineSegs_.get());
-    cl_.queue.enqueueNDRangeKernel(linesFromSetupKernel_, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr,
-                                   &event);
+    cl::Kernel& fromSetup = extraKernel(linesFromSetupKernel_, "lines_from_setup");
+    setArgs(fromSetup, setup_.get(), numSetup_, clipBary_.get(), lineSegs_.get());
+    cl_.queue.enqueueNDRangeKernel(fromSetup, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr, &event);
     record("lines_from_setup", event);
   }
   drawLineSegments(uint32_t(n));
@@ -74,9 +74,9 @@ void Pipeline::drawLineSegments(uint32_t n)
   lineSegs_.reserve(n);
   if (n > 0) {
     cl::Event countEvent;
-    setArgs(linesBinCountKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
-    cl_.queue.enqueueNDRangeKernel(linesBinCountKernel_, cl::NullRange, linear(n), cl::NDRange(64), nullptr,
-                                   &countEvent);
+    cl::Kernel& binCount = extraKernel(linesBinCountKernel_, "lines_bin_count");
+    setArgs(binCount, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
+    cl_.queue.enqueueNDRangeKernel(binCount, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &countEvent);
     record("lines_bin_count", countEvent);
   }
   const uint64_t entries = scan(lineTileCount_, numTiles_, "lines_bin_scan");
@@ -88,19 +88,20 @@ void Pipeline::drawLineSegments(uint32_t n)
   lineTileCursor_.zero(numTiles_, &fills);
   if (n > 0) {
     cl::Event fillEvent;
-    setArgs(linesBinFillKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(),
-            lineTileCursor_.get(), lineBinEntries_.get());
-    cl_.queue.enqueueNDRangeKernel(linesBinFillKernel_, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &fillEvent);
+    cl::Kernel& binFill = extraKernel(linesBinFillKernel_, "lines_bin_fill");
+    setArgs(binFill, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineTileCursor_.get(),
+            lineBinEntries_.get());
+    cl_.queue.enqueueNDRangeKernel(binFill, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &fillEvent);
     record("lines_bin_fill", fillEvent);
   }
 
   // Step 4: one work-item per tile draws and blends.
   cl::Event drawEvent;
-  setArgs(linesDrawKernel_, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(),
-          lineBinEntries_.get(), tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get(),
-          tileSlot_.get(), visPlane());
-  cl_.queue.enqueueNDRangeKernel(linesDrawKernel_, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY),
-                                 cl::NDRange(1, 1), nullptr, &drawEvent);
+  cl::Kernel& draw = extraKernel(linesDrawKernel_, "lines_draw");
+  setArgs(draw, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineBinEntries_.get(),
+          tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get(), tileSlot_.get(), visPlane());
+  cl_.queue.enqueueNDRangeKernel(draw, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY), cl::NDRange(1, 1),
+                                 nullptr, &drawEvent);
   record("lines_draw", drawEvent);
 }
 

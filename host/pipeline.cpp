@@ -126,15 +126,8 @@ Pipeline::Pipeline(ClContext& cl)
   scanApplyKernel_ = cl::Kernel(cl.program, "scan_chunks");
   binFillClippedKernel_ = cl::Kernel(cl.program, "bin_fill_clipped");
   rasterKernel_ = cl::Kernel(cl.program, "raster");
-  rasterHierarchicalKernel_ = cl::Kernel(cl.program, "raster_hierarchical");
-  rasterFloatKernel_ = cl::Kernel(cl.program, "raster_float");
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   resolveLambertKernel_ = cl::Kernel(cl.program, "resolve_lambert");
-  linesFromSetupKernel_ = cl::Kernel(cl.program, "lines_from_setup");
-  linesBinCountKernel_ = cl::Kernel(cl.program, "lines_bin_count");
-  linesBinFillKernel_ = cl::Kernel(cl.program, "lines_bin_fill");
-  linesDrawKernel_ = cl::Kernel(cl.program, "lines_draw");
-  aovKernel_ = cl::Kernel(cl.program, "aov");
   paramsBuf_.reserve(1);
   // Attributes a frame does not read are bound as 1-element dummies.
   normals_.reserve(1);
@@ -207,6 +200,12 @@ uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
   // Step 2: the flags resolve follows.
   return (colors ? CLR_SCENE_COLORS : 0u) | (materials ? CLR_SCENE_MATERIALS : 0u) |
          (textures ? CLR_SCENE_TEXTURES : 0u);
+}
+
+cl::Kernel& Pipeline::extraKernel(cl::Kernel& kernel, const char* name)
+{
+  if (!kernel()) kernel = cl::Kernel(cl_.extras(), name);
+  return kernel;
 }
 
 cl::NDRange Pipeline::linear(uint64_t n) const

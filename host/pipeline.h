@@ -168,6 +168,9 @@ class Pipeline {
     (kernel.setArg(index++, args), ...);
   }
   cl::NDRange linear(uint64_t n) const;
+  // A kernel of the extras program (ClContext::extras), created in `kernel`
+  // at its first use.
+  cl::Kernel& extraKernel(cl::Kernel& kernel, const char* name);
   // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
   // and uploads each triangle's rank to paintRank_.
   void sortForPainter();

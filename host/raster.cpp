@@ -67,9 +67,11 @@ void Pipeline::raster()
     paintRank_.reserve(1);
   }
   // The method's variant (float edges take the bounding-box scan).
-  cl::Kernel& kernel = params_.edgeMode == CLR_EDGES_FLOAT               ? rasterFloatKernel_
-                       : params_.traversal == CLR_TRAVERSAL_HIERARCHICAL ? rasterHierarchicalKernel_
-                                                                         : rasterKernel_;
+  // (The default is in the frame program, the others in the extras program.)
+  cl::Kernel& kernel = params_.edgeMode == CLR_EDGES_FLOAT ? extraKernel(rasterFloatKernel_, "raster_float")
+                       : params_.traversal == CLR_TRAVERSAL_HIERARCHICAL
+                           ? extraKernel(rasterHierarchicalKernel_, "raster_hierarchical")
+                           : rasterKernel_;
   cl::Event event;
   setArgs(kernel, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(), visAttr_.get(),
           paintRank_.get(), tileSlot_.get(), visPlane());

@@ -25,6 +25,7 @@
  * Background: id −1, barycentrics 0, z/w 1, eye depth +inf, normal 0.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 __kernel void aov(__constant FrameParams* params,
                   __global const uint* visIndex,    // sample plane 0 (shared.h)
@@ -86,3 +87,4 @@ __kernel void aov(__constant FrameParams* params,
   out[CLR_AOV_NORMAL_Y * plane + p] = n.y;
   out[CLR_AOV_NORMAL_Z * plane + p] = n.z;
 }
+#endif

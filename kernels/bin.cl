@@ -92,6 +92,7 @@ CLR_INLINE bool bin_hierarchical(__constant FrameParams* params, int4 r)
   return params->traversal == CLR_TRAVERSAL_HIERARCHICAL && (r.z > r.x || r.w > r.y);
 }
 
+#if !CLR_EXTRAS /* binning rides on setup (the frame program) */
 /* Pass 1: adds one to the count of each tile of r (the triangle's tile
  * range) that hierarchical traversal does not reject; t is read only when
  * bin_hierarchical(params, r). */
@@ -143,3 +144,4 @@ __kernel void bin_fill_clipped(__constant FrameParams* params, __global const Tr
   const TriSetup t = setup[s];
   bin_fill_tiles(&t, bin_tile_range(&t, params), s, params, tileOffset, tileCursor, binEntries);
 }
+#endif

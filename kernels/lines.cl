@@ -41,6 +41,7 @@
  * hidden by a nearer surface fail.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 /* Emits the three edges of every setup record. Edges of a clipped
  * sub-triangle are kept only where they lie on an edge of the input
@@ -363,3 +364,4 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
       *out = line_blend(only ? lp->background : *out, lp->colour, c);
     }
 }
+#endif

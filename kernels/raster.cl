@@ -355,7 +355,9 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
 /* The method variants are separate kernels (raster, raster_hierarchical,
  * raster_float) rather than branches of one, so that a device compiles only
  * the variant a frame launches (PoCL compiles each kernel at its first
- * launch), and each loop body has its method fixed at compile time. */
+ * launch), and each loop body has its method fixed at compile time. The
+ * default, raster, is in the frame program; the other two in the extras
+ * program (CLR_EXTRAS, shared.h), which a cold start does not build. */
 #if CLR_LANES == 1
 /* GPU shape: one work-item per pixel sample, one work-group per tile and
  * sample index. Hierarchical traversal needs nothing here beyond binning. */
@@ -379,10 +381,12 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode)
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
 
+#if !CLR_EXTRAS
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster(CLR_RASTER_PARAMS)
 {
   raster_pixel(CLR_RASTER_ARGS, CLR_EDGES_FIXED);
 }
+#else
 __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void raster_hierarchical(
     CLR_RASTER_PARAMS)
 {
@@ -392,6 +396,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
 {
   raster_pixel(CLR_RASTER_ARGS, CLR_EDGES_FLOAT);
 }
+#endif
 #else
 /* CPU shape: one work-item per tile and sample index, as llvmpipe's
  * per-tile threads. Each triangle is tested only on the rows its bounds
@@ -463,10 +468,12 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
                        visAttr);
 }
 
+#if !CLR_EXTRAS
 __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(CLR_RASTER_PARAMS)
 {
   raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, false);
 }
+#else
 __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_hierarchical(CLR_RASTER_PARAMS)
 {
   raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, true);
@@ -475,4 +482,5 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_float(CLR_RA
 {
   raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FLOAT, false);
 }
+#endif
 #endif

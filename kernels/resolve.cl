@@ -44,6 +44,7 @@
  * its samples, ties to the lower sample index, so the encoding stays exact.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* RGBA8 (R in the low byte, alpha 255) from colour channels in [0, 1]. */
 CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
@@ -715,3 +716,4 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
   // Step 3: store the row.
   store_row(colour, count, out);
 }
+#endif

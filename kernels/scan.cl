@@ -16,6 +16,7 @@
  * triangle behind each setup record (listSources; shared.h, setupSource),
  * which saves the emit pass a kernel of its own.
  */
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* CLR_SCAN_PARTIALS: the exclusive scan of partials[0 .. numChunks), the
  * total into partials[numChunks]. On a GPU one work-group shares it out
@@ -107,3 +108,4 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
   }
   if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];
 }
+#endif

@@ -28,6 +28,7 @@
  * unclipped triangles' bin entries.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* CLR_LANES triangles' clip-space vertices, one lane per triangle. */
 typedef struct ClipBatch {
@@ -426,3 +427,4 @@ __kernel void setup_clip(__constant FrameParams* params,
   atomic_add(&counters[CLR_COUNTER_DEAD_RECORDS], CLR_MAX_SUBTRIS - count);
   if (count == 0) atomic_inc(&counters[CLR_COUNTER_CULLED_TRIS]);
 }
+#endif

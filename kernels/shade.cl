@@ -16,6 +16,7 @@
  * texture.cl, precedes resolve.cl).
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 #define CLR_AMBIENT 0.12f
 #define CLR_DIFFUSE 0.88f
@@ -117,3 +118,4 @@ CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Mate
   }
   for (int k = 0; k < 3; ++k) albedo[k] = CLR_LOAD_LANES(rgb[k]);
 }
+#endif

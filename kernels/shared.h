@@ -28,6 +28,17 @@ typedef uint32_t uint;
 /* Keeps a loop rolled where unrolling costs compile time and buys nothing
  * (clang's pragma; other compilers ignore it). */
 #define CLR_NO_UNROLL _Pragma("nounroll")
+/* The sources build two programs (host device.cpp). CLR_EXTRAS 0, the
+ * frame program, built at start: every kernel of a default frame (setup,
+ * scan, binning, raster, both resolve kernels, the transform kernel).
+ * CLR_EXTRAS 1, the extras program, built when a frame first needs one of
+ * its kernels: the other raster variants (hierarchical traversal, float
+ * edges), lines and AOVs. Each file compiles only its own kernels and the
+ * helpers they call into each, so a cold start parses and optimises only
+ * what a default frame runs. */
+#ifndef CLR_EXTRAS
+#define CLR_EXTRAS 0
+#endif
 #endif
 
 /* Marks "no triangle" in a visibility sample. */

@@ -20,6 +20,7 @@
  * inside the texture. OpenCL only (follows lanes.h).
  */
 #pragma OPENCL FP_CONTRACT OFF
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 CLR_INLINE int tex_wrap(int i, int n, uint mode)
 {
@@ -91,3 +92,4 @@ CLR_CALLED float4 tex_sample(__global const TextureDesc* d, __global const uint*
   const float4 a = tex_bilinear(d, texels, l0, u, v);
   return t > 0.0f ? a * (1.0f - t) + tex_bilinear(d, texels, l1, u, v) * t : a;
 }
+#endif

@@ -34,6 +34,7 @@ CLR_INLINE floatL transform_lanes(__constant FrameParams* params, int row, float
   return CLR_TRANSFORM_ROW(params->mvp, row, px, py, pz);
 }
 
+#if !CLR_EXTRAS
 __kernel void transform_vertices(__global const float* positions,  // 3·numVerts
                                  __constant FrameParams* params,
                                  __global float4* clipPos)  // numVerts
@@ -42,3 +43,4 @@ __kernel void transform_vertices(__global const float* positions,  // 3·numVert
   if (v >= params->numVerts) return;
   clipPos[v] = transform_vertex(params, positions, v);
 }
+#endif
