@@ -3,10 +3,10 @@
 // A Pipeline owns every device buffer of a scene and runs the stages in
 // order: (transform) -> setup -> bin -> raster -> resolve, where setup
 // transforms the vertices it reads, so a frame needs no clip-position
-// buffer (transform() writes one for tests and the painter's sort). Each stage is a
-// member function defined in the host file named after its kernel file
-// (host/transform.cpp runs kernels/transform.cl, and so on), so tests can
-// run and inspect one stage at a time. Buffers grow to the counts of the
+// buffer (transform() writes one for tests and the painter's sort). Each
+// stage is a member function defined in the host file named after its
+// kernel file (host/transform.cpp runs kernels/transform.cl, and so on), so
+// tests can run and inspect one stage at a time. Buffers grow to the counts of the
 // current frame (see buffer.h); nothing is dropped, and a size the device
 // cannot hold is a clr::Error.
 #pragma once

@@ -5,8 +5,8 @@
 // near by each triangle's farthest vertex: the largest window-depth
 // direction z/w over its vertices with w > 0 (−z/w with the reversed
 // projection), from the transform kernel's clip positions (run here: a
-// frame otherwise transforms the vertices inside setup). Equal keys put the later
-// input triangle first, so the earlier one is drawn last and wins, as an
+// frame otherwise transforms the vertices inside setup). Equal keys put the
+// later input triangle first, so the earlier one is drawn last and wins, as an
 // exact tie does in the z-buffer. The ranks go to the kernel, which keeps
 // the fragment of the latest-drawn triangle.
 #include "pipeline.h"

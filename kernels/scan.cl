@@ -12,9 +12,9 @@
  * CLR_SCAN_PARTIALS (one work-group scans the chunk sums) and
  * CLR_SCAN_APPLY (each chunk rescanned from its offset). One kernel means
  * one compile at a cold start (about 70 ms each for PoCL on the 2-core
- * development machine). Over the setup counts the apply phase also lists the input
- * triangle behind each setup record (listSources; shared.h, setupSource),
- * which saves the emit pass a kernel of its own.
+ * development machine). Over the setup counts the apply phase also lists
+ * the input triangle behind each setup record (listSources; shared.h,
+ * setupSource), which saves the emit pass a kernel of its own.
  */
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 

@@ -14,15 +14,14 @@
  * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
  * (such triangles are also listed for setup_clip). An exclusive scan
  * (scan.cl) turns the counts into offsets and lists the input triangle
- * behind each record (setupSource), setup_clip
- * clips the listed ones, padding unused reserved slots with CLR_FLAG_DEAD
- * records that binning skips, and pass 2 (setup_emit) sets up the
- * unclipped survivors again, 16 consecutive records at a time, and writes
- * them at their offsets: it runs over the records, not the input, which
- * matters when most triangles are culled (a 10M-triangle sphere keeps
- * 1.5M). Output order is input order, whatever the scheduling. Both passes
- * handle CLR_LANES triangles per work-item (lanes.h): 16 in vector types
- * on a CPU. The rare clipping path
+ * behind each record (setupSource); setup_clip clips the listed ones,
+ * padding unused reserved slots with CLR_FLAG_DEAD records that binning
+ * skips; and pass 2 (setup_emit) sets up the unclipped survivors again, 16
+ * consecutive records at a time, and writes them at their offsets: it runs
+ * over the records, not the input, which matters when most triangles are
+ * culled (a 10M-triangle sphere keeps 1.5M). Output order is input order,
+ * whatever the scheduling. Both passes handle CLR_LANES triangles per
+ * work-item (lanes.h): 16 in vector types on a CPU. The rare clipping path
  * runs in its own, scalar kernel. Binning (bin.cl) rides on these passes:
  * pass 1 and setup_clip count each triangle's tiles, and pass 2 writes the
  * unclipped triangles' bin entries.

@@ -264,10 +264,10 @@ typedef struct TextureDesc {
  * (through vis_index_at and its kin in raster.cl): 2 bytes per sample of a
  * covered tile when the frame has fewer than 2^16 − 1 setup records (the
  * host sets visIndex16 once setup has counted them), else 4. The visAttr
- * planes exist only when
- * FrameParams.visAttributes is 1 (the host sets it for frames whose readers
- * need them: lines, AOVs, float edges, Pipeline::readVis's depth and
- * barycentrics); raster then writes them, 12 more bytes per sample. Without
+ * planes exist only when FrameParams.visAttributes is 1 (the host sets it
+ * for frames whose readers need them: lines, AOVs, float edges,
+ * Pipeline::readVis's depth and barycentrics); raster then writes them, 12
+ * more bytes per sample. Without
  * them resolve recomputes b1 and b2 from the setup record at the sample
  * (vis_barycentrics in raster.cl), the same integers and floats raster
  * computed. Entries of a tile's block outside the viewport are written but
