@@ -11,10 +11,12 @@
 // optionally --grid N (N x N instanced copies of the scene), seen from the
 // --view "far" (whole scene), "fill" (the scene filling the viewport) or
 // "near" (camera close). Each renderer draws K
-// warm-up then N timed frames: clraster is Pipeline::render (parameter
-// upload to the RGBA8 image in host memory) on the clraster device;
-// llvmpipe is glClear + glDrawElements + glFinish + glReadPixels with
-// LP_NUM_THREADS threads (set here to the core count when unset). Then, unless
+// warm-up then N timed frames, each up to an RGBA8 image the host can read
+// where the renderer left it: clraster is Pipeline::render into an ImageView
+// (parameter upload to the image buffer mapped, which on a CPU device is no
+// copy) on the clraster device; llvmpipe is glClear + glDrawElements +
+// glFinish into OSMesa's host buffer, with LP_NUM_THREADS threads (set here
+// to the core count when unset). Then, unless
 // --no-ids, one triangle-ID frame of each is compared as clraster_vs_llvmpipe
 // does. Prints one JSON line on stdout; --csv appends one row (and the
 // header to an empty file); --images writes both lambert images as
@@ -188,14 +190,16 @@ ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera
   ClrasterRun run;
   run.device = cl.info.name;
   std::vector<FrameStats> timed;
+  ImageView view;
   for (uint32_t f = 0; f < args.warmup + args.frames; ++f) {
     const auto start = std::chrono::steady_clock::now();
-    FrameStats stats = pipeline.render(settings, run.image);
+    FrameStats stats = pipeline.render(settings, view);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (f < args.warmup) continue;
     run.frameMs.push_back(ms);
     timed.push_back(std::move(stats));
   }
+  run.image.assign(view.pixels, view.pixels + size_t(view.width) * view.height);
   for (const auto& entry : timed.front().stageMs) {
     std::vector<double> perFrame;
     for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);

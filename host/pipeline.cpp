@@ -77,6 +77,12 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   // The depth and barycentric planes of the visibility buffer, only for the
   // frames whose readers need them (shared.h): lines test against the depth
   // plane, and resolve recomputes only the fixed edges' barycentrics.
+  // Tiny triangles that cover no sample are culled in setup only where no
+  // reader could tell: one sample (the test knows one sample position),
+  // fixed edges (raster's own integers) and no wireframe (which draws the
+  // setup triangles' edges, covered or not).
+  p.cullSampleFree =
+      s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED && s.wireframe == CLR_WIREFRAME_OFF ? 1u : 0u;
   p.visAttributes = s.keepVisAttributes || s.wireframe != CLR_WIREFRAME_OFF || s.edgeMode == CLR_EDGES_FLOAT ? 1u : 0u;
   return p;
 }
@@ -214,8 +220,25 @@ cl::NDRange Pipeline::linear(uint64_t n) const
   return cl::NDRange(size_t((n + group - 1) / group * group));
 }
 
+Pipeline::~Pipeline()
+{
+  try {
+    unmapImage();
+    cl_.queue.finish();
+  } catch (...) {  // a destructor must not throw; the context goes anyway
+  }
+}
+
+void Pipeline::unmapImage()
+{
+  if (!mappedImage_) return;
+  cl_.queue.enqueueUnmapMemObject(image_.get(), mappedImage_);  // ordered before any later kernel
+  mappedImage_ = nullptr;
+}
+
 void Pipeline::beginFrame(const FrameSettings& settings)
 {
+  unmapImage();  // kernels must not write a mapped buffer
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
   params_.sceneFlags = bindAttributes(settings);
   settings_ = settings;
@@ -226,7 +249,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   counters_.zero(CLR_NUM_COUNTERS, &fills);
 }
 
-FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
+void Pipeline::runStages(const FrameSettings& settings)
 {
   beginFrame(settings);
   setup();  // transforms the vertices it reads (transform.cl)
@@ -234,7 +257,23 @@ FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>
   raster();
   resolve();
   if (settings.wireframe != CLR_WIREFRAME_OFF) lines();
+}
+
+FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
+{
+  runStages(settings);
   readImage(rgba);
+  return finishFrame();
+}
+
+FrameStats Pipeline::render(const FrameSettings& settings, ImageView& view)
+{
+  runStages(settings);
+  const uint64_t bytes = uint64_t(params_.width) * params_.height * sizeof(uint32_t);
+  mappedImage_ = cl_.queue.enqueueMapBuffer(image_.get(), CL_TRUE, CL_MAP_READ, 0, bytes);
+  view.pixels = static_cast<const uint32_t*>(mappedImage_);
+  view.width = params_.width;
+  view.height = params_.height;
   return finishFrame();
 }
 

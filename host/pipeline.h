@@ -62,10 +62,21 @@ struct FrameSettings {
   // 32-bit visibility indices even when 16 bits would do (fewer than 0xFFFF
   // setup records, shared.h); tests compare the two.
   bool wideVisIndex = false;
+  // Lets setup cull a small triangle that covers no pixel centre (shared.h,
+  // FrameParams.cullSampleFree); tests turn it off to show that the pixels
+  // do not change.
+  bool cullSampleFree = true;
 };
 
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
 FrameParams makeFrameParams(const FrameSettings& settings, size_t numVerts, size_t numTris);
+
+// A frame's RGBA8 image where the device left it (Pipeline::render with a
+// view): width·height pixels, top row first, as render() copies them.
+struct ImageView {
+  const uint32_t* pixels = nullptr;
+  uint32_t width = 0, height = 0;
+};
 
 struct FrameStats {
   std::map<std::string, double> stageMs;  // from OpenCL profiling events
@@ -80,6 +91,9 @@ struct FrameStats {
 class Pipeline {
  public:
   explicit Pipeline(ClContext& cl);
+  ~Pipeline();
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
 
   // Uploads positions and indices and keeps a copy of the scene; the other
   // attributes are uploaded when a frame first reads them (bindAttributes).
@@ -97,6 +111,12 @@ class Pipeline {
 
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
   FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
+  // The same frame without the copy: `view` shows the image buffer mapped
+  // for reading, which on a CPU device is the device's memory itself (on a
+  // GPU the driver copies). The view stays valid until the next frame
+  // begins or the pipeline goes; as OSMesa renders into its caller's buffer,
+  // so the bench times both renderers up to an image the host can read.
+  FrameStats render(const FrameSettings& settings, ImageView& view);
 
   // The stages, in order (each defined in its own host file).
   void beginFrame(const FrameSettings& settings);
@@ -216,7 +236,10 @@ class Pipeline {
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
-  DeviceBuffer<uint32_t> paintRank_;  // see shared.h
+  void* mappedImage_ = nullptr;  // image_ mapped for an ImageView, unmapped when the next frame begins
+  void unmapImage();
+  void runStages(const FrameSettings& settings);  // beginFrame to resolve (and lines): both render()s
+  DeviceBuffer<uint32_t> paintRank_;              // see shared.h
   std::vector<uint32_t> paintOrder_;
   DeviceBuffer<LineParams> lineParams_;
   DeviceBuffer<LineSeg> lineSegs_;

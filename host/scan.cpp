@@ -55,7 +55,7 @@ uint64_t Pipeline::scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint
   if (sources) {
     sum = scanPartials_.download(1, numChunks)[0];
     if (sum > UINT32_MAX) return sum;
-    sources->reserve(sum);
+    sources->reserve(sum + numChunks);  // + a spare entry per chunk (scan.cl)
   }
 
   // Step 4: the rescan of every chunk.

@@ -97,13 +97,16 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
     return;
   }
   ulong running = partials[g];
+  const ulong spare = partials[numChunks] + g;  // listSources: this chunk's scratch entry past the records
   for (uint i = begin; i < end; ++i) {
     const uint v = countNonZero ? (src[i] != 0) : src[i];
     dst[i] = (uint)running;
     // Setup counts: an unclipped survivor (1) owns its record; a clipped
     // triangle's CLR_MAX_SUBTRIS reserved records get CLR_NONE (setup_clip
-    // writes them); a culled one (0) owns none.
-    if (listSources && v == 1) sources[running] = i;
+    // writes them); a culled one (0) owns none, and its store goes to the
+    // chunk's spare entry instead of behind a branch (survivors and culled
+    // triangles alternate unpredictably on a dense mesh seen from afar).
+    if (listSources) sources[v == 1 ? running : spare] = i;
     for (uint k = 0; listSources && v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) sources[running + k] = CLR_NONE;
     running += v;
   }

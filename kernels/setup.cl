@@ -132,11 +132,62 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
   return select(kind, (uintL)CLR_SETUP_CULLED, culled);
 }
 
+/* Whether each lane's (oriented) triangle covers a pixel centre, tested only
+ * for small ones: at most 2×2 centres in its pixel bounds x0..xEnd,
+ * y0..yEnd, and vertices less than 4 pixels apart each way; a larger one
+ * counts as covering. The test is raster's: the integer edge functions at
+ * the sample position (one sample: FrameParams.cullSampleFree) and the fill
+ * rule, so a culled triangle is one that raster would find inside no
+ * sample. In 32 bits, exact for the small ones: a centre tested lies inside
+ * the vertex bounds, so every factor is below 4·CLR_FIXED_ONE = 2^10 and
+ * |E| < 2^21 (the other lanes may wrap, in unsigned arithmetic, and are
+ * discarded). Tiny triangles that fall between pixel centres are most of a
+ * dense mesh seen from afar (on a 1M-triangle sphere at 1080p, most of the
+ * setup records): culling them here saves their records, bin entries and
+ * raster work. */
+CLR_INLINE intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX, intL minY, intL maxY, intL x0, intL y0,
+                                      intL xEnd, intL yEnd, __constant FrameParams* params)
+{
+  // (Both masks are comparisons, not one the negation of the other: Oclgrind
+  // reads a negated mask of this shape as 1, not −1, which select() rejects.)
+  const intL small =
+      (xEnd - x0 <= 1) & (yEnd - y0 <= 1) & (maxX - minX < 4 * CLR_FIXED_ONE) & (maxY - minY < 4 * CLR_FIXED_ONE);
+  const intL large =
+      (xEnd - x0 > 1) | (yEnd - y0 > 1) | (maxX - minX >= 4 * CLR_FIXED_ONE) | (maxY - minY >= 4 * CLR_FIXED_ONE);
+  if (!CLR_ANY(small)) return large;
+  // Step 1: each edge a→b (edge i runs from vertex i + 1 to i + 2, as in
+  // raster): its deltas and whether a centre on it is inside.
+  uintL dx[3], dy[3];
+  intL onInside[3];
+  for (int i = 0; i < 3; ++i) {
+    const int a = (i + 1) % 3, b = (i + 2) % 3;
+    dx[i] = as_uintL(t->x[b] - t->x[a]);
+    dy[i] = as_uintL(t->y[b] - t->y[a]);
+    onInside[i] = (t->y[b] < t->y[a]) | ((t->y[b] == t->y[a]) & (t->x[b] > t->x[a]));
+  }
+  // Step 2: the up to four centres.
+  intL covered = 0;
+  for (int row = 0; row < 2; ++row)
+    for (int col = 0; col < 2; ++col) {
+      const intL px = (x0 + col) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
+      const intL py = (y0 + row) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
+      intL inside = (x0 + col <= xEnd) & (y0 + row <= yEnd);
+      for (int i = 0; i < 3; ++i) {
+        const int a = (i + 1) % 3;
+        const intL e = as_intL(dx[i] * as_uintL(py - t->y[a]) - dy[i] * as_uintL(px - t->x[a]));
+        inside = inside & ((e > 0) | ((e == 0) & onInside[i]));
+      }
+      covered = covered | inside;
+    }
+  return large | covered;
+}
+
 /* Builds each lane's screen triangle: viewport transform, snapping, exact
  * doubled area, orientation, pixel bounds. Returns the mask of lanes that
  * survive (w > 0, non-zero area, not culled as a back face, a pixel centre
- * inside the bounds). */
-CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out)
+ * inside the bounds, and with testCoverage a small one covering one:
+ * setup_covers_a_sample). */
+CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out, bool testCoverage)
 {
   // Step 1: viewport transform of the notes and snapping. Window depth is
   // z_ndc/2 + 1/2 (GL), or z_ndc itself with the reversed projection, whose
@@ -186,6 +237,9 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->tileX1 = xEnd / CLR_TILE_SIZE;
   out->tileY1 = yEnd / CLR_TILE_SIZE;
   out->invArea2 = 1.0f / convert_floatL(area2);
+  // Step 5: a small triangle that covers none of its pixel centres.
+  if (testCoverage && params->cullSampleFree)
+    valid = valid & setup_covers_a_sample(out, minX, maxX, minY, maxY, x0, y0, xEnd, yEnd, params);
   return valid;
 }
 
@@ -245,12 +299,21 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
                                   __global uint* triCount, __global uint* tileCount, uint* culled, uint* clipMask)
 {
-  uint runTile = 0, runLength = 0;
+  // Step 1: the counts, branch-free, and the mask of unclipped survivors.
+  uint survivors = 0;
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
     triCount[first + lane] = counts[lane];
     *culled += counts[lane] == 0;
     *clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
-    if (counts[lane] != 1) continue;
+    survivors |= (counts[lane] == 1 ? 1u : 0u) << lane;
+  }
+  // Step 2: the survivors' tiles, visited by their bits: where culled and
+  // kept triangles alternate unpredictably (a dense mesh seen from afar), a
+  // branch per lane on survival costs more than the counting.
+  uint runTile = 0, runLength = 0;
+  while (survivors) {
+    const uint lane = 31 - clz(survivors & (0u - survivors));  // the lowest set bit
+    survivors &= survivors - 1;
     const int4 r = setup_lane_tiles(l, lane);
     if (r.x == r.z && r.y == r.w) {
       const uint tile = r.y * params->tilesX + r.x;
@@ -337,7 +400,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
   setup_load_batch(tri, params, positions, indices, &c);
   const uintL kind = setup_classify(&c, params);
   SetupBatch b;
-  const intL made = setup_make(&c, params, &b);
+  const intL made = setup_make(&c, params, &b, !emit);  // emit's sources passed the test in pass 1
   const intL simple = made & (kind == CLR_SETUP_SIMPLE);
   SetupLanes l;
   setup_unpack(&b, &l);
@@ -401,7 +464,7 @@ __kernel void setup_clip(__constant FrameParams* params,
     setup_broadcast(sc, &batch);
     SetupBatch b;
     int made[CLR_LANES];
-    CLR_STORE_LANES(setup_make(&batch, params, &b), made);
+    CLR_STORE_LANES(setup_make(&batch, params, &b, true), made);
     if (!made[0]) continue;
     SetupLanes l;
     setup_unpack(&b, &l);

@@ -198,7 +198,11 @@ typedef struct FrameParams {
   int sampleY[CLR_MAX_SAMPLES];
   uint visibility; /* CLR_VISIBILITY_* */
   uint visIndex16; /* 1: the visibility buffer's index planes are 16 bits wide (shared.h) */
-  uint pad1[2];
+  /* 1: setup culls a small triangle that covers none of the pixel centres
+   * in its bounds (setup_covers_a_sample, setup.cl); the host sets it for
+   * frames of one sample, fixed edges and no wireframe. */
+  uint cullSampleFree;
+  uint pad1;
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
@@ -312,10 +316,12 @@ typedef struct VisSample {
  *                                 the scan turns them into offsets (last =
  *                                 total); read by setup_clip and
  *                                 bin_fill_clipped
- *  setupSource uint[numSetup]     the scan of triCount (scan.cl,
+ *  setupSource uint[numSetup + chunks] the scan of triCount (scan.cl,
  *                                 listSources): the input triangle behind
  *                                 each setup record (CLR_NONE for a clipped
- *                                 triangle's); read by the emit pass
+ *                                 triangle's), then a spare entry per scan
+ *                                 chunk (at most 4096) that takes the culled
+ *                                 ones' stores; read by the emit pass
  *  clipList   uint[CLIPPED_TRIS]  the count pass lists triangles to clip (the
  *                                 host grows it and recounts if it was
  *                                 short); read by setup_clip, bin_fill_clipped

@@ -125,6 +125,7 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
   if (x0 > x1 || y0 > y1) return false;
   // Step 3: every sample of the bounding box, z-buffered.
   const float invArea2 = 1.0f / float(area2);
+  bool coversSample = false;
   for (int py = y0; py <= y1; ++py)
     for (int px = x0; px <= x1; ++px) {
       const int sx = px * CLR_FIXED_ONE + centreX, sy = py * CLR_FIXED_ONE + centreY;
@@ -136,6 +137,7 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
         inside = inside && (e[i] > 0 || (e[i] == 0 && topLeftInclusive(X[a], Y[a], X[b], Y[b])));
       }
       if (!inside) continue;
+      coversSample = true;
       const float b1 = float(e[1]) * invArea2, b2 = float(e[2]) * invArea2;
       const float z = Z[0] + b1 * (Z[1] - Z[0]) + b2 * (Z[2] - Z[0]);
       const size_t p = size_t(py) * o.width + px;
@@ -144,7 +146,13 @@ bool drawTriangle(const glm::vec4 c[3], uint32_t triId, const Options& o, Result
       r.triId[p] = triId;
       r.bary[p] = glm::dvec3(double(e[0]), double(e[1]), double(e[2])) / double(area2);
     }
-  return true;
+  // Step 4: setup's rule (setup_covers_a_sample): a triangle of at most 2×2
+  // centres, its vertices less than 4 pixels apart each way, that covers
+  // none of them is culled, not set up.
+  const bool small = x1 - x0 <= 1 && y1 - y0 <= 1 &&
+                     std::max({X[0], X[1], X[2]}) - std::min({X[0], X[1], X[2]}) < 4 * CLR_FIXED_ONE &&
+                     std::max({Y[0], Y[1], Y[2]}) - std::min({Y[0], Y[1], Y[2]}) < 4 * CLR_FIXED_ONE;
+  return !(o.cullSampleFree && small && !coversSample);
 }
 
 }  // namespace

@@ -30,6 +30,9 @@ struct Options {
   // fixed-point units (one sample plane of an anti-aliased frame).
   int sampleX = 0, sampleY = 0;
   uint32_t depthMode = 0;  // CLR_DEPTH_*
+  // Setup's cull of a small triangle that covers no sample (FrameParams.cullSampleFree):
+  // only the count of setup triangles depends on it, never a pixel.
+  bool cullSampleFree = true;
 };
 
 struct Result {

@@ -122,6 +122,82 @@ TEST_CASE("setup culls degenerate, non-finite, outside and back-facing triangles
   }
 }
 
+TEST_CASE("setup culls a small triangle that covers no pixel centre by raster's own test", "[setup]")
+{
+  const uint32_t W = 16, H = 16;
+  auto settings = [&](bool cull) {
+    clr::FrameSettings s = test::idSettings(W, H);
+    s.cullSampleFree = cull;
+    return s;
+  };
+  SECTION("a centre on the shared diagonal of two one-pixel triangles goes to the one whose edge holds it")
+  {
+    // The square (4, 4)-(5, 5) halved through its pixel centre (4.5, 4.5):
+    // on the first triangle's exclusive (upper right) edge, on the second's
+    // inclusive (left) edge.
+    Geometry g;
+    g.addTriangle(screen(4, 4, 0, W, H), screen(5, 4, 0, W, H), screen(4, 5, 0, W, H));
+    g.addTriangle(screen(5, 5, 0, W, H), screen(4, 5, 0, W, H), screen(5, 4, 0, W, H));
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    CHECK(pipeline.render(settings(false), rgba).setupTriangles == 2);
+    const clr::FrameStats stats = pipeline.render(settings(true), rgba);
+    CHECK(stats.setupTriangles == 1);
+    CHECK(stats.trianglesCulled == 1);
+    CHECK(pipeline.readSetup().at(0).triId == 1);
+    const std::vector<uint32_t> ids = test::renderTriIds(pipeline, settings(true));
+    CHECK(ids[pixel(W, 4, 4)] == 1);
+    CHECK(ids == test::renderTriIds(pipeline, settings(false)));
+  }
+  SECTION("a sliver across two centres' bounds that passes between them")
+  {
+    Geometry g;
+    g.addTriangle(screen(4.4f, 4.6f, 0, W, H), screen(5.6f, 5.6f, 0, W, H), screen(5.6f, 5.65f, 0, W, H));
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    CHECK(pipeline.render(settings(false), rgba).setupTriangles == 1);
+    CHECK(pipeline.render(settings(true), rgba).setupTriangles == 0);
+  }
+  SECTION("thousands of random small triangles: the oracle's counts, and the same pixels either way")
+  {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> position(-2.0f, 66.0f), size(0.1f, 2.5f), angle(0.0f, 6.2832f),
+        depth(-0.9f, 0.9f);
+    Geometry g;
+    for (int i = 0; i < 6000; ++i) {
+      const float x = position(rng), y = position(rng), z = depth(rng);
+      glm::vec3 corner[3];
+      for (glm::vec3& c : corner) {
+        const float r = size(rng), a = angle(rng);
+        c = screen(x + r * std::cos(a), y + r * std::sin(a), z, 64, 64);
+      }
+      g.addTriangle(corner[0], corner[1], corner[2]);
+    }
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(g.mesh());
+    clr::FrameSettings on = test::idSettings(64, 64), off = on;
+    off.cullSampleFree = false;
+    std::vector<uint32_t> rgba;
+    const clr::FrameStats culled = pipeline.render(on, rgba), kept = pipeline.render(off, rgba);
+    ref::Options o{64, 64, false};
+    const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), o);
+    o.cullSampleFree = false;
+    CHECK(culled.setupTriangles == expected.setupTriangles);
+    CHECK(kept.setupTriangles == ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), o).setupTriangles);
+    CHECK(culled.setupTriangles + 500 < kept.setupTriangles);  // premise: many cover no centre
+    const std::vector<uint32_t> ids = test::renderTriIds(pipeline, on);
+    CHECK(test::countDifferences(ids, expected.triId) == 0);
+    CHECK(ids == test::renderTriIds(pipeline, off));
+    on.shadeMode = off.shadeMode = CLR_SHADE_LAMBERT;
+    std::vector<uint32_t> withCull, withoutCull;
+    pipeline.render(on, withCull);
+    pipeline.render(off, withoutCull);
+    CHECK(withCull == withoutCull);
+  }
+}
+
 TEST_CASE("fill rule: left and bottom edges are inside, right and top edges outside", "[raster]")
 {
   const uint32_t W = 16, H = 16;

@@ -1,6 +1,6 @@
 // test_resolve.cpp — the resolve kernel's perspective-correct interpolation
 // (the 1/w rule) against the analytic value on a tilted plane, unclipped and
-// clipped by the near plane.
+// clipped by the near plane; the image's orientation, and the mapped ImageView.
 #include "image_io.h"
 #include "test_support.h"
 
@@ -12,6 +12,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <random>
+#include <utility>
 
 namespace {
 
@@ -123,4 +125,36 @@ TEST_CASE("screen space is y-up and the PNG is written top row first", "[resolve
   CHECK(idAt(1, int(H) - 2) == 0);  // top-left: background
   CHECK(idAt(int(W) - 2, 1) == 0);  // bottom-right: background
   stbi_image_free(png);
+}
+
+TEST_CASE("an ImageView shows render()'s pixels until the next frame begins", "[resolve]")
+{
+  // Random triangles, lambert: a picture with background, shading and edges.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
+  test::Geometry g;
+  for (int i = 0; i < 40; ++i)
+    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
+                  {coord(rng), coord(rng), depth(rng)});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  auto settings = [](uint32_t w, uint32_t h) {
+    clr::FrameSettings s = test::idSettings(w, h);
+    s.shadeMode = CLR_SHADE_LAMBERT;
+    return s;
+  };
+  std::vector<uint32_t> copied;
+  clr::ImageView view;
+  // Step 1: a view, then a copy of the same frame, then a view of another size.
+  for (const auto& [w, h] : {std::pair<uint32_t, uint32_t>{64, 48}, {40, 72}}) {
+    INFO(w << "x" << h);
+    pipeline.render(settings(w, h), view);
+    REQUIRE((view.width == w && view.height == h));
+    const std::vector<uint32_t> viewed(view.pixels, view.pixels + size_t(w) * h);
+    pipeline.render(settings(w, h), copied);  // unmaps the view before its kernels run
+    CHECK(viewed == copied);
+    size_t background = 0;
+    for (uint32_t p : copied) background += p == copied[0];
+    CHECK((background > 0 && background < copied.size()));  // premise: the picture is not uniform
+  }
 }
