@@ -108,8 +108,7 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
   // Step 0: a row inside one triangle (common for large triangles) needs one
   // gather; its barycentrics still differ per lane. What to gather follows
   // the shading mode and what the host bound (FrameParams.sceneFlags).
-  g->uniform = true;
-  for (uint lane = 1; lane < CLR_LANES && g->uniform; ++lane) g->uniform = visIndex[lane] == visIndex[0];
+  g->uniform = !CLR_ANY(CLR_LOAD_LANES(visIndex) != visIndex[0]);  // a vector compare, not a branch per lane
   if (g->uniform)
     for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
   const uint mode = params->shadeMode, flags = params->sceneFlags;
@@ -625,8 +624,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE / CLR_LANES, CLR_TILE
     // then normals and base colours. Uncovered lanes read record 0 (a tile
     // with a bin has one) and are replaced by the background at the end.
     // When every lane shows one triangle, lane 0 is gathered and broadcast.
-    bool uniform = true;
-    for (uint lane = 1; lane < CLR_LANES; ++lane) uniform = uniform && index[lane] == index[0];
+    const bool uniform = !CLR_ANY(indexLanes != index[0]);  // a vector compare, not a branch per lane
     const uint gathered = uniform ? 1 : CLR_LANES;
 #define CLR_GATHERED(array, type) (uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
     uint triId[CLR_LANES], flags[CLR_LANES], clipSlot[CLR_LANES], vertex[3][CLR_LANES];
