@@ -340,12 +340,7 @@ TEST_CASE("raster: small MSAA, hierarchical and float-edge frames match the orac
 {
   // Small enough for the Oclgrind runs (tests/oclgrind_check.sh runs [raster]):
   // 40 triangles, 48x40 pixels, every method that changes the kernels' paths.
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
-  test::Geometry g;
-  for (int t = 0; t < 40; ++t)
-    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
-                  {coord(rng), coord(rng), depth(rng)});
+  const test::Geometry g = test::randomTriangles(9, 40);
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   const uint32_t W = 48, H = 40;

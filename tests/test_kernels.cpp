@@ -258,12 +258,7 @@ TEST_CASE("fill rule: left and bottom edges are inside, right and top edges outs
 
 TEST_CASE("barycentrics match the exact edge-function ratios and sum to 1", "[raster]")
 {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
-  Geometry g;
-  for (int t = 0; t < 200; ++t)
-    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
-                  {coord(rng), coord(rng), depth(rng)});
+  const Geometry g = test::randomTriangles(11, 200);
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::keepingVis(test::idSettings(96, 80)));

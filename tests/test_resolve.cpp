@@ -12,7 +12,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
-#include <random>
 #include <utility>
 
 namespace {
@@ -130,12 +129,7 @@ TEST_CASE("screen space is y-up and the PNG is written top row first", "[resolve
 TEST_CASE("an ImageView shows render()'s pixels until the next frame begins", "[resolve]")
 {
   // Random triangles, lambert: a picture with background, shading and edges.
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
-  test::Geometry g;
-  for (int i = 0; i < 40; ++i)
-    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
-                  {coord(rng), coord(rng), depth(rng)});
+  const test::Geometry g = test::randomTriangles(5, 40);
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   auto settings = [](uint32_t w, uint32_t h) {

@@ -2,6 +2,7 @@
 #include "test_support.h"
 
 #include <cstdlib>
+#include <random>
 
 #include <sys/stat.h>
 
@@ -37,6 +38,17 @@ clr::Mesh Geometry::mesh() const
   m.indices = indices;
   clr::computeSmoothNormals(m);
   return m;
+}
+
+Geometry randomTriangles(uint32_t seed, int count)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> coord(-1.2f, 1.2f), depth(-0.9f, 0.9f);
+  Geometry g;
+  for (int t = 0; t < count; ++t)
+    g.addTriangle({coord(rng), coord(rng), depth(rng)}, {coord(rng), coord(rng), depth(rng)},
+                  {coord(rng), coord(rng), depth(rng)});
+  return g;
 }
 
 glm::vec3 screen(float sx, float sy, float z, uint32_t width, uint32_t height)

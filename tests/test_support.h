@@ -30,6 +30,9 @@ struct Geometry {
   size_t numTris() const { return indices.size() / 3; }
 };
 glm::vec3 screen(float sx, float sy, float z, uint32_t width, uint32_t height);
+// `count` random triangles for an identity MVP, from seed: corners uniform in
+// [−1.2, 1.2]² (some cross the viewport's edges), depths in [−0.9, 0.9].
+Geometry randomTriangles(uint32_t seed, int count);
 
 // The settings with FrameSettings.keepVisAttributes on: for tests that read
 // the depth and barycentrics raster writes (Pipeline::readVis, aov()).
