@@ -8,8 +8,9 @@
 // vertex normals renormalised (GL_NORMALIZE: some files' normals are not
 // unit, and clraster normalises), GL_SMOOTH, so per-vertex rather than
 // per-pixel), 24-bit depth, LESS, and clraster's background colour. A frame is timed from
-// glClear through glDrawElements, glFinish and glReadPixels of the RGBA8
-// image. renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat
+// glClear through glDrawElements and glFinish, when the RGBA8 image lies in
+// OSMesa's host buffer; the image is read back once, after the timed frames.
+// renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat
 // colour = triangle index + 1, un-shared vertices). Images come back top row
 // first, R in the low byte. llvmpipe's thread count is LP_NUM_THREADS, read
 // when the first context is created. Failures are clr::Error.

@@ -184,9 +184,10 @@ md="$work/results.md"
   echo
   echo "## Definitions"
   echo
-  echo "- **clraster ms**: wall time of \`Pipeline::render\`: parameter upload through all kernels to the RGBA8 image in"
-  echo "  host memory. **llvmpipe ms**: \`glClear\` + \`glDrawElements\` (positions, normals and indices in buffer"
-  echo "  objects) + \`glFinish\` + \`glReadPixels\` through OSMesa. Both shade lambert: one directional light, ambient"
+  echo "- **clraster ms**: wall time of \`Pipeline::render\` into an \`ImageView\`: parameter upload through all kernels"
+  echo "  to the RGBA8 image mapped for the host (on a CPU device, no copy). **llvmpipe ms**: \`glClear\` +"
+  echo "  \`glDrawElements\` (positions, normals and indices in buffer objects) + \`glFinish\` through OSMesa, into its host"
+  echo "  buffer (no copy either). Both shade lambert: one directional light, ambient"
   echo "  0.12 + diffuse 0.88, two-sided; llvmpipe per vertex (GL_SMOOTH), clraster per pixel."
   echo "- **far / fill / near**: the whole object framed as by \`clraster render\` (mostly small triangles; an elongated"
   echo "  model covers a few percent of the screen); the same camera moved closer until the model reaches 90% of the way"

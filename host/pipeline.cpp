@@ -74,15 +74,15 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
     throw Error("unknown depth format or visibility method");
   p.depthMode = s.depthMode;
   p.visibility = s.visibility;
-  // The depth and barycentric planes of the visibility buffer, only for the
-  // frames whose readers need them (shared.h): lines test against the depth
-  // plane, and resolve recomputes only the fixed edges' barycentrics.
   // Tiny triangles that cover no sample are culled in setup only where no
   // reader could tell: one sample (the test knows one sample position),
   // fixed edges (raster's own integers) and no wireframe (which draws the
   // setup triangles' edges, covered or not).
   p.cullSampleFree =
       s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED && s.wireframe == CLR_WIREFRAME_OFF ? 1u : 0u;
+  // The depth and barycentric planes of the visibility buffer, only for the
+  // frames whose readers need them (shared.h): lines test against the depth
+  // plane, and resolve recomputes only the fixed edges' barycentrics.
   p.visAttributes = s.keepVisAttributes || s.wireframe != CLR_WIREFRAME_OFF || s.edgeMode == CLR_EDGES_FLOAT ? 1u : 0u;
   return p;
 }

@@ -166,6 +166,10 @@ class Pipeline {
   const ClContext& cl() const { return cl_; }
 
  private:
+  // beginFrame to resolve (and lines): the frame of both render()s.
+  void runStages(const FrameSettings& settings);
+  // Unmaps the image an ImageView showed (before any kernel may write it).
+  void unmapImage();
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
   uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total = nullptr);
   // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
@@ -236,10 +240,8 @@ class Pipeline {
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
-  void* mappedImage_ = nullptr;  // image_ mapped for an ImageView, unmapped when the next frame begins
-  void unmapImage();
-  void runStages(const FrameSettings& settings);  // beginFrame to resolve (and lines): both render()s
-  DeviceBuffer<uint32_t> paintRank_;              // see shared.h
+  void* mappedImage_ = nullptr;       // image_ mapped for an ImageView, unmapped when the next frame begins
+  DeviceBuffer<uint32_t> paintRank_;  // see shared.h
   std::vector<uint32_t> paintOrder_;
   DeviceBuffer<LineParams> lineParams_;
   DeviceBuffer<LineSeg> lineSegs_;

@@ -170,17 +170,19 @@ CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX,
   // Step 2: the up to four centres.
   intL covered = 0;
   CLR_NO_UNROLL
-  for (int row = 0; row < 2; ++row) CLR_NO_UNROLL
-  for (int col = 0; col < 2; ++col) {
-    const intL px = (x0 + col) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
-    const intL py = (y0 + row) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
-    intL inside = (x0 + col <= xEnd) & (y0 + row <= yEnd);
-    for (int i = 0; i < 3; ++i) {
-      const int a = (i + 1) % 3;
-      const intL e = as_intL(dx[i] * as_uintL(py - t->y[a]) - dy[i] * as_uintL(px - t->x[a]));
-      inside = inside & ((e > 0) | ((e == 0) & onInside[i]));
+  for (int row = 0; row < 2; ++row) {
+    CLR_NO_UNROLL
+    for (int col = 0; col < 2; ++col) {
+      const intL px = (x0 + col) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
+      const intL py = (y0 + row) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
+      intL inside = (x0 + col <= xEnd) & (y0 + row <= yEnd);
+      for (int i = 0; i < 3; ++i) {
+        const int a = (i + 1) % 3;
+        const intL e = as_intL(dx[i] * as_uintL(py - t->y[a]) - dy[i] * as_uintL(px - t->x[a]));
+        inside = inside & ((e > 0) | ((e == 0) & onInside[i]));
+      }
+      covered = covered | inside;
     }
-    covered = covered | inside;
   }
   return large | covered;
 }
