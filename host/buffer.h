@@ -65,11 +65,7 @@ class DeviceBuffer {
     memory_->bytesAllocated += capacity_ * sizeof(T);
   }
 
-  void upload(const std::vector<T>& data)
-  {
-    reserve(data.size(), true);
-    if (!data.empty()) memory_->queue.enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
-  }
+  void upload(const std::vector<T>& data) { uploadPadded(data, 0); }
 
   // upload, then `pad` zero elements after the data (so that a kernel may
   // read a whole vector at the last element).

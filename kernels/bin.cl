@@ -72,8 +72,7 @@ CLR_INLINE int bin_tile_class(const TriSetup* t, __constant FrameParams* params,
     const long c01 = bin_edge_at(t->x[a], t->y[a], t->x[b], t->y[b], x0, y1);
     const long c11 = bin_edge_at(t->x[a], t->y[a], t->x[b], t->y[b], x1, y1);
     if (max(max(c00, c10), max(c01, c11)) < 0) return -1;
-    const int dx = t->x[b] - t->x[a], dy = t->y[b] - t->y[a];
-    const long bias = (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;  // the fill rule, as raster.cl's edge_bias
+    const long bias = CLR_EDGE_HOLDS_SAMPLES(t->x[a], t->y[a], t->x[b], t->y[b]) ? 1 : 0;  // the fill rule (fixed.h)
     inside = inside && min(min(c00, c10), min(c01, c11)) + bias > 0;
   }
   return inside ? 1 : 0;

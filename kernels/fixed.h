@@ -49,4 +49,12 @@
 #define CLR_MAX_CLIP_VERTS 8
 #define CLR_MAX_SUBTRIS (CLR_MAX_CLIP_VERTS - 2)
 
+/* The fill rule (GL as in llvmpipe, y up): a sample exactly on the directed
+ * edge a→b of a counter-clockwise triangle is inside when the edge is a left
+ * edge (going down, by < ay) or a horizontal bottom edge (bx > ax). In
+ * scalar or lane types alike: a mask, 1 (scalar) or −1 (vector) when true.
+ * Raster, binning's tile test and setup's coverage test all take it from
+ * here. */
+#define CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by) (((by) < (ay)) | (((by) == (ay)) & ((bx) > (ax))))
+
 #endif /* CLR_FIXED_H */

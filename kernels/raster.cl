@@ -47,11 +47,10 @@ CLR_INLINE longL edge_function(int ax, int ay, int bx, int by, intL px, int py)
   return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * convert_longL(px - ax);
 }
 
-/* 1 when a centre exactly on the edge a→b belongs to the triangle. */
+/* 1 when a centre exactly on the edge a→b belongs to the triangle (fixed.h). */
 CLR_INLINE long edge_bias(int ax, int ay, int bx, int by)
 {
-  const int dx = bx - ax, dy = by - ay;
-  return (dy < 0 || (dy == 0 && dx > 0)) ? 1 : 0;
+  return CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by) ? 1 : 0;
 }
 
 /* The nearest fragment so far of one row segment. depth holds the compare

@@ -165,7 +165,7 @@ CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX,
     const int a = (i + 1) % 3, b = (i + 2) % 3;
     dx[i] = as_uintL(t->x[b] - t->x[a]);
     dy[i] = as_uintL(t->y[b] - t->y[a]);
-    onInside[i] = (t->y[b] < t->y[a]) | ((t->y[b] == t->y[a]) & (t->x[b] > t->x[a]));
+    onInside[i] = CLR_EDGE_HOLDS_SAMPLES(t->x[a], t->y[a], t->x[b], t->y[b]);
   }
   // Step 2: the up to four centres.
   intL covered = 0;
