@@ -1,11 +1,49 @@
-// image_io.cpp — atomic PNG writing through stb_image_write (image_io.h).
+// image_io.cpp — atomic PNG writing through stb_image_write (image_io.h),
+// with zlib's deflate in place of stb's own and one fixed row filter.
 #include "image_io.h"
 
 #include "cl.h"
 
+#include <cstdlib>
+#include <zlib.h>
+
+namespace {
+
+// stb_image_write's deflate hook: zlib at its default level. Measured on a
+// 1920x1080 render (built-in scene; and yxa_1) on the development machine:
+// stb's own deflate at its default level 8, trying all five row filters,
+// took 104 ms and wrote 153 KB (109 KB); zlib level 6 with the Sub filter
+// (below) took 30 ms (23 ms) and wrote 70 KB (48 KB). Level 1 saved 15 ms
+// more for files 60% larger. Returns a malloc'ed buffer, as stb frees it.
+unsigned char* zlibCompress(unsigned char* data, int length, int* outLength, int /*stbQuality*/)
+{
+  uLongf size = compressBound(uLong(length));
+  auto* out = static_cast<unsigned char*>(std::malloc(size));
+  if (!out) return nullptr;
+  if (compress2(out, &size, data, uLong(length), Z_DEFAULT_COMPRESSION) != Z_OK) {
+    std::free(out);
+    return nullptr;
+  }
+  *outLength = int(size);
+  return out;
+}
+
+}  // namespace
+
+#define STBIW_ZLIB_COMPRESS zlibCompress
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #include <stb/stb_image_write.h>
+
+namespace {
+
+// The Sub filter for every row, where stb tries all five per row: with zlib
+// it gave the smallest files of the fixed filters on renders, and the search
+// cost more than the deflate (measured as above). Set once, at static
+// initialisation, before any writer thread runs.
+const bool kPngFilterChosen = (stbi_write_force_png_filter = 1, true);
+
+}  // namespace
 
 #include <cerrno>
 #include <cstdio>
