@@ -18,11 +18,17 @@ void Pipeline::resolve()
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
           indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(), triMaterial_.get(),
           materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(), visPlane());
-  // Step 2: one work-item per row of CLR_LANES pixels.
+  // Step 2: the work shape of resolve.cl's kernels: with rows of lanes as
+  // wide as a tile, one work-item per tile; else one per row of lanes, a
+  // tile per work-group.
   const size_t row = size_t(cl_.lanes);
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
-                                 cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
+  if (row == CLR_TILE_SIZE)
+    cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY),
+                                   cl::NDRange(1, 1), nullptr, &event);
+  else
+    cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
+                                   cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
+                                   cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
   record("resolve", event);
 }
 
