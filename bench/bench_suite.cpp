@@ -55,7 +55,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <malloc.h>
 #include <map>
 #include <optional>
 #include <string>
@@ -338,17 +337,8 @@ void appendCsv(const std::string& path, const std::vector<std::pair<std::string,
 
 int run(const Args& args)
 {
-  // Step 0: a fixed heap trim threshold. glibc returns the free top of the
-  // heap to the system once it exceeds a threshold that it raises as large
-  // blocks are freed; llvmpipe frees its per-frame memory at the heap's top,
-  // so with the initial threshold every frame gave its pages back and
-  // faulted them in again. Measured on yxa_1 filling 1920x1080: llvmpipe
-  // took 26 ms per frame in a fresh process and 18 ms once clraster's frees
-  // (which ran first) had raised the threshold, and a case's process landed
-  // in either mode, so its ratio swung between 0.27 and 0.44. With the
-  // threshold fixed at 256 MB, llvmpipe takes 18 ms from its first frame:
-  // both renderers are timed without trimming, llvmpipe at its faster mode.
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  // Step 0: llvmpipe timed at its faster mode (llvmpipe_render.h).
+  fixHeapTrimThreshold();
 
   // Step 1: llvmpipe's threads (the core count unless set), outputs, scene, camera.
   if (!std::getenv("LP_NUM_THREADS"))

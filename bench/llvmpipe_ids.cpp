@@ -33,6 +33,7 @@
 
 using namespace clr;
 using clr::bench::compareIds;
+using clr::bench::fixHeapTrimThreshold;
 using clr::bench::IdComparison;
 using clr::bench::kIdMask;
 using clr::bench::LlvmpipeFrames;
@@ -105,7 +106,9 @@ std::vector<uint32_t> renderClraster(const Args& args, const Mesh& mesh, const g
 
 int run(const Args& args)
 {
-  // Step 1: scene, camera and the output path, before any rendering.
+  // Step 1: llvmpipe's timing mode (llvmpipe_render.h); scene, camera and the
+  // output path, before any rendering.
+  fixHeapTrimThreshold();
   if (!args.diffPath.empty()) checkWritable(args.diffPath);
   const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
   if (mesh.numTris() >= kIdMask)

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <malloc.h>
 
 namespace clr::bench {
 
@@ -83,6 +84,11 @@ double msSince(std::chrono::steady_clock::time_point start)
 }
 
 }  // namespace
+
+void fixHeapTrimThreshold()
+{
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+}
 
 LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
                                      const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames)

@@ -28,6 +28,17 @@ namespace clr::bench {
 
 constexpr uint32_t kIdMask = 0xFFFFFFu;  // ID images: low 24 bits = triangle + 1
 
+// Fixes glibc's heap trim threshold at 256 MB, before any rendering, so that
+// llvmpipe's frames are timed at its faster mode in every process. glibc
+// returns the free top of the heap to the system once it exceeds a threshold
+// that it raises as large blocks are freed; llvmpipe frees its per-frame
+// memory at the heap's top, so with the initial threshold every frame gave its
+// pages back and faulted them in again. Measured on yxa_1 filling 1920x1080:
+// 26 ms per frame in a fresh process, 18 ms once clraster's frees (which ran
+// first) had raised the threshold, and a bench case's process landed in either
+// mode; with the threshold fixed, 18 ms from the first frame.
+void fixHeapTrimThreshold();
+
 struct LlvmpipeFrames {
   std::vector<double> frameMs;  // the timed frames only
   std::vector<uint32_t> image;  // the last frame
