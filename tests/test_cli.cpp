@@ -272,6 +272,17 @@ TEST_CASE("cli: renders a file and reports stats", "[cli]")
   CHECK(leftoverTemps(png) == 0);
 }
 
+TEST_CASE("cli: stats that cannot be written are an error", "[cli]")
+{
+  // A render ends without tearing the device down (main.cpp), flushing its
+  // standard output itself: a full device must still fail the run.
+  const std::string scene = writeFile("small.obj", kSmallObj);
+  const std::string png = tmpDir() + "/full-stdout.png";
+  expectError("render '" + scene + "' -o '" + png + "' --size 16x16 --stats >/dev/full",
+              "cannot write standard output");
+  CHECK(leftoverTemps(png) == 0);
+}
+
 TEST_CASE("cli: a one-point scene far from the origin is framed", "[cli]")
 {
   // Every vertex at one spot: the default camera must still stand off from it.
