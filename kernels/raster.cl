@@ -401,9 +401,9 @@ __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) 
  * per-tile threads. Each triangle is tested only on the rows its bounds
  * span, a 16-pixel vector row at a time; the tile's nearest fragments stay
  * in private memory. */
-CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool hierarchical)
+CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, const uint edgeMode,
+                            const bool hierarchical)
 {
-  const uint tileX = get_global_id(0), tileY = get_global_id(1), k = get_global_id(2);
   const uint tile = tileY * params->tilesX + tileX;
   const int firstY = (int)tileY * CLR_TILE_SIZE;
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
@@ -467,19 +467,21 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, const uint edgeMode, const bool h
                        visAttr);
 }
 
+/* A CPU-shape raster kernel: its method fixed at compile time, its body one
+ * called function (CLR_KERNEL_BODY, shared.h). */
+#define CLR_RASTER_TILE_KERNEL(name, edgeMode, hierarchical)                            \
+  CLR_KERNEL_BODY void name##_body(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k)   \
+  {                                                                                     \
+    raster_tile(CLR_RASTER_ARGS, tileX, tileY, k, edgeMode, hierarchical);              \
+  }                                                                                     \
+  __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void name(CLR_RASTER_PARAMS)  \
+  {                                                                                     \
+    name##_body(CLR_RASTER_ARGS, get_global_id(0), get_global_id(1), get_global_id(2)); \
+  }
 #if !CLR_EXTRAS
-__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster(CLR_RASTER_PARAMS)
-{
-  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, false);
-}
+CLR_RASTER_TILE_KERNEL(raster, CLR_EDGES_FIXED, false)
 #else
-__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_hierarchical(CLR_RASTER_PARAMS)
-{
-  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FIXED, true);
-}
-__kernel __attribute__((reqd_work_group_size(1, 1, 1))) void raster_float(CLR_RASTER_PARAMS)
-{
-  raster_tile(CLR_RASTER_ARGS, CLR_EDGES_FLOAT, false);
-}
+CLR_RASTER_TILE_KERNEL(raster_hierarchical, CLR_EDGES_FIXED, true)
+CLR_RASTER_TILE_KERNEL(raster_float, CLR_EDGES_FLOAT, false)
 #endif
 #endif

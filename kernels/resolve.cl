@@ -716,14 +716,19 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
  * on the 2-core development machine at 1080p (medians of five alternated
  * runs), this shape took resolve_lambert from 6.0 to 5.2 ms on a close
  * 10k-triangle sphere and from 3.9 to 3.3 ms on yxa_1 filling the screen.
- * Otherwise (a GPU's single lanes) a work-item resolves one row of
- * CLR_LANES pixels and a work-group one tile. */
+ * The tile's loop is the kernel's body, one called function
+ * (CLR_KERNEL_BODY, shared.h). Otherwise (a GPU's single lanes) a work-item
+ * resolves one row of CLR_LANES pixels and a work-group one tile. */
 #if CLR_LANES == CLR_TILE_SIZE
-#define CLR_RESOLVE_KERNEL(name, resolveRow)                                                                  \
-  __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void name(CLR_RESOLVE_PARAMS)                       \
-  {                                                                                                           \
-    for (uint row = 0; row < CLR_TILE_SIZE; ++row)                                                            \
-      resolveRow(CLR_RESOLVE_ARGS, get_global_id(0) * CLR_TILE_SIZE, get_global_id(1) * CLR_TILE_SIZE + row); \
+#define CLR_RESOLVE_KERNEL(name, resolveRow)                                                \
+  CLR_KERNEL_BODY void name##_body(CLR_RESOLVE_PARAMS, uint tileX, uint tileY)              \
+  {                                                                                         \
+    for (uint row = 0; row < CLR_TILE_SIZE; ++row)                                          \
+      resolveRow(CLR_RESOLVE_ARGS, (tileX * CLR_TILE_SIZE), (tileY * CLR_TILE_SIZE + row)); \
+  }                                                                                         \
+  __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void name(CLR_RESOLVE_PARAMS)     \
+  {                                                                                         \
+    name##_body(CLR_RESOLVE_ARGS, get_global_id(0), get_global_id(1));                      \
   }
 #else
 #define CLR_RESOLVE_KERNEL(name, resolveRow)                                                             \

@@ -371,26 +371,20 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
 /* Passes 1 and 2 are one kernel, launched twice with `pass`
  * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
  * device compiles the shared triangle setup once. triCount and tileCount
- * hold counts in pass 1 and, scanned, offsets in pass 2. */
-__kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1))) void setup_triangles(
-    __constant FrameParams* params,
-    __global const float* positions,  // 3·numVerts
-    __global const uint* indices,     // 3·numTris
-    __global uint* triCount,          // numTris + 1
-    __global uint* counters,          // CLR_NUM_COUNTERS
-    __global uint* clipList,          // clipListCapacity
-    uint clipListCapacity,
-    __global uint* tileCount,     // tiles + 1
-    __global TriSetup* setup,     // pass 2: triOffset[numTris]
-    __global uint* tileCursor,    // pass 2: tiles, zeroed
-    __global uint* binEntries,    // pass 2: tileOffset[tiles]
-    __global const uint* source,  // pass 2: numSetup (the scan lists them)
-    uint numSetup, uint pass)
+ * hold counts in pass 1 and, scanned, offsets in pass 2. The kernel's body
+ * is this function, for the CLR_LANES triangles of work-item `item`
+ * (CLR_KERNEL_BODY, shared.h); the buffers are the kernel's, below. */
+CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __global const float* positions,
+                                          __global const uint* indices, __global uint* triCount,
+                                          __global uint* counters, __global uint* clipList, uint clipListCapacity,
+                                          __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
+                                          __global uint* binEntries, __global const uint* source, uint numSetup,
+                                          uint pass, uint item)
 {
   // Step 1: the CLR_LANES triangles: in pass 1 input triangles from
   // `first`; in pass 2 the sources of setup records from `first` (lanes of
   // clipped triangles' records and past the end are not written).
-  const uint first = get_global_id(0) * CLR_LANES;
+  const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
   if (first >= (emit ? numSetup : params->numTris)) return;
   uint tri[CLR_LANES], from[CLR_LANES];
@@ -432,6 +426,25 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
       if (slot < clipListCapacity) clipList[slot] = first + lane;
       ++slot;
     }
+}
+
+__kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1))) void setup_triangles(
+    __constant FrameParams* params,
+    __global const float* positions,  // 3·numVerts
+    __global const uint* indices,     // 3·numTris
+    __global uint* triCount,          // numTris + 1
+    __global uint* counters,          // CLR_NUM_COUNTERS
+    __global uint* clipList,          // clipListCapacity
+    uint clipListCapacity,
+    __global uint* tileCount,     // tiles + 1
+    __global TriSetup* setup,     // pass 2: triOffset[numTris]
+    __global uint* tileCursor,    // pass 2: tiles, zeroed
+    __global uint* binEntries,    // pass 2: tileOffset[tiles]
+    __global const uint* source,  // pass 2: numSetup (the scan lists them)
+    uint numSetup, uint pass)
+{
+  setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
+                       tileCursor, binEntries, source, numSetup, pass, get_global_id(0));
 }
 
 /* Pass 3 (before the tile scan): clips the listed triangles, fills their
