@@ -29,10 +29,11 @@ typedef uint32_t uint;
  * code three times (the kernel and its two work-group launchers: `nm` on the
  * cached shared object), so a body inlined into the kernel is optimised and
  * compiled three times; called, once. Measured at cold starts on the 2-core
- * development machine, with the same frame times: code generation of setup
- * 0.30-0.45 s -> 0.19-0.24 s, raster 0.16-0.24 -> 0.10-0.13, resolve_lambert
- * 0.28-0.39 -> 0.22-0.23. The GPU shape (CLR_LANES 1) inlines it: there a
- * call inside PoCL's work-item loop would stop its vectorisation. */
+ * development machine (four alternated), with the same frame times: code
+ * generation of setup 0.29-0.32 s -> 0.17-0.20 s, raster 0.15-0.16 ->
+ * 0.08-0.09, resolve_lambert 0.27-0.39 -> 0.14-0.16. The GPU shape
+ * (CLR_LANES 1) inlines it: there a call inside PoCL's work-item loop would
+ * stop its vectorisation. */
 #if CLR_LANES == 1
 #define CLR_KERNEL_BODY CLR_INLINE
 #else
