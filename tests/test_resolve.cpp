@@ -13,7 +13,9 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace {
 
@@ -30,6 +32,25 @@ glm::dvec3 worldBarycentrics(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec
   const double area = glm::dot(n, n);
   return {glm::dot(glm::cross(c - b, p - b), n) / area, glm::dot(glm::cross(a - c, p - c), n) / area,
           glm::dot(glm::cross(b - a, p - a), n) / area};
+}
+
+// Writes rgba (width x height, top row first) with clr::writePng to a file
+// named `name` in the temporary folder and decodes it back with stb_image:
+// RGB, top row first, R in the low byte.
+std::vector<uint32_t> pngRoundTrip(const std::string& name, uint32_t width, uint32_t height,
+                                   const std::vector<uint32_t>& rgba)
+{
+  const std::string path = test::tempDir() + "/" + name;
+  clr::writePng(path, width, height, rgba);
+  int w = 0, h = 0, channels = 0;
+  unsigned char* png = stbi_load(path.c_str(), &w, &h, &channels, 3);
+  REQUIRE(png);
+  const bool sized = w == int(width) && h == int(height);
+  std::vector<uint32_t> decoded(sized ? size_t(width) * height : 0);
+  for (size_t i = 0; i < decoded.size(); ++i) decoded[i] = png[3 * i] | (png[3 * i + 1] << 8) | (png[3 * i + 2] << 16);
+  stbi_image_free(png);
+  REQUIRE(sized);
+  return decoded;
 }
 
 }  // namespace
@@ -111,20 +132,13 @@ TEST_CASE("screen space is y-up and the PNG is written top row first", "[resolve
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
   pipeline.render(test::idSettings(W, H), rgba);
-  const std::string path = test::tempDir() + "/orientation.png";
-  clr::writePng(path, W, H, rgba);
-  int w = 0, h = 0, channels = 0;
-  unsigned char* png = stbi_load(path.c_str(), &w, &h, &channels, 3);
-  REQUIRE(png);
-  REQUIRE((w == int(W) && h == int(H)));
+  const std::vector<uint32_t> png = pngRoundTrip("orientation.png", W, H, rgba);
   auto idAt = [&](int x, int yUp) {  // PNG row 0 is the top: y-up row yUp is PNG row H-1-yUp
-    const unsigned char* p = png + 3 * (size_t(H - 1 - yUp) * W + x);
-    return p[0] | (p[1] << 8) | (p[2] << 16);
+    return png[size_t(H - 1 - yUp) * W + x];
   };
   CHECK(idAt(1, 1) == 1);           // triangle index 0 is written as 1
   CHECK(idAt(1, int(H) - 2) == 0);  // top-left: background
   CHECK(idAt(int(W) - 2, 1) == 0);  // bottom-right: background
-  stbi_image_free(png);
 }
 
 TEST_CASE("a written PNG decodes to the rendered pixels", "[resolve]")
@@ -139,20 +153,13 @@ TEST_CASE("a written PNG decodes to the rendered pixels", "[resolve]")
   settings.shadeMode = CLR_SHADE_LAMBERT;
   std::vector<uint32_t> rgba;
   pipeline.render(settings, rgba);
-  const std::string path = test::tempDir() + "/roundtrip.png";
-  clr::writePng(path, W, H, rgba);
-  int w = 0, h = 0, channels = 0;
-  unsigned char* png = stbi_load(path.c_str(), &w, &h, &channels, 3);
-  REQUIRE(png);
-  REQUIRE((w == int(W) && h == int(H)));
+  const std::vector<uint32_t> png = pngRoundTrip("roundtrip.png", W, H, rgba);
   size_t differing = 0;
   std::set<uint32_t> values;
-  for (size_t i = 0; i < size_t(W) * H; ++i) {
-    const uint32_t decoded = png[3 * i] | (png[3 * i + 1] << 8) | (png[3 * i + 2] << 16);
-    differing += decoded != (rgba[i] & 0xFFFFFFu);
-    values.insert(decoded);
+  for (size_t i = 0; i < png.size(); ++i) {
+    differing += png[i] != (rgba[i] & 0xFFFFFFu);
+    values.insert(png[i]);
   }
-  stbi_image_free(png);
   CHECK(differing == 0);
   CHECK(values.size() > 50);  // a picture that is not trivially compressible
 }
