@@ -18,8 +18,9 @@
 #                view, at 1920x1080
 #   MESH ...     any further mesh files, like the real meshes
 #   cold start   wall time of a whole `clraster render` process (built-in
-#                scene, 1920x1080, one frame) with an empty POCL_CACHE_DIR,
-#                then warm (median of three)
+#                scene, 1920x1080, one frame) with an empty POCL_CACHE_DIR
+#                (median and range of three, each cache new), then warm
+#                (median of three)
 # and writes, replacing earlier results:
 #   docs/bench/results.csv          one row per case (columns: bench/bench_suite.cpp)
 #   docs/bench/results.md           the tables, peaks, cold start and definitions
@@ -124,9 +125,11 @@ wall() {  # seconds taken by a clraster render with POCL_CACHE_DIR=$1
   awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }'
 }
 echo "bench/run.sh: cold start"
-mkdir "$work/pocl-cold"
-cold_s=$(wall "$work/pocl-cold")
-warm_s=$(for i in 1 2 3; do wall "$work/pocl-cold"; echo; done | sort -n | sed -n 2p)
+colds=$(for i in 1 2 3; do mkdir "$work/pocl-cold$i"; wall "$work/pocl-cold$i"; echo; done | sort -n)
+cold_s=$(sed -n 2p <<<"$colds")
+cold_min=$(sed -n 1p <<<"$colds")
+cold_max=$(sed -n 3p <<<"$colds")
+warm_s=$(for i in 1 2 3; do wall "$work/pocl-cold1"; echo; done | sort -n | sed -n 2p)
 
 # Step 6: the Markdown report; awk programs address CSV columns by name.
 columns='NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } '
@@ -178,9 +181,10 @@ md="$work/results.md"
   echo
   echo "Whole \`build/clraster render -o OUT.png --size 1920x1080\` process (built-in scene, one frame), wall time:"
   echo
-  echo "| empty POCL_CACHE_DIR (kernels compiled) | warm cache (median of 3) | difference |"
+  echo "| empty POCL_CACHE_DIR (kernels compiled; median of 3, range) | warm cache (median of 3) | difference |"
   echo "|---|---|---|"
-  awk -v c="$cold_s" -v w="$warm_s" 'BEGIN { printf "| %.3f s | %.3f s | %.3f s |\n", c, w, c - w }'
+  awk -v c="$cold_s" -v lo="$cold_min" -v hi="$cold_max" -v w="$warm_s" \
+    'BEGIN { printf "| %.3f s (%.3f–%.3f) | %.3f s | %.3f s |\n", c, lo, hi, w, c - w }'
   echo
   echo "## Definitions"
   echo
