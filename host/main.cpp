@@ -28,10 +28,10 @@ namespace {
 // Ends a successful render once its outputs are written, flushed and renamed
 // into place, without tearing down the device context and scene. On a cold
 // start PoCL would free the LLVM modules it compiled the kernels with: about
-// 90 ms from the PNG's rename to the process's exit on the development
-// machine (strace), of a 2 s `clraster render`. Nothing in that teardown is
-// needed: PoCL's kernel cache files are complete by each kernel's first
-// launch. (The tests keep their context to the end likewise:
+// 95 ms from the PNG's rename to the process's exit on the development
+// machine (strace; now 1 ms), of a 1.5-1.7 s `clraster render`. Nothing in
+// that teardown is needed: PoCL's kernel cache files are complete by each
+// kernel's first launch. (The tests keep their context to the end likewise:
 // tests/sanitize.sh.) Standard output carries --stats, so a failed flush is
 // still a failure.
 [[noreturn]] void exitAfterOutput()

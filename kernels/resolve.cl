@@ -2,8 +2,8 @@
  *
  * Rows of CLR_LANES pixels (lanes.h), shaded together in lane types after
  * the per-pixel gathers: a work-item resolves a whole tile row by row on a
- * CPU, one row on a GPU (the kernels at the end). Pixels of a tile that binning
- * left empty are background, without a visibility read. Per covered sample
+ * CPU, one row on a GPU (the kernels at the end). Pixels of a tile that
+ * binning left empty are background, without a visibility read. Per covered sample
  * it reads the visible triangle, recomputes its screen-space barycentrics
  * b_i from the setup record at the sample as raster computed them (or reads
  * them from the barycentric planes when the frame has them, shared.h),
