@@ -4,8 +4,8 @@
 // keeps the buffer when it is large enough and otherwise reallocates it: to
 // n the first time, then to n plus 1/8 slack (so a moving camera does not
 // reallocate every frame). A request larger than the device's maximum single
-// allocation is a clr::Error naming the buffer, never a crash. The shared byte counter is what
-// --stats reports as device_bytes.
+// allocation is a clr::Error naming the buffer, never a crash. The shared
+// byte counter is what --stats reports as device_bytes.
 #pragma once
 
 #include "cl.h"

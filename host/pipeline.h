@@ -6,9 +6,9 @@
 // buffer (transform() writes one for tests and the painter's sort). Each
 // stage is a member function defined in the host file named after its
 // kernel file (host/transform.cpp runs kernels/transform.cl, and so on), so
-// tests can run and inspect one stage at a time. Buffers grow to the counts of the
-// current frame (see buffer.h); nothing is dropped, and a size the device
-// cannot hold is a clr::Error.
+// tests can run and inspect one stage at a time. Buffers grow to the counts
+// of the current frame (see buffer.h); nothing is dropped, and a size the
+// device cannot hold is a clr::Error.
 #pragma once
 
 #include "buffer.h"

@@ -3,10 +3,11 @@
  * Rows of CLR_LANES pixels (lanes.h), shaded together in lane types after
  * the per-pixel gathers: a work-item resolves a whole tile row by row on a
  * CPU, one row on a GPU (the kernels at the end). Pixels of a tile that
- * binning left empty are background, without a visibility read. Per covered sample
- * it reads the visible triangle, recomputes its screen-space barycentrics
- * b_i from the setup record at the sample as raster computed them (or reads
- * them from the barycentric planes when the frame has them, shared.h),
+ * binning left empty are background, without a visibility read. Per
+ * covered sample it reads the visible triangle, recomputes its screen-space
+ * barycentrics b_i from the setup record at the sample as raster computed
+ * them (or reads them from the barycentric planes when the frame has them,
+ * shared.h),
  * turns them into perspective-correct ones with the 1/w rule of the notes,
  * λ_i = (b_i / w_i) / Σ_j (b_j / w_j) (or keeps λ_i = b_i with
  * CLR_INTERP_AFFINE, the weaker method), maps them to the input triangle's

@@ -285,11 +285,10 @@ typedef struct TextureDesc {
  * planes exist only when FrameParams.visAttributes is 1 (the host sets it
  * for frames whose readers need them: lines, AOVs, float edges,
  * Pipeline::readVis's depth and barycentrics); raster then writes them, 12
- * more bytes per sample. Without
- * them resolve recomputes b1 and b2 from the setup record at the sample
- * (vis_barycentrics in raster.cl), the same integers and floats raster
- * computed. Entries of a tile's block outside the viewport are written but
- * never read.
+ * more bytes per sample. Without them resolve recomputes b1 and b2 from
+ * the setup record at the sample (vis_barycentrics in raster.cl), the same
+ * integers and floats raster computed. Entries of a tile's block outside
+ * the viewport are written but never read.
  * VisSample is one sample as Pipeline::readVis() returns it. */
 #ifdef __OPENCL_VERSION__
 CLR_INLINE uint vis_address(uint slot, uint x, uint y)
