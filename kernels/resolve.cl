@@ -258,18 +258,26 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
                    resolve_sample_y(params, py, k), b1, b2);
 }
 
+/* Reads the lanes' screen barycentrics at sample k from the barycentric
+ * planes when the frame has them (shared.h); returns false, reading
+ * nothing, when it does not. */
+CLR_INLINE bool resolve_read_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
+                                          uint p, uint count, uint k, floatL* b1, floatL* b2)
+{
+  if (!params->visAttributes) return false;
+  *b1 = load_float_lanes(&visAttr[(3 * k + 1) * visPlane + p], count);
+  *b2 = load_float_lanes(&visAttr[(3 * k + 2) * visPlane + p], count);
+  return true;
+}
+
 /* The lanes' screen barycentrics at sample k: read from the barycentric
  * planes when raster wrote them, else recomputed. */
 CLR_INLINE void resolve_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
                                      uint p, uint count, uint k, __global const TriSetup* setup, const uint* index,
                                      uintL indexLanes, uint firstX, uint py, floatL* b1, floatL* b2)
 {
-  if (params->visAttributes) {
-    *b1 = load_float_lanes(&visAttr[(3 * k + 1) * visPlane + p], count);
-    *b2 = load_float_lanes(&visAttr[(3 * k + 2) * visPlane + p], count);
-    return;
-  }
-  resolve_recompute_barycentrics(params, setup, index, indexLanes, firstX, py, k, b1, b2);
+  if (!resolve_read_barycentrics(params, visAttr, visPlane, p, count, k, b1, b2))
+    resolve_recompute_barycentrics(params, setup, index, indexLanes, firstX, py, k, b1, b2);
 }
 
 /* Stores the first `count` lanes of a row of RGBA8 pixels (the row may end
@@ -582,6 +590,51 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
 }
 #endif
 
+/* What resolve_lambert reads of the lanes' fragments. */
+typedef struct LambertLanes {
+  uintL flags, clipSlot;
+  floatL invW[3];
+  floatL normal[3][3];  // [input vertex][component]
+  floatL albedo[3];
+  intL x[3], y[3];  // the setup vertices, read only when the barycentrics are recomputed
+  floatL scale;     // invArea2, likewise
+} LambertLanes;
+
+/* Reads what resolve_lambert needs of setup record s (its record, then its
+ * vertex indices and material, then their normals and base colour) into
+ * the lanes of `in`: into every lane, without a select, when `in` is the
+ * constant all-lanes mask of the first run. */
+CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
+                                     __global const uint* indices, __global const float* normals,
+                                     __global const uint* triMaterial, __global const Material* materials, uint s,
+                                     intL in, bool vertices, LambertLanes* f)
+{
+#define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
+  __global const TriSetup* t = &setup[s];
+  const uint triId = t->triId;
+  CLR_TAKE(f->flags, (uintL)t->flags);
+  CLR_TAKE(f->clipSlot, (uintL)t->clipSlot);
+  for (int i = 0; i < 3; ++i) CLR_TAKE(f->invW[i], (floatL)t->invW[i]);
+  if (vertices) {
+    for (int i = 0; i < 3; ++i) {
+      CLR_TAKE(f->x[i], (intL)t->x[i]);
+      CLR_TAKE(f->y[i], (intL)t->y[i]);
+    }
+    CLR_TAKE(f->scale, (floatL)t->invArea2);
+  }
+  const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
+  const Material m = materials[materialsOn ? triMaterial[triId] : 0];
+  const float grey[3] = {CLR_GREY_R, CLR_GREY_G, CLR_GREY_B};
+  for (int j = 0; j < 3; ++j) {
+    const float3 n = vload3(indices[3 * triId + j], normals);
+    CLR_TAKE(f->normal[j][0], (floatL)n.x);
+    CLR_TAKE(f->normal[j][1], (floatL)n.y);
+    CLR_TAKE(f->normal[j][2], (floatL)n.z);
+    CLR_TAKE(f->albedo[j], (floatL)(materialsOn ? m.baseColor[j] : grey[j]));
+  }
+#undef CLR_TAKE
+}
+
 /* The common case, lean: lambert at one sample per pixel with the 1/w rule,
  * the directional light only, and no textures or vertex colours (materials
  * give each triangle a flat base colour). The host launches this kernel
@@ -612,64 +665,51 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
-    // Step 1: gathers in stages, each a branch-free loop over the lanes
-    // whose loads do not depend on each other (so the CPU overlaps their
-    // cache misses): the setup records, then vertex indices and materials,
-    // then normals and base colours. Uncovered lanes read record 0 (a tile
-    // with a bin has one) and are replaced by the background at the end.
-    // When every lane shows one triangle, lane 0 is gathered and broadcast.
-    const bool uniform = !CLR_ANY(indexLanes != index[0]);  // a vector compare, not a branch per lane
-    const uint gathered = uniform ? 1 : CLR_LANES;
-#define CLR_GATHERED(array, type) (uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
-    uint triId[CLR_LANES], flags[CLR_LANES], clipSlot[CLR_LANES], vertex[3][CLR_LANES];
-    float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
+    // Step 1: the values of the row's triangles, one run of lanes at a
+    // time (resolve_lambert_take): the first covered run's in every lane,
+    // then each later covered run's selected into the lanes that show its
+    // triangle. A row shows few triangles, in runs, and one load per run
+    // costs less than one per lane. Uncovered lanes keep the first run's
+    // values and are replaced by the background at the end.
+    uint starts = 0;  // bit lane: a covered run starts there
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
+    const bool vertices = !params->visAttributes;  // the barycentrics are recomputed from the records
+    LambertLanes f;
+    uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
+    resolve_lambert_take(params, setup, indices, normals, triMaterial, materials, index[lane], (intL)(-1), vertices,
+                         &f);
     CLR_NO_UNROLL
-    for (uint lane = 0; lane < gathered; ++lane) {
-      __global const TriSetup* t = &setup[index[lane] != CLR_NONE ? index[lane] : 0];
-      triId[lane] = t->triId;
-      flags[lane] = t->flags;
-      clipSlot[lane] = t->clipSlot;
-      for (int i = 0; i < 3; ++i) invW[i][lane] = t->invW[i];
+    for (starts &= starts - 1; starts; starts &= starts - 1) {
+      lane = 31 - clz(starts & (0u - starts));
+      resolve_lambert_take(params, setup, indices, normals, triMaterial, materials, index[lane],
+                           indexLanes == index[lane], vertices, &f);
     }
-    const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
-    uint material[CLR_LANES];
-    CLR_NO_UNROLL
-    for (uint lane = 0; lane < gathered; ++lane) {
-      for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * triId[lane] + j];
-      material[lane] = materialsOn ? triMaterial[triId[lane]] : 0;
-    }
-    CLR_NO_UNROLL
-    for (uint lane = 0; lane < gathered; ++lane) {
-      for (int j = 0; j < 3; ++j) {
-        const float3 n = vload3(vertex[j][lane], normals);
-        normal[j][0][lane] = n.x;
-        normal[j][1][lane] = n.y;
-        normal[j][2][lane] = n.z;
-      }
-      const Material m = materials[material[lane]];
-      albedo[0][lane] = materialsOn ? m.baseColor[0] : CLR_GREY_R;
-      albedo[1][lane] = materialsOn ? m.baseColor[1] : CLR_GREY_G;
-      albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
-    }
-    // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
+    // Step 2: resolve_shade's lambert path in lane types: the screen
+    // barycentrics (as raster computed them, vis_barycentrics, unless the
+    // frame has the planes), the 1/w rule,
     floatL b1, b2;
-    resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, indexLanes, firstX, py, &b1, &b2);
+    if (!resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2))
+      vis_barycentrics(f.x[0], f.y[0], f.x[1], f.y[1], f.x[2], f.y[2], f.scale, covered,
+                       resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
+    const floatL* q = f.invW;
+    const uintL flagsL = f.flags, clipSlotL = f.clipSlot;
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
-    floatL q[3], lambda[3];
-    for (int i = 0; i < 3; ++i) q[i] = CLR_GATHERED(invW[i], floatL);
+    floatL lambda[3];
     const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
     for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
     // then the weights mu_j of the input vertices: lambda itself, with
     // vertices 1 and 2 swapped for a back face, or through ClipBary for a
     // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
     // or swap matrix there, which gives the same floats.)
-    const uintL flagsL = CLR_GATHERED(flags, uintL);
-    const intL clippedL = (CLR_GATHERED(clipSlot, uintL) != CLR_NOT_CLIPPED) & covered;
+    const intL clippedL = (clipSlotL != CLR_NOT_CLIPPED) & covered;
     const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
     floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
     if (CLR_ANY(clippedL)) {
       int clippedLane[CLR_LANES];
+      uint clipSlot[CLR_LANES];
       CLR_STORE_LANES(clippedL, clippedLane);
+      CLR_STORE_LANES(clipSlotL, clipSlot);
       float l[3][CLR_LANES], m[3][CLR_LANES];
       for (int i = 0; i < 3; ++i) {
         CLR_STORE_LANES(lambda[i], l[i]);
@@ -677,7 +717,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
       }
       for (uint lane = 0; lane < CLR_LANES; ++lane) {
         if (!clippedLane[lane]) continue;
-        __global const ClipBary* w = &clipBary[clipSlot[uniform ? 0 : lane]];
+        __global const ClipBary* w = &clipBary[clipSlot[lane]];
         for (int j = 0; j < 3; ++j) {
           m[j][lane] = 0.0f;
           for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
@@ -688,17 +728,15 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     floatL n[3];
     for (int k = 0; k < 3; ++k) {
       n[k] = 0.0f;
-      for (int j = 0; j < 3; ++j) n[k] += mu[j] * CLR_GATHERED(normal[j][k], floatL);
+      for (int j = 0; j < 3; ++j) n[k] += mu[j] * f.normal[j][k];
     }
     resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, (flagsL & CLR_FLAG_BACKFACING) != 0u));
     floatL diffuse, specular;
     const floatL p0[3] = {0.0f, 0.0f, 0.0f};
     shade_lights(params, n, p0, false, &diffuse, &specular);
     const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
-    const ColourL lit = colour_make(CLR_GATHERED(albedo[0], floatL) * light + highlight,
-                                    CLR_GATHERED(albedo[1], floatL) * light + highlight,
-                                    CLR_GATHERED(albedo[2], floatL) * light + highlight);
-#undef CLR_GATHERED
+    const ColourL lit =
+        colour_make(f.albedo[0] * light + highlight, f.albedo[1] * light + highlight, f.albedo[2] * light + highlight);
     const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 8) & 0xFFu) / 255.0f),
                                       (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
