@@ -564,14 +564,15 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
 #ifdef CLR_PREFETCH
 /* Scattered setup records are resolve_lambert's cache misses when the
  * scene's records outgrow the caches (more than 2^17 triangles: 8 MB) and a
- * tile holds many small triangles (more than 32 binned); the caller checks
+ * tile holds many small triangles (more than 128 binned); the caller checks
  * both. While row p (row rowInTile of its tile) is gathered, this fetches
  * the setup records the tile's row after next shows, and the vertex indices
  * of the next row's triangles (whose records the row before fetched), once
  * per run of lanes with one triangle. Below those sizes the records stay
  * cached and prefetching costs more than it saves (measured: +0.3 ms on a
- * 116k-triangle mesh at 1080p). Called, not inlined, so that the common
- * path compiles as it does without it. */
+ * 116k-triangle mesh at 1080p; with the bound at 32 binned instead of 128,
+ * 1.1 ms on the close 1M-triangle sphere, about 70 per tile). Called, not
+ * inlined, so that the common path compiles as it does without it. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* indices)
 {
@@ -714,7 +715,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
 #ifdef CLR_PREFETCH
-  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 32)
+  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
     resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
 #endif
   const intL covered = indexLanes != CLR_NONE;
