@@ -83,3 +83,24 @@ CLR_INLINE floatL clr_rint(floatL x)
   const floatL magic = select(big, -big, x < 0.0f);
   return select((x + magic) - magic, x, fabs(x) >= big);
 }
+
+/* The lanes of v rearranged: lane i takes lane from[i] (each below
+ * CLR_LANES). Where PoCL compiles for AVX-512 (it defines __AVX512F__)
+ * that is one vpermd; elsewhere the shuffle() builtin, which PoCL expands
+ * lane by lane. With one lane, v itself. */
+#if CLR_LANES == 16 && defined(__AVX512F__)
+CLR_INLINE uintL clr_permute(uintL v, uintL from)
+{
+  return as_uint16(__builtin_ia32_permvarsi512(as_int16(v), as_int16(from)));
+}
+#elif CLR_LANES == 16
+CLR_INLINE uintL clr_permute(uintL v, uintL from)
+{
+  return shuffle(v, from);
+}
+#else
+CLR_INLINE uintL clr_permute(uintL v, uintL from)
+{
+  return v;
+}
+#endif

@@ -77,30 +77,48 @@ typedef struct ResolveLanes {
   float grad[3][2][CLR_LANES];    // [setup vertex][d/dx, d/dy][lane]: screen barycentric per pixel
 } ResolveLanes;
 
-/* Copies lane `from`'s per-triangle values to lane `to`: only those the
- * shading reads (the flags are the same for every lane). */
-CLR_INLINE void resolve_copy_lane(ResolveLanes* g, uint to, uint from)
+/* Fills each lane of a per-lane array with the value of lane from[lane]
+ * (clr_permute, lanes.h). */
+CLR_INLINE void resolve_spread(uint* lanes, uintL from)
 {
-  g->triId[to] = g->triId[from];
-  g->backfacing[to] = g->backfacing[from];
-  g->material[to] = g->material[from];
+  CLR_STORE_LANES(clr_permute(CLR_LOAD_LANES(lanes), from), lanes);
+}
+CLR_INLINE void resolve_spread_float(float* lanes, uintL from)
+{
+  CLR_STORE_LANES(as_floatL(clr_permute(as_uintL(CLR_LOAD_LANES(lanes)), from)), lanes);
+}
+
+/* Gives every lane the per-triangle values of the lane that starts its run
+ * (from): only those the shading reads (the flags are the same for every
+ * lane). */
+CLR_INLINE void resolve_spread_lanes(ResolveLanes* g, uintL from)
+{
+  resolve_spread(g->triId, from);
+  resolve_spread(g->backfacing, from);
+  resolve_spread(g->material, from);
   for (int i = 0; i < 3; ++i) {
-    g->invW[i][to] = g->invW[i][from];
-    for (int j = 0; j < 3; ++j) g->weight[i][j][to] = g->weight[i][j][from];
+    resolve_spread_float(g->invW[i], from);
+    for (int j = 0; j < 3; ++j) resolve_spread_float(g->weight[i][j], from);
     if (g->needNormals)
-      for (int j = 0; j < 3; ++j) g->normal[i][j][to] = g->normal[i][j][from];
+      for (int j = 0; j < 3; ++j) resolve_spread_float(g->normal[i][j], from);
     if (g->needPositions)
-      for (int j = 0; j < 3; ++j) g->pos[i][j][to] = g->pos[i][j][from];
+      for (int j = 0; j < 3; ++j) resolve_spread_float(g->pos[i][j], from);
     if (g->needColours)
-      for (int j = 0; j < 4; ++j) g->colour[i][j][to] = g->colour[i][j][from];
+      for (int j = 0; j < 4; ++j) resolve_spread_float(g->colour[i][j], from);
     if (g->needUvs)
-      for (int j = 0; j < 2; ++j) g->uv[i][j][to] = g->uv[i][j][from];
+      for (int j = 0; j < 2; ++j) resolve_spread_float(g->uv[i][j], from);
     if (g->needGradients)
-      for (int j = 0; j < 2; ++j) g->grad[i][j][to] = g->grad[i][j][from];
+      for (int j = 0; j < 2; ++j) resolve_spread_float(g->grad[i][j], from);
   }
 }
 
-/* visIndex: the lanes' setup indices, CLR_NONE past the viewport's edge. */
+/* visIndex: the lanes' setup indices, CLR_NONE past the viewport's edge.
+ * Neighbouring pixels mostly show the same triangle, in runs of lanes: the
+ * lane that starts a run gathers its triangle's values, in stages whose
+ * loads do not depend on each other (so the CPU overlaps their cache
+ * misses): the setup records, then the vertex indices and materials, then
+ * the attributes. The run's other lanes then take them
+ * (resolve_spread_lanes). */
 CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
                                __global const ClipBary* clipBary, __global const uint* indices,
                                __global const float* positions, __global const float* normals,
@@ -111,8 +129,7 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
   // gather; its barycentrics still differ per lane. What to gather follows
   // the shading mode and what the host bound (FrameParams.sceneFlags).
   g->uniform = !CLR_ANY(CLR_LOAD_LANES(visIndex) != visIndex[0]);  // a vector compare, not a branch per lane
-  if (g->uniform)
-    for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
+  for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
   const uint mode = params->shadeMode, flags = params->sceneFlags;
   g->needNormals = CLR_NEEDS_NORMALS(mode);
   g->needUvs = CLR_NEEDS_UVS(mode) || (flags & CLR_SCENE_TEXTURES);
@@ -120,24 +137,23 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
   g->needPositions = CLR_NEEDS_POSITIONS(mode, params->pointLightOn);
   g->needGradients = (flags & CLR_SCENE_TEXTURES) && params->texFilter == CLR_FILTER_TRILINEAR;
   const bool needMaterial = (flags & CLR_SCENE_MATERIALS) != 0;
+  // Step 1: the lanes that start a run (lane 0 alone when uniform), and the
+  // run start of every lane.
+  uint first[CLR_LANES], from[CLR_LANES], runs = 0;
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    // With every lane on one triangle, lane 0's gathers serve all (see uniform).
-    if (g->uniform && lane > 0) break;
-    // Step 1: the visible triangle.
-    const uint index = visIndex[lane];
-    g->setupIndex[lane] = index;
-    // Neighbouring pixels mostly show the same triangle: reuse its gathers.
-    if (lane > 0 && index == g->setupIndex[lane - 1]) {
-      resolve_copy_lane(g, lane, lane - 1);
-      continue;
-    }
+    if (lane == 0 || (!g->uniform && visIndex[lane] != visIndex[lane - 1])) first[runs++] = lane;
+    from[lane] = first[runs - 1];
+  }
+  // Step 2: each run's visible triangle, and the input-vertex weights of
+  // each setup vertex.
+  CLR_NO_UNROLL
+  for (uint run = 0; run < runs; ++run) {
+    const uint lane = first[run], index = visIndex[lane];
     const bool covered = index != CLR_NONE;
     const TriSetup t = setup[covered ? index : 0];
-    g->triId[lane] = t.triId;
+    g->triId[lane] = covered ? t.triId : CLR_NONE;
     g->backfacing[lane] = (t.flags & CLR_FLAG_BACKFACING) != 0;
-    g->material[lane] = covered && needMaterial ? triMaterial[t.triId] : 0;
     for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
-    // Step 2: input-vertex weights of each setup vertex.
     const bool clipped = covered && t.clipSlot != CLR_NOT_CLIPPED;
     const bool swapped = !clipped && (t.flags & CLR_FLAG_BACKFACING);
     for (int i = 0; i < 3; ++i)
@@ -145,7 +161,7 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
         const int identity = swapped && i != 0 ? 3 - i : i;  // setup vertices 1, 2 are input 2, 1
         g->weight[i][j][lane] = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
       }
-    // Step 3: gradients of the screen barycentrics per pixel, from the edge
+    // Gradients of the screen barycentrics per pixel, from the edge
     // functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
     // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
     for (int i = 0; g->needGradients && i < 3; ++i) {
@@ -154,9 +170,23 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
       g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
       g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
     }
-    // Step 4: the input vertices' attributes that the shading reads.
+  }
+  // Step 3: vertex indices and materials (an uncovered run reads none).
+  uint vertex[3][CLR_LANES];
+  CLR_NO_UNROLL
+  for (uint run = 0; run < runs; ++run) {
+    const uint lane = first[run], tri = g->triId[lane];
+    const bool covered = tri != CLR_NONE;
+    for (int j = 0; j < 3; ++j) vertex[j][lane] = covered ? indices[3 * tri + j] : 0;
+    g->material[lane] = covered && needMaterial ? triMaterial[tri] : 0;
+  }
+  // Step 4: the input vertices' attributes that the shading reads.
+  CLR_NO_UNROLL
+  for (uint run = 0; run < runs; ++run) {
+    const uint lane = first[run];
+    const bool covered = g->triId[lane] != CLR_NONE;
     for (int j = 0; j < 3; ++j) {
-      const uint v = covered ? indices[3 * t.triId + j] : 0;
+      const uint v = vertex[j][lane];
       if (g->needNormals) {
         const float3 n = covered ? vload3(v, normals) : (float3)(0.0f);
         g->normal[j][0][lane] = n.x;
@@ -183,6 +213,8 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
       }
     }
   }
+  // Step 5: the runs' values into their other lanes.
+  if (!g->uniform && runs < CLR_LANES) resolve_spread_lanes(g, CLR_LOAD_LANES(from));
 }
 
 /* The colour of a row of samples, channels in [0, 1]. */
