@@ -513,6 +513,39 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   params, visIndex, visAttr, tileOffset, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, \
       materials, texDescs, texels, image, tileSlot, visPlane
 
+#ifdef CLR_PREFETCH
+/* Scattered setup records are resolve's cache misses when the scene's
+ * records outgrow the caches (more than 2^17 triangles: 8 MB) and a tile
+ * holds many small triangles (more than 128 binned); the callers (both
+ * resolve kernels) check both. While row p (row rowInTile of its tile) is
+ * gathered, this fetches the setup records the tile's row after next shows,
+ * and the vertex indices of the next row's triangles (whose records the row
+ * before fetched), once per run of lanes with one triangle. Below those
+ * sizes the records stay cached and prefetching costs more than it saves
+ * (measured in resolve_lambert: +0.3 ms on a 116k-triangle mesh at 1080p;
+ * with the bound at 32 binned instead of 128, 1.1 ms on the close
+ * 1M-triangle sphere, about 70 per tile). In the general kernel it took
+ * phong on the 252k-triangle Suzanne at 1080p from 6.4–7.2 to 4.9–5.4 ms.
+ * Called, not inlined, so that the common path compiles as it does without
+ * it. */
+CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
+                                 __global const TriSetup* setup, __global const uint* indices)
+{
+  uint previous = CLR_NONE;
+  for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
+    const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
+    if (next != CLR_NONE && next != previous) __builtin_prefetch(&setup[next]);
+    previous = next;
+  }
+  previous = CLR_NONE;
+  for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
+    const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
+    if (next != CLR_NONE && next != previous) __builtin_prefetch(&indices[3 * setup[next].triId]);
+    previous = next;
+  }
+}
+#endif
+
 /* The row of CLR_LANES pixels from (firstX, py). (A variant specialised
  * to one sample, with the sample count a compile-time 1, computed wrong
  * pixels under Oclgrind's 16-lane interpretation while PoCL was right; one
@@ -534,6 +567,10 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // The row's entries in the tile's block of each sample plane (shared.h).
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
+#ifdef CLR_PREFETCH
+  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
+#endif
   uintL colour;
   const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                     (floatL)(((background >> 8) & 0xFFu) / 255.0f),
@@ -592,36 +629,6 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // Step 4: write.
   store_row(colour, count, out);
 }
-
-#ifdef CLR_PREFETCH
-/* Scattered setup records are resolve_lambert's cache misses when the
- * scene's records outgrow the caches (more than 2^17 triangles: 8 MB) and a
- * tile holds many small triangles (more than 128 binned); the caller checks
- * both. While row p (row rowInTile of its tile) is gathered, this fetches
- * the setup records the tile's row after next shows, and the vertex indices
- * of the next row's triangles (whose records the row before fetched), once
- * per run of lanes with one triangle. Below those sizes the records stay
- * cached and prefetching costs more than it saves (measured: +0.3 ms on a
- * 116k-triangle mesh at 1080p; with the bound at 32 binned instead of 128,
- * 1.1 ms on the close 1M-triangle sphere, about 70 per tile). Called, not
- * inlined, so that the common path compiles as it does without it. */
-CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
-                                 __global const TriSetup* setup, __global const uint* indices)
-{
-  uint previous = CLR_NONE;
-  for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
-    const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
-    if (next != CLR_NONE && next != previous) __builtin_prefetch(&setup[next]);
-    previous = next;
-  }
-  previous = CLR_NONE;
-  for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
-    const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
-    if (next != CLR_NONE && next != previous) __builtin_prefetch(&indices[3 * setup[next].triId]);
-    previous = next;
-  }
-}
-#endif
 
 /* What resolve_lambert reads of the lanes' fragments. */
 #define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
