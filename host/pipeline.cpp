@@ -289,7 +289,7 @@ FrameStats Pipeline::finishFrame()
   }
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
-  stats.trianglesCulled = counters[CLR_COUNTER_CULLED_TRIS];
+  stats.trianglesCulled = uint64_t(numCulledUnclipped_) + counters[CLR_COUNTER_CULLED_TRIS];
   stats.setupTriangles = numSetup_ - counters[CLR_COUNTER_DEAD_RECORDS];
   numClipSlots_ = counters[CLR_COUNTER_CLIP_SLOTS];
   stats.binEntries = numBinEntries_;

@@ -208,9 +208,10 @@ class Pipeline {
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
-  bool leanResolve_ = false;   // this frame's resolve kernel was resolve_lambert
-  uint32_t numClipped_ = 0;    // input triangles clipped this frame (clip list length)
-  uint32_t numClipSlots_ = 0;  // ClipBary records of the last finished frame
+  bool leanResolve_ = false;         // this frame's resolve kernel was resolve_lambert
+  uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
+  uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
+  uint32_t numClipSlots_ = 0;        // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
   uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
   Mesh scene_;                // host copy: lazy uploads read it

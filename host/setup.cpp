@@ -46,6 +46,10 @@ void Pipeline::setup()
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
   numSetup_ = uint32_t(total);
   numClipped_ = clipped;
+  // The count pass writes 1 for each unclipped survivor and CLR_MAX_SUBTRIS
+  // for each clipped triangle, so the rest of the input was culled there
+  // (setup_clip counts the clipped triangles that produce nothing).
+  numCulledUnclipped_ = uint32_t(numTris - (total - uint64_t(clipped) * CLR_MAX_SUBTRIS) - clipped);
   setup_.reserve(numSetup_);
   clipBary_.reserve(uint64_t(clipped) * CLR_MAX_SUBTRIS);
 

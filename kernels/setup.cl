@@ -299,16 +299,17 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
 /* Pass 1 for CLR_LANES triangles from `first`: how many screen triangles
  * each yields (into triCount), and the unclipped ones' tiles counted.
  * Consecutive one-tile triangles in one tile (common: meshes are coherent)
- * take one atomic add per run. Returns the culled lanes in *culled and the
- * clipped ones as bits of *clipMask. */
+ * take one atomic add per run. Returns the clipped lanes as bits of
+ * *clipMask. (The culled ones are not counted here: the host derives their
+ * number from the scan's total, which saves an atomic add per batch on one
+ * counter that both cores share.) */
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
-                                  __global uint* triCount, __global uint* tileCount, uint* culled, uint* clipMask)
+                                  __global uint* triCount, __global uint* tileCount, uint* clipMask)
 {
   // Step 1: the counts, branch-free, and the mask of unclipped survivors.
   uint survivors = 0;
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
     triCount[first + lane] = counts[lane];
-    *culled += counts[lane] == 0;
     *clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
     survivors |= (counts[lane] == 1 ? 1u : 0u) << lane;
   }
@@ -415,10 +416,9 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   // Step 2 (pass 1): count; then the counters and the clip list (whose
   // order follows the scheduling; setup_clip's output places do not).
   const uintL count = select(select((uintL)0u, (uintL)1u, simple), (uintL)CLR_MAX_SUBTRIS, kind == CLR_SETUP_CLIP);
-  uint counts[CLR_LANES], culled = 0, clipMask = 0;
+  uint counts[CLR_LANES], clipMask = 0;
   CLR_STORE_LANES(count, counts);
-  setup_count_lanes(params, first, counts, &l, triCount, tileCount, &culled, &clipMask);
-  if (culled) atomic_add(&counters[CLR_COUNTER_CULLED_TRIS], culled);
+  setup_count_lanes(params, first, counts, &l, triCount, tileCount, &clipMask);
   if (!clipMask) return;
   uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], popcount(clipMask));
   for (uint lane = 0; lane < CLR_LANES; ++lane)

@@ -164,9 +164,12 @@ typedef uint32_t uint;
 #define CLR_SCAN_PARTIALS 2u /* one work-group scans the chunk sums */
 #define CLR_SCAN_APPLY 1u    /* each chunk rescanned from its offset */
 
-/* Indices into the stats counter buffer. */
+/* Indices into the stats counter buffer. CULLED_TRIS counts only the
+ * clipped triangles that produce nothing (setup_clip); the host adds the
+ * count pass's culls, which it derives from the scan's total
+ * (Pipeline::setup). */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
-#define CLR_COUNTER_CULLED_TRIS 1  /* input triangles that produced nothing */
+#define CLR_COUNTER_CULLED_TRIS 1  /* clipped input triangles that produced nothing */
 #define CLR_COUNTER_CLIP_SLOTS 2   /* ClipBary records written by setup_clip */
 #define CLR_COUNTER_DEAD_RECORDS 3 /* padding records written by setup_clip */
 #define CLR_NUM_COUNTERS 4
