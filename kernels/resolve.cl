@@ -67,7 +67,7 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 typedef struct ResolveLanes {
   bool uniform;  // all lanes show one triangle: only lane 0 of the per-triangle arrays is filled
   bool needNormals, needUvs, needColours, needPositions, needGradients;
-  uint setupIndex[CLR_LANES], triId[CLR_LANES], backfacing[CLR_LANES], material[CLR_LANES];
+  uint triId[CLR_LANES], backfacing[CLR_LANES], material[CLR_LANES];
   float invW[3][CLR_LANES];
   float weight[3][3][CLR_LANES];  // [setup vertex][input vertex][lane]
   float normal[3][3][CLR_LANES];  // [input vertex][component][lane]
@@ -129,7 +129,6 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
   // gather; its barycentrics still differ per lane. What to gather follows
   // the shading mode and what the host bound (FrameParams.sceneFlags).
   g->uniform = !CLR_ANY(CLR_LOAD_LANES(visIndex) != visIndex[0]);  // a vector compare, not a branch per lane
-  for (uint lane = 0; lane < CLR_LANES; ++lane) g->setupIndex[lane] = visIndex[lane];
   const uint mode = params->shadeMode, flags = params->sceneFlags;
   g->needNormals = CLR_NEEDS_NORMALS(mode);
   g->needUvs = CLR_NEEDS_UVS(mode) || (flags & CLR_SCENE_TEXTURES);
@@ -516,18 +515,18 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
 #ifdef CLR_PREFETCH
 /* Scattered setup records are resolve's cache misses when the scene's
  * records outgrow the caches (more than 2^17 triangles: 8 MB) and a tile
- * holds many small triangles (more than 128 binned); the callers (both
- * resolve kernels) check both. While row p (row rowInTile of its tile) is
- * gathered, this fetches the setup records the tile's row after next shows,
- * and the vertex indices of the next row's triangles (whose records the row
- * before fetched), once per run of lanes with one triangle. Below those
- * sizes the records stay cached and prefetching costs more than it saves
- * (measured in resolve_lambert: +0.3 ms on a 116k-triangle mesh at 1080p;
- * with the bound at 32 binned instead of 128, 1.1 ms on the close
- * 1M-triangle sphere, about 70 per tile). In the general kernel it took
- * phong on the 252k-triangle Suzanne at 1080p from 6.4–7.2 to 4.9–5.4 ms.
- * Called, not inlined, so that the common path compiles as it does without
- * it. */
+ * holds many small triangles (more than 128 binned). While row p (row
+ * rowInTile of its tile) is gathered, this fetches the setup records the
+ * tile's row after next shows, and the vertex indices of the next row's
+ * triangles (whose records the row before fetched), once per run of lanes
+ * with one triangle. Below those sizes the records stay cached and
+ * prefetching costs more than it saves (measured in resolve_lambert: +0.3 ms
+ * on a 116k-triangle mesh at 1080p; with the bound at 32 binned instead of
+ * 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile). In the
+ * general kernel it took phong on the 252k-triangle Suzanne at 1080p from
+ * 6.4–7.2 to 4.9–5.4 ms. Called, not inlined, so that the common path
+ * compiles as it does without it; resolve_prefetch_rows below checks the
+ * sizes. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* indices)
 {
@@ -545,6 +544,19 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
   }
 }
 #endif
+
+/* resolve_prefetch for row p (image row py) of tile `tile`, when the scene
+ * and the tile are large enough (above); nothing without CLR_PREFETCH.
+ * Both resolve kernels call it. */
+CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, __global const uint* tileOffset, uint tile,
+                                      __global const uint* visIndex, uint p, uint py, __global const TriSetup* setup,
+                                      __global const uint* indices)
+{
+#ifdef CLR_PREFETCH
+  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
+#endif
+}
 
 /* The row of CLR_LANES pixels from (firstX, py). (A variant specialised
  * to one sample, with the sample count a compile-time 1, computed wrong
@@ -567,10 +579,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // The row's entries in the tile's block of each sample plane (shared.h).
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
-#ifdef CLR_PREFETCH
-  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
-    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
-#endif
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, indices);
   uintL colour;
   const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                     (floatL)(((background >> 8) & 0xFFu) / 255.0f),
@@ -753,10 +762,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
-#ifdef CLR_PREFETCH
-  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
-    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
-#endif
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, indices);
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
@@ -775,10 +781,10 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     uint starts = uniform ? 1u : 0u;                        // bit lane: a covered run starts there
     for (uint lane = 0; lane < CLR_LANES && !uniform; ++lane)
       starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
-    const bool vertices = !params->visAttributes;  // the barycentrics are recomputed from the records
     LambertLanes f;
     floatL b1, b2;
-    resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
+    // Without the barycentric planes, the records' vertices recompute them.
+    const bool vertices = !resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
     if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
       resolve_lambert_gather(params, setup, indices, normals, triMaterial, materials, index, indexLanes, firstX, py,
                              vertices, &f, &b1, &b2);
