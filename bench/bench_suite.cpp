@@ -35,8 +35,8 @@
 //                   clraster_peak, one FMA per lane).
 //   rr_gbs        = (12 B per pixel: the visibility sample's setup index
 //                   written and read, 4 + 4 (resolve recomputes the
-//                   barycentrics), image written, 4; plus 64 B of TriSetup read per
-//                   bin entry) / (raster + resolve time); rr_frac_copy =
+//                   barycentrics), image written, 4; plus the 48 B TriSetup
+//                   read per bin entry) / (raster + resolve time); rr_frac_copy =
 //                   rr_gbs / the peak copy bandwidth (read + write bytes).
 // Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
@@ -395,8 +395,8 @@ int run(const Args& args)
   r.minBytes = 24 * r.vertices + 12 * r.triangles + 4 * r.pixels;
   const double tilePixels = double(CLR_TILE_SIZE) * CLR_TILE_SIZE;
   r.edgeEvalsPerS = double(clr.last.binEntries) * tilePixels * 3.0 / (r.rasterMs * 1e-3);
-  r.rasterResolveBytesPerS =
-      (12.0 * double(r.pixels) + 64.0 * double(clr.last.binEntries)) / ((r.rasterMs + r.resolveMs) * 1e-3);
+  r.rasterResolveBytesPerS = (12.0 * double(r.pixels) + double(sizeof(TriSetup)) * double(clr.last.binEntries)) /
+                             ((r.rasterMs + r.resolveMs) * 1e-3);
 
   // Step 5: output.
   if (!args.imagePrefix.empty()) {

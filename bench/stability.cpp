@@ -172,7 +172,7 @@ int load(const Args& a)
     // Step 3: the visible triangles against the scalar oracle (one tile) or
     // the last, nearest triangle everywhere (full screen).
     const std::vector<VisSample> vis = pipeline.readVis(0);
-    const std::vector<TriSetup> setup = pipeline.readSetup();
+    const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
     std::vector<uint32_t> want;
     if (scene == 0)
       want = ref::rasterize(m.positions, m.indices, glm::mat4(1.0f), {W, H, false}).triId;

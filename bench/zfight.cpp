@@ -121,7 +121,7 @@ int main(int argc, char** argv)
               std::vector<uint32_t> rgba;
               pipeline.render(s, rgba);
               const std::vector<VisSample> vis = pipeline.readVis();
-              const std::vector<TriSetup> setup = pipeline.readSetup();
+              const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
               Case c{mode, ratio, t, d, eps, nearerFirst == 1};
               const uint32_t nearerFirstTri = nearerFirst ? 0 : 2;
               for (const VisSample& sample : vis) {

@@ -23,8 +23,8 @@ void Pipeline::aov()
   aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
   cl::Event event;
   cl::Kernel& kernel = extraKernel(aovKernel_, "aov");
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
-          indices_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane());
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
+          clipBary_.get(), indices_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane());
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);

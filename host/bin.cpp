@@ -39,8 +39,8 @@ void Pipeline::bin()
   // Step 3: the clipped triangles' bins.
   if (numClipped_ == 0) return;
   cl::Event fillEvent;
-  setArgs(binFillClippedKernel_, paramsBuf_.get(), setup_.get(), triCount_.get(), clipList_.get(), numClipped_,
-          tileCount_.get(), tileCursor_.get(), binEntries_.get());
+  setArgs(binFillClippedKernel_, paramsBuf_.get(), setup_.get(), clipBary_.get(), setupSource_.get(), clipList_.get(),
+          numClipped_, tileCount_.get(), tileCursor_.get(), binEntries_.get());
   cl_.queue.enqueueNDRangeKernel(binFillClippedKernel_, cl::NullRange, linear(uint64_t(numClipped_) * CLR_MAX_SUBTRIS),
                                  cl::NDRange(64), nullptr, &fillEvent);
   record("bin_fill", fillEvent);

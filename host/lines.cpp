@@ -30,7 +30,7 @@ void Pipeline::lines()
   if (numSetup_ > 0) {
     cl::Event event;
     cl::Kernel& fromSetup = extraKernel(linesFromSetupKernel_, "lines_from_setup");
-    setArgs(fromSetup, setup_.get(), numSetup_, clipBary_.get(), lineSegs_.get());
+    setArgs(fromSetup, setup_.get(), numSetup_, setupSource_.get(), clipBary_.get(), lineSegs_.get());
     cl_.queue.enqueueNDRangeKernel(fromSetup, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr, &event);
     record("lines_from_setup", event);
   }

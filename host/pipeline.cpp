@@ -166,7 +166,7 @@ void Pipeline::uploadScene(const Mesh& mesh)
   paintOrder_.clear();
   scene_ = mesh;
   resident_ = 0;
-  triCount_.reserve(mesh.numTris() + 1, true);
+  triCount_.reserve(mesh.numTris(), true);
   params_.numVerts = uint32_t(mesh.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
 }
@@ -291,7 +291,6 @@ FrameStats Pipeline::finishFrame()
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
   stats.trianglesCulled = uint64_t(numCulledUnclipped_) + counters[CLR_COUNTER_CULLED_TRIS];
   stats.setupTriangles = numSetup_ - counters[CLR_COUNTER_DEAD_RECORDS];
-  numClipSlots_ = counters[CLR_COUNTER_CLIP_SLOTS];
   stats.binEntries = numBinEntries_;
   stats.leanResolve = leanResolve_;
   return stats;
@@ -301,13 +300,32 @@ std::vector<cl_float4> Pipeline::readClipPositions() const
 {
   return clipPos_.download(params_.numVerts);
 }
-std::vector<TriSetup> Pipeline::readSetup() const
+std::vector<SetupRecord> Pipeline::readSetup() const
 {
-  return setup_.download(numSetup_);
+  const std::vector<TriSetup> setup = setup_.download(numSetup_);
+  const std::vector<uint32_t> source = setupSource_.download(numSetup_);
+  const std::vector<ClipBary> clip = readClipBary();
+  std::vector<SetupRecord> out(numSetup_);
+  for (size_t s = 0; s < out.size(); ++s) {
+    const TriSetup& t = setup[s];
+    SetupRecord& r = out[s];
+    for (int v = 0; v < 3; ++v) {
+      r.x[v] = t.x[v];
+      r.y[v] = t.y[v];
+      r.z[v] = t.z[v];
+      r.invW[v] = t.invW[v];
+    }
+    r.invArea2 = clr_inv_area2(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
+    const bool clipped = (source[s] & CLR_SOURCE_CLIPPED) != 0;
+    r.clipSlot = clipped ? source[s] & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
+    r.triId = clipped ? clip.at(r.clipSlot).triId : source[s] & CLR_SOURCE_TRIANGLE;
+    r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
+  }
+  return out;
 }
 std::vector<ClipBary> Pipeline::readClipBary() const
 {
-  return clipBary_.download(numClipSlots_);
+  return clipBary_.download(uint64_t(numClipped_) * CLR_MAX_SUBTRIS);
 }
 std::vector<uint32_t> Pipeline::readTileOffsets() const
 {

@@ -25,6 +25,18 @@
 
 namespace clr {
 
+// A setup record as tests and tools read it back (Pipeline::readSetup):
+// the record's geometry with what its source word and ClipBary slot hold
+// (shared.h), decoded.
+struct SetupRecord {
+  int x[3], y[3];
+  float z[3], invW[3];
+  float invArea2;     // clr_inv_area2 of the record
+  uint32_t triId;     // the input triangle
+  uint32_t clipSlot;  // its ClipBary slot, or CLR_NOT_CLIPPED
+  uint32_t flags;     // CLR_FLAG_BACKFACING, CLR_FLAG_DEAD (padding of a clipped triangle)
+};
+
 // What one frame renders: viewport, shading, culling and the methods.
 struct FrameSettings {
   uint32_t width = 0, height = 0;
@@ -137,7 +149,9 @@ class Pipeline {
 
   // Read-backs for tests and tools.
   std::vector<cl_float4> readClipPositions() const;
-  std::vector<TriSetup> readSetup() const;
+  std::vector<SetupRecord> readSetup() const;
+  // Every ClipBary slot of the frame, CLR_MAX_SUBTRIS per clipped triangle
+  // (unused ones flagged CLR_FLAG_DEAD).
   std::vector<ClipBary> readClipBary() const;
   std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
   std::vector<uint32_t> readBinEntries() const;
@@ -175,12 +189,15 @@ class Pipeline {
   // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
   uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
                        cl_ulong* total = nullptr);
-  // scan() of setup counts that also lists the input triangle behind each
-  // setup record into `sources`, sized to the total (shared.h, setupSource).
-  uint64_t scanListingSources(DeviceBuffer<uint32_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
+  // The scan of the setup counts (one byte per input triangle): lists the
+  // input triangle behind each setup record into `sources`, sized to the
+  // total, which it returns (shared.h, setupSource).
+  uint64_t scanListingSources(const DeviceBuffer<uint8_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
                               const char* stage);
-  uint64_t scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint32_t>& dst, bool countNonZero, uint32_t n,
-                    const char* stage, cl_ulong* total, DeviceBuffer<uint32_t>* sources = nullptr);
+  // The three phases of scan_chunks over n counts: `src` into `dst`, or with
+  // `sources`, `byteCounts` listed into them (src and dst then unused).
+  uint64_t scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n, const char* stage,
+                    cl_ulong* total, const cl::Buffer* byteCounts = nullptr, DeviceBuffer<uint32_t>* sources = nullptr);
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
@@ -211,7 +228,6 @@ class Pipeline {
   bool leanResolve_ = false;         // this frame's resolve kernel was resolve_lambert
   uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
-  uint32_t numClipSlots_ = 0;        // ClipBary records of the last finished frame
   uint64_t numBinEntries_ = 0;
   uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
   Mesh scene_;                // host copy: lazy uploads read it
@@ -230,7 +246,7 @@ class Pipeline {
   DeviceBuffer<TextureDesc> texDescs_;
   DeviceBuffer<uint32_t> texels_;
   DeviceBuffer<cl_float4> clipPos_;
-  DeviceBuffer<uint32_t> triCount_;
+  DeviceBuffer<uint8_t> triCount_;  // setup counts, see shared.h
   DeviceBuffer<uint32_t> counters_;
   DeviceBuffer<uint32_t> clipList_;
   DeviceBuffer<TriSetup> setup_;

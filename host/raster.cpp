@@ -73,8 +73,8 @@ void Pipeline::raster()
                            ? extraKernel(rasterHierarchicalKernel_, "raster_hierarchical")
                            : rasterKernel_;
   cl::Event event;
-  setArgs(kernel, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), visIndex_.get(), visAttr_.get(),
-          paintRank_.get(), tileSlot_.get(), visPlane());
+  setArgs(kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
+          binEntries_.get(), visIndex_.get(), visAttr_.get(), paintRank_.get(), tileSlot_.get(), visPlane());
   // One work-item per pixel sample (GPU shape) or per tile and sample index
   // (CPU shape, see raster.cl).
   const bool perPixel = cl_.lanes == 1;

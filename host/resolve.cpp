@@ -15,9 +15,10 @@ void Pipeline::resolve()
                     !(params_.sceneFlags & (CLR_SCENE_TEXTURES | CLR_SCENE_COLORS));
   leanResolve_ = lean;
   cl::Kernel& kernel = lean ? resolveLambertKernel_ : resolveKernel_;
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), clipBary_.get(),
-          indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(), triMaterial_.get(),
-          materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(), visPlane());
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
+          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
+          triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
+          visPlane());
   // Step 2: the work shape of resolve.cl's kernels: with rows of lanes as
   // wide as a tile, one work-item per tile; else one per row of lanes, a
   // tile per work-group.

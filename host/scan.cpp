@@ -1,7 +1,7 @@
 // scan.cpp — host side of kernels/scan.cl: an exclusive in-place prefix sum
 // over n counts (data has n + 1 slots; data[n] receives the total), or of
 // the non-zero counts into another buffer (scanNonZero), or of the setup
-// counts listing each record's input triangle (scanListingSources). The
+// counts' bytes listing each record's input triangle (scanListingSources). The
 // 64-bit total is read back, so callers size buffers exactly and detect
 // totals that do not fit in 32 bits; or the read is enqueued, so that
 // several scans share one synchronisation.
@@ -11,24 +11,26 @@ namespace clr {
 
 uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total)
 {
-  return scanInto(data, data, false, n, stage, total);
+  return scanInto(data.get(), data.get(), false, n, stage, total);
 }
 
 uint64_t Pipeline::scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n,
                                const char* stage, cl_ulong* total)
 {
   out.reserve(uint64_t(n) + 1, true);
-  return scanInto(counts, out, true, n, stage, total);
+  return scanInto(counts.get(), out.get(), true, n, stage, total);
 }
 
-uint64_t Pipeline::scanListingSources(DeviceBuffer<uint32_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
+uint64_t Pipeline::scanListingSources(const DeviceBuffer<uint8_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
                                       const char* stage)
 {
-  return scanInto(counts, counts, false, n, stage, nullptr, &sources);
+  // (src and dst are not read: any buffer of the frame will do.)
+  return scanInto(counts.get(), counts.get(), false, n, stage, nullptr, &counts.get(), &sources);
 }
 
-uint64_t Pipeline::scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint32_t>& dst, bool countNonZero,
-                            uint32_t n, const char* stage, cl_ulong* total, DeviceBuffer<uint32_t>* sources)
+uint64_t Pipeline::scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n,
+                            const char* stage, cl_ulong* total, const cl::Buffer* byteCounts,
+                            DeviceBuffer<uint32_t>* sources)
 {
   // Step 1: at most 4096 chunks of at least 64 counts each.
   const uint32_t chunk = std::max<uint32_t>(64, (n + 4095) / 4096);
@@ -38,13 +40,14 @@ uint64_t Pipeline::scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint
   // Step 2: chunk sums and their scan (one kernel object per phase, each
   // with its own arguments).
   cl::Event reduceEvent, partialsEvent, applyEvent;
-  const uint32_t nonZero = countNonZero ? 1u : 0u;
-  setArgs(scanReduceKernel_, src.get(), dst.get(), n, chunk, numChunks, scanPartials_.get(), dst.get(), CLR_SCAN_REDUCE,
-          nonZero, 0u);
+  const uint32_t nonZero = countNonZero ? 1u : 0u, listing = sources ? 1u : 0u;
+  const cl::Buffer& bytes = byteCounts ? *byteCounts : src;  // unused without sources
+  setArgs(scanReduceKernel_, src, dst, n, chunk, numChunks, scanPartials_.get(), dst, bytes, CLR_SCAN_REDUCE, nonZero,
+          listing);
   const cl::NDRange group(CLR_SCAN_GROUP(cl_.lanes));
   cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(numChunks), group, nullptr, &reduceEvent);
-  setArgs(scanPartialsKernel_, src.get(), dst.get(), n, chunk, numChunks, scanPartials_.get(), dst.get(),
-          CLR_SCAN_PARTIALS, nonZero, 0u);
+  setArgs(scanPartialsKernel_, src, dst, n, chunk, numChunks, scanPartials_.get(), dst, bytes, CLR_SCAN_PARTIALS,
+          nonZero, listing);
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, group, group, nullptr, &partialsEvent);
   record(stage, reduceEvent);
   record(stage, partialsEvent);
@@ -59,8 +62,8 @@ uint64_t Pipeline::scanInto(const DeviceBuffer<uint32_t>& src, DeviceBuffer<uint
   }
 
   // Step 4: the rescan of every chunk.
-  setArgs(scanApplyKernel_, src.get(), dst.get(), n, chunk, numChunks, scanPartials_.get(),
-          sources ? sources->get() : dst.get(), CLR_SCAN_APPLY, nonZero, sources ? 1u : 0u);
+  setArgs(scanApplyKernel_, src, dst, n, chunk, numChunks, scanPartials_.get(), sources ? sources->get() : dst, bytes,
+          CLR_SCAN_APPLY, nonZero, listing);
   cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(numChunks), group, nullptr, &applyEvent);
   record(stage, applyEvent);
 

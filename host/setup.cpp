@@ -1,10 +1,10 @@
 // setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
 // triangles each input triangle yields (and, for binning, the tiles each
-// unclipped one touches), scan the counts into offsets, size the setup and
-// ClipBary buffers from the totals (the scan also lists the input triangle
-// behind each record), and clip the listed triangles (counting their
-// tiles too). The unclipped triangles are emitted by bin() once the
-// tile offsets are known, because setup_emit also fills their bins.
+// unclipped one touches), scan the counts into the list of the input
+// triangle behind each setup record, size the setup and ClipBary buffers
+// from the totals, and clip the listed triangles into their reserved
+// records, which they find in that list (counting their tiles too). The unclipped triangles are emitted by bin() once
+// the tile offsets are known, because setup_emit also fills their bins.
 #include "pipeline.h"
 
 namespace clr {
@@ -46,6 +46,9 @@ void Pipeline::setup()
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
   numSetup_ = uint32_t(total);
   numClipped_ = clipped;
+  if (uint64_t(clipped) * CLR_MAX_SUBTRIS > CLR_MAX_CLIP_SLOTS)
+    throw Error("more than " + std::to_string(CLR_MAX_CLIP_SLOTS / CLR_MAX_SUBTRIS) +
+                " clipped triangles in one frame (the source word's limit, shared.h)");
   // The count pass writes 1 for each unclipped survivor and CLR_MAX_SUBTRIS
   // for each clipped triangle, so the rest of the input was culled there
   // (setup_clip counts the clipped triangles that produce nothing).
@@ -56,8 +59,8 @@ void Pipeline::setup()
   // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
   cl::Event clipEvent;
-  setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), clipList_.get(),
-          setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
+  setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), setupSource_.get(), numSetup_,
+          clipList_.get(), setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
   cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
                                  &clipEvent);
   record("setup_clip", clipEvent);

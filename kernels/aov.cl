@@ -31,7 +31,9 @@ __kernel void aov(__constant FrameParams* params,
                   __global const uint* visIndex,    // sample plane 0 (shared.h)
                   __global const float* visAttr,    // its depth, b1, b2 planes
                   __global const uint* tileOffset,  // tiles + 1
-                  __global const TriSetup* setup, __global const ClipBary* clipBary,
+                  __global const TriSetup* setup,
+                  __global const uint* source,  // setup's source words
+                  __global const ClipBary* clipBary,
                   __global const uint* indices,   // 3·numTris
                   __global const float* normals,  // 3·numVerts
                   __global float* out,            // CLR_AOV_CHANNELS · width · height
@@ -54,29 +56,30 @@ __kernel void aov(__constant FrameParams* params,
     return;
   }
   const TriSetup t = setup[index];
+  const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
   // Step 2: screen and perspective-correct barycentrics of the setup vertices.
   const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
                       visAttr[2 * visPlane + v]};
   const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
   const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
   // Step 3: weights of the input vertices in each setup vertex (resolve.cl).
-  const bool clipped = t.clipSlot != CLR_NOT_CLIPPED;
-  const bool swapped = !clipped && (t.flags & CLR_FLAG_BACKFACING);
+  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
+  const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
   float mu[3] = {0.0f, 0.0f, 0.0f}, muScreen[3] = {0.0f, 0.0f, 0.0f};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const int identity = swapped && i != 0 ? 3 - i : i;
-      const float w = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
+      const float w = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
       mu[j] += (q[i] * eyeDepth) * w;
       muScreen[j] += b[i] * w;
     }
   // Step 4: the interpolated normal.
   float3 n = (float3)(0.0f);
-  for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * t.triId + j], normals);
+  for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * triId + j], normals);
   const float len = length(n);
   n = len > 0.0f ? n / len : (float3)(0.0f);
   // Step 5: write.
-  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)t.triId;
+  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)triId;
   out[CLR_AOV_BARY_U * plane + p] = mu[1];
   out[CLR_AOV_BARY_V * plane + p] = mu[2];
   out[CLR_AOV_SCREEN_U * plane + p] = muScreen[1];

@@ -78,10 +78,9 @@ CLR_INLINE int bin_tile_class(const TriSetup* t, __constant FrameParams* params,
   return inside ? 1 : 0;
 }
 
-/* Tiles touched by a triangle's pixel bounds; empty for padding records. */
+/* Tiles touched by a triangle's pixel bounds. */
 CLR_INLINE int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
 {
-  if (t->flags & CLR_FLAG_DEAD) return (int4)(0, 0, -1, -1);
   return bin_pixel_bounds(t, params) / CLR_TILE_SIZE;
 }
 
@@ -127,19 +126,23 @@ CLR_INLINE void bin_fill_run(uint tile, const uint* setupIndex, uint count, __gl
 }
 
 /* Pass 2 for clipped triangles: their records lie in CLR_MAX_SUBTRIS
- * reserved slots from triOffset[clipList[i]] (setup_clip); one work-item per
- * slot, padding records skipped. */
+ * reserved slots from clipList[i] (setup_clip put the first record's index
+ * there); one work-item per slot. Each writes its record's source word,
+ * its ClipBary slot, and bins it unless the slot is padding. */
 __kernel void bin_fill_clipped(__constant FrameParams* params, __global const TriSetup* setup,
-                               __global const uint* triOffset,   // numTris + 1, scanned
-                               __global const uint* clipList,    // CLIPPED_TRIS counter
-                               uint numClipped,                  // clipList entries
-                               __global const uint* tileOffset,  // tiles + 1, scanned
-                               __global uint* tileCursor,        // tiles
-                               __global uint* binEntries)        // tileOffset[tiles]
+                               __global const ClipBary* clipBary,  // CLR_MAX_SUBTRIS · numClipped
+                               __global uint* source,              // numSetup: the records' source words
+                               __global const uint* clipList,      // numClipped: first records
+                               uint numClipped,                    // clipList entries
+                               __global const uint* tileOffset,    // tiles + 1, scanned
+                               __global uint* tileCursor,          // tiles
+                               __global uint* binEntries)          // tileOffset[tiles]
 {
   const uint i = get_global_id(0);
   if (i >= numClipped * CLR_MAX_SUBTRIS) return;
-  const uint s = triOffset[clipList[i / CLR_MAX_SUBTRIS]] + i % CLR_MAX_SUBTRIS;
+  const uint s = clipList[i / CLR_MAX_SUBTRIS] + i % CLR_MAX_SUBTRIS;
+  source[s] = CLR_SOURCE_CLIPPED | i;
+  if (clipBary[i].flags & CLR_FLAG_DEAD) return;
   const TriSetup t = setup[s];
   bin_fill_tiles(&t, bin_tile_range(&t, params), s, params, tileOffset, tileCursor, binEntries);
 }

@@ -49,12 +49,14 @@
  * interpolates such a zero exactly), so fan diagonals and the near-plane
  * cut are not drawn. Dead records emit skipped segments. */
 __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
+                               __global const uint* source,        // numSetup: source words
                                __global const ClipBary* clipBary,  // clip slots
                                __global LineSeg* segs)             // 3 · numSetup
 {
   const uint s = get_global_id(0);
   if (s >= numSetup) return;
   const TriSetup t = setup[s];
+  const uint from = source[s], clipSlot = clr_source_clip_slot(from);
   for (int e = 0; e < 3; ++e) {
     const int a = e, b = (e + 1) % 3;
     LineSeg seg;
@@ -64,10 +66,10 @@ __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
     seg.y[1] = t.y[b];
     seg.z[0] = t.z[a];
     seg.z[1] = t.z[b];
-    seg.triId = t.triId;
-    bool skip = (t.flags & CLR_FLAG_DEAD) != 0;
-    if (!skip && t.clipSlot != CLR_NOT_CLIPPED) {
-      const ClipBary w = clipBary[t.clipSlot];
+    seg.triId = clr_source_triangle(from, clipBary);
+    bool skip = clipSlot != CLR_NOT_CLIPPED && (clipBary[clipSlot].flags & CLR_FLAG_DEAD) != 0;
+    if (!skip && clipSlot != CLR_NOT_CLIPPED) {
+      const ClipBary w = clipBary[clipSlot];
       bool onInputEdge = false;
       for (int j = 0; j < 3; ++j) onInputEdge = onInputEdge || (w.w[a][j] == 0.0f && w.w[b][j] == 0.0f);
       skip = !onInputEdge;
@@ -159,7 +161,7 @@ __kernel void lines_bin_fill(__constant FrameParams* params, __constant LinePara
 /* |dz/dx| + |dz/dy| of a setup triangle's window depth, per pixel. */
 CLR_INLINE float line_depth_slope(__global const TriSetup* t)
 {
-  const float s = t->invArea2 * (float)CLR_FIXED_ONE;
+  const float s = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]) * (float)CLR_FIXED_ONE;
   const float dz1 = t->z[1] - t->z[0], dz2 = t->z[2] - t->z[0];
   const float gx = s * (dz1 * (float)(t->y[2] - t->y[0]) + dz2 * (float)(t->y[0] - t->y[1]));
   const float gy = s * (dz1 * (float)(t->x[0] - t->x[2]) + dz2 * (float)(t->x[1] - t->x[0]));

@@ -167,7 +167,8 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
     const intL inside = ((e0 > 0.0f) | ((e0 == 0.0f) & on0)) & ((e1 > 0.0f) | ((e1 == 0.0f) & on1)) &
                         ((e2 > 0.0f) | ((e2 == 0.0f) & on2));
     if (!CLR_ANY(inside)) return;
-    const float invArea2 = t->invArea2 * (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
+    const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]) *
+                           (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
     raster_depth_test(t, s, inside, e1 * invArea2, e2 * invArea2, best, rule, rank);
     return;
   }
@@ -180,7 +181,8 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
                                    (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
   if (!CLR_ANY(inside)) return;
   // Step 2: barycentrics, then the depth test.
-  raster_depth_test(t, s, inside, convert_floatL(e1) * t->invArea2, convert_floatL(e2) * t->invArea2, best, rule, rank);
+  const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);
+  raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, best, rule, rank);
 }
 
 /* The edge function of a→b at the samples in 32 bits: exact when the
@@ -229,7 +231,7 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
     const edge low0 = -(edge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                                       \
     const edge low1 = -(edge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                                       \
     const edge low2 = -(edge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                                       \
-    const float invArea2 = t->invArea2;                                                                           \
+    const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);                   \
     /* Step 2: each row: coverage, barycentrics, depth test; then step. */                                        \
     for (int row = rowBegin; row <= rowEnd; ++row) {                                                              \
       intL inside = (intL)(-1);                                                                                   \
@@ -345,11 +347,13 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
  *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
  *   paintRank (numTris with the painter's algorithm, else 1), tileSlot
  *   (tiles + 1: each non-empty tile's slot) and visPlane (slots · tile²). */
-#define CLR_RASTER_PARAMS                                                                          \
-  __constant FrameParams *params, __global const TriSetup *setup, __global const uint *tileOffset, \
-      __global const uint *binEntries, __global uint *visIndex, __global float *visAttr,           \
-      __global const uint *paintRank, __global const uint *tileSlot, uint visPlane
-#define CLR_RASTER_ARGS params, setup, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot, visPlane
+#define CLR_RASTER_PARAMS                                                                                              \
+  __constant FrameParams *params, __global const TriSetup *setup, __global const uint *source,                         \
+      __global const ClipBary *clipBary, __global const uint *tileOffset, __global const uint *binEntries,             \
+      __global uint *visIndex, __global float *visAttr, __global const uint *paintRank, __global const uint *tileSlot, \
+      uint visPlane
+#define CLR_RASTER_ARGS \
+  params, setup, source, clipBary, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot, visPlane
 
 /* The method variants are separate kernels (raster, raster_hierarchical,
  * raster_float) rather than branches of one, so that a device compiles only
@@ -374,7 +378,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode)
   row_best_init(&best, rule.clearKey);
   for (uint n = begin; n < end; ++n) {
     const uint s = binEntries[n];
-    const uint rank = painter ? paintRank[setup[s].triId] : 0u;
+    const uint rank = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     raster_row(&setup[s], s, sx, sy, &best, &rule, rank, edgeMode);
   }
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
@@ -433,7 +437,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     // The records of a bin are scattered: fetch a later one's while this one is tested.
     if (n + CLR_PREFETCH < end) __builtin_prefetch(&setup[binEntries[n + CLR_PREFETCH]]);
 #endif
-    const uint rank = painter ? paintRank[t->triId] : 0u;
+    const uint rank = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
     const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
     const bool small = maxX - minX <= CLR_EDGE32_SPAN && maxY - minY <= CLR_EDGE32_SPAN;

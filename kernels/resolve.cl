@@ -120,9 +120,9 @@ CLR_INLINE void resolve_spread_lanes(ResolveLanes* g, uintL from)
  * the attributes. The run's other lanes then take them
  * (resolve_spread_lanes). */
 CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
-                               __global const ClipBary* clipBary, __global const uint* indices,
-                               __global const float* positions, __global const float* normals,
-                               __global const float* uvs, __global const float* colours,
+                               __global const uint* source, __global const ClipBary* clipBary,
+                               __global const uint* indices, __global const float* positions,
+                               __global const float* normals, __global const float* uvs, __global const float* colours,
                                __global const uint* triMaterial, ResolveLanes* g)
 {
   // Step 0: a row inside one triangle (common for large triangles) needs one
@@ -150,22 +150,25 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
     const uint lane = first[run], index = visIndex[lane];
     const bool covered = index != CLR_NONE;
     const TriSetup t = setup[covered ? index : 0];
-    g->triId[lane] = covered ? t.triId : CLR_NONE;
-    g->backfacing[lane] = (t.flags & CLR_FLAG_BACKFACING) != 0;
+    const uint from = source[covered ? index : 0], clipSlot = clr_source_clip_slot(from);
+    const bool backfacing = clr_source_backfacing(from, clipBary);
+    g->triId[lane] = covered ? clr_source_triangle(from, clipBary) : CLR_NONE;
+    g->backfacing[lane] = backfacing;
     for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
-    const bool clipped = covered && t.clipSlot != CLR_NOT_CLIPPED;
-    const bool swapped = !clipped && (t.flags & CLR_FLAG_BACKFACING);
+    const bool clipped = covered && clipSlot != CLR_NOT_CLIPPED;
+    const bool swapped = !clipped && backfacing;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         const int identity = swapped && i != 0 ? 3 - i : i;  // setup vertices 1, 2 are input 2, 1
-        g->weight[i][j][lane] = clipped ? clipBary[t.clipSlot].w[i][j] : (float)(identity == j);
+        g->weight[i][j][lane] = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
       }
     // Gradients of the screen barycentrics per pixel, from the edge
     // functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
     // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
     for (int i = 0; g->needGradients && i < 3; ++i) {
       const int a = (i + 1) % 3, b = (i + 2) % 3;
-      const float scale = covered ? t.invArea2 * (float)CLR_FIXED_ONE : 0.0f;
+      const float scale =
+          covered ? clr_inv_area2(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]) * (float)CLR_FIXED_ONE : 0.0f;
       g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
       g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
     }
@@ -268,7 +271,7 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
   // index as a vector.
   __global const TriSetup* t = &setup[index[0] != CLR_NONE ? index[0] : 0];
   intL x0 = t->x[0], y0 = t->y[0], x1 = t->x[1], y1 = t->y[1], x2 = t->x[2], y2 = t->y[2];
-  floatL scale = t->invArea2;
+  floatL scale = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);
   if (CLR_ANY(lanes != index[0])) {
     CLR_NO_UNROLL
     for (uint lane = 1; lane < CLR_LANES; ++lane) {
@@ -281,7 +284,7 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
       y1 = select(y1, (intL)t->y[1], run);
       x2 = select(x2, (intL)t->x[2], run);
       y2 = select(y2, (intL)t->y[2], run);
-      scale = select(scale, (floatL)t->invArea2, run);
+      scale = select(scale, (floatL)clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]), run);
     }
   }
   // Step 2: the edge functions and barycentrics, as raster has them.
@@ -463,7 +466,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
 
 /* The id mode: the input triangle that holds most samples of each pixel. */
 CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint* visIndex, uint visPlane, uint p,
-                            uint count, __global const TriSetup* setup)
+                            uint count, __global const uint* source, __global const ClipBary* clipBary)
 {
   // Step 1: the most frequent setup index per lane (CLR_NONE counts too).
   const uint plane = visPlane, samples = params->samples;
@@ -487,7 +490,8 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   // Step 2: its input triangle, + 1 as 24-bit RGB (0 = background).
   uint rgb[CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES; ++lane)
-    rgb[lane] = winner[lane] == CLR_NONE ? 0u : ((setup[winner[lane]].triId + 1u) & 0xFFFFFFu);
+    rgb[lane] =
+        winner[lane] == CLR_NONE ? 0u : ((clr_source_triangle(source[winner[lane]], clipBary) + 1u) & 0xFFFFFFu);
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
@@ -495,22 +499,23 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
  *   params; visIndex (samples · visPlane), visAttr (3 · samples · visPlane:
  *   depth, b1, b2; read only with FrameParams.visAttributes), the
  *   visibility-buffer planes of the non-empty tiles;
- *   tileOffset (tiles + 1); setup; clipBary; indices (3·numTris);
+ *   tileOffset (tiles + 1); setup, source (numSetup) and clipBary;
+ *   indices (3·numTris);
  *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
  *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
  *   texels (every level of every texture), each a 1-element dummy when the
  *   mode does not read it; image (width · height); tileSlot (tiles + 1) and
  *   visPlane (see shared.h). */
-#define CLR_RESOLVE_PARAMS                                                                                   \
-  __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,              \
-      __global const uint *tileOffset, __global const TriSetup *setup, __global const ClipBary *clipBary,    \
-      __global const uint *indices, __global const float *positions, __global const float *normals,          \
-      __global const float *uvs, __global const float *colours, __global const uint *triMaterial,            \
-      __global const Material *materials, __global const TextureDesc *texDescs, __global const uint *texels, \
-      __global uint *image, __global const uint *tileSlot, uint visPlane
-#define CLR_RESOLVE_ARGS                                                                                          \
-  params, visIndex, visAttr, tileOffset, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, \
-      materials, texDescs, texels, image, tileSlot, visPlane
+#define CLR_RESOLVE_PARAMS                                                                                        \
+  __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,                   \
+      __global const uint *tileOffset, __global const TriSetup *setup, __global const uint *source,               \
+      __global const ClipBary *clipBary, __global const uint *indices, __global const float *positions,           \
+      __global const float *normals, __global const float *uvs, __global const float *colours,                    \
+      __global const uint *triMaterial, __global const Material *materials, __global const TextureDesc *texDescs, \
+      __global const uint *texels, __global uint *image, __global const uint *tileSlot, uint visPlane
+#define CLR_RESOLVE_ARGS                                                                                     \
+  params, visIndex, visAttr, tileOffset, setup, source, clipBary, indices, positions, normals, uvs, colours, \
+      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane
 
 #ifdef CLR_PREFETCH
 /* Scattered setup records are resolve's cache misses when the scene's
@@ -528,18 +533,23 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
  * compiles as it does without it; resolve_prefetch_rows below checks the
  * sizes. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
-                                 __global const TriSetup* setup, __global const uint* indices)
+                                 __global const TriSetup* setup, __global const uint* source,
+                                 __global const ClipBary* clipBary, __global const uint* indices)
 {
   uint previous = CLR_NONE;
   for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
     const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
-    if (next != CLR_NONE && next != previous) __builtin_prefetch(&setup[next]);
+    if (next != CLR_NONE && next != previous) {
+      __builtin_prefetch(&setup[next]);
+      __builtin_prefetch(&source[next]);
+    }
     previous = next;
   }
   previous = CLR_NONE;
   for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
     const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
-    if (next != CLR_NONE && next != previous) __builtin_prefetch(&indices[3 * setup[next].triId]);
+    if (next != CLR_NONE && next != previous)
+      __builtin_prefetch(&indices[3 * clr_source_triangle(source[next], clipBary)]);
     previous = next;
   }
 }
@@ -550,11 +560,12 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
  * Both resolve kernels call it. */
 CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, __global const uint* tileOffset, uint tile,
                                       __global const uint* visIndex, uint p, uint py, __global const TriSetup* setup,
+                                      __global const uint* source, __global const ClipBary* clipBary,
                                       __global const uint* indices)
 {
 #ifdef CLR_PREFETCH
   if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
-    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, indices);
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices);
 #endif
 }
 
@@ -579,14 +590,14 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // The row's entries in the tile's block of each sample plane (shared.h).
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, indices);
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices);
   uintL colour;
   const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
                                     (floatL)(((background >> 8) & 0xFFu) / 255.0f),
                                     (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
   const ShadeInputs inputs = {materials, texDescs, texels};
   if (mode == CLR_SHADE_ID) {
-    colour = resolve_id(params, visIndex, visPlane, p, count, setup);
+    colour = resolve_id(params, visIndex, visPlane, p, count, source, clipBary);
   } else if (samples == 1) {
     // Step 2a: one sample per pixel, shaded where covered.
     uint index[CLR_LANES];
@@ -595,7 +606,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     ColourL c = backgroundColour;
     if (CLR_ANY(covered)) {
       ResolveLanes g;
-      resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
+      resolve_gather(params, index, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial,
+                     &g);
       floatL b1, b2;
       resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, indexLanes, firstX, py, &b1, &b2);
       c = colour_select(backgroundColour, resolve_shade(params, &g, &inputs, b1, b2), covered);
@@ -622,7 +634,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
         sampleColour[k] = c;
       } else {
         ResolveLanes g;
-        resolve_gather(params, index, setup, clipBary, indices, positions, normals, uvs, colours, triMaterial, &g);
+        resolve_gather(params, index, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial,
+                       &g);
         floatL b1, b2;
         resolve_barycentrics(params, visAttr, plane, p, count, k, setup, index, sampleIndex[k], firstX, py, &b1, &b2);
         sampleColour[k] = colour_select(resolve_shade(params, &g, &inputs, b1, b2), c, done);
@@ -642,35 +655,36 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
 /* What resolve_lambert reads of the lanes' fragments. */
 #define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
 typedef struct LambertLanes {
-  uintL flags, clipSlot;
+  uintL source;  // the source words (shared.h)
   floatL invW[3];
   floatL normal[3][3];  // [input vertex][component]
   floatL albedo[3];
   intL x[3], y[3];  // the setup vertices, read only when the barycentrics are recomputed
-  floatL scale;     // invArea2, likewise
+  floatL scale;     // clr_inv_area2, likewise
 } LambertLanes;
 
-/* Reads what resolve_lambert needs of setup record s (its record, then its
- * vertex indices and material, then their normals and base colour) into
+/* Reads what resolve_lambert needs of setup record s (its record and source
+ * word, then its vertex indices and material, then their normals and base
+ * colour) into
  * the lanes of `in`: into every lane, without a select, when `in` is the
  * constant all-lanes mask of the first run. */
 CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
+                                     __global const uint* source, __global const ClipBary* clipBary,
                                      __global const uint* indices, __global const float* normals,
                                      __global const uint* triMaterial, __global const Material* materials, uint s,
                                      intL in, bool vertices, LambertLanes* f)
 {
 #define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
   __global const TriSetup* t = &setup[s];
-  const uint triId = t->triId;
-  CLR_TAKE(f->flags, (uintL)t->flags);
-  CLR_TAKE(f->clipSlot, (uintL)t->clipSlot);
+  const uint from = source[s], triId = clr_source_triangle(from, clipBary);
+  CLR_TAKE(f->source, (uintL)from);
   for (int i = 0; i < 3; ++i) CLR_TAKE(f->invW[i], (floatL)t->invW[i]);
   if (vertices) {
     for (int i = 0; i < 3; ++i) {
       CLR_TAKE(f->x[i], (intL)t->x[i]);
       CLR_TAKE(f->y[i], (intL)t->y[i]);
     }
-    CLR_TAKE(f->scale, (floatL)t->invArea2);
+    CLR_TAKE(f->scale, (floatL)clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]));
   }
   const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
   const Material m = materials[materialsOn ? triMaterial[triId] : 0];
@@ -695,19 +709,20 @@ CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global co
  * not a loop over an array of the greys: that compiled to an inner loop
  * per lane and cost resolve 9% on a 10M-triangle sphere. */
 CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
+                                       __global const uint* source, __global const ClipBary* clipBary,
                                        __global const uint* indices, __global const float* normals,
                                        __global const uint* triMaterial, __global const Material* materials,
                                        const uint* index, uintL indexLanes, uint firstX, uint py, bool vertices,
                                        LambertLanes* f, floatL* b1, floatL* b2)
 {
-  uint triId[CLR_LANES], flags[CLR_LANES], clipSlot[CLR_LANES], vertex[3][CLR_LANES], material[CLR_LANES];
+  uint triId[CLR_LANES], from[CLR_LANES], vertex[3][CLR_LANES], material[CLR_LANES];
   float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    __global const TriSetup* t = &setup[index[lane] != CLR_NONE ? index[lane] : 0];
-    triId[lane] = t->triId;
-    flags[lane] = t->flags;
-    clipSlot[lane] = t->clipSlot;
+    const uint s = index[lane] != CLR_NONE ? index[lane] : 0;
+    __global const TriSetup* t = &setup[s];
+    from[lane] = source[s];
+    triId[lane] = clr_source_triangle(from[lane], clipBary);
     for (int i = 0; i < 3; ++i) invW[i][lane] = t->invW[i];
   }
   const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
@@ -730,8 +745,7 @@ CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global 
     albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
   }
   if (vertices) resolve_recompute_barycentrics(params, setup, index, indexLanes, firstX, py, 0, b1, b2);
-  f->flags = CLR_LOAD_LANES(flags);
-  f->clipSlot = CLR_LOAD_LANES(clipSlot);
+  f->source = CLR_LOAD_LANES(from);
   for (int i = 0; i < 3; ++i) {
     f->invW[i] = CLR_LOAD_LANES(invW[i]);
     f->albedo[i] = CLR_LOAD_LANES(albedo[i]);
@@ -762,7 +776,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, indices);
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices);
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
@@ -786,16 +800,16 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     // Without the barycentric planes, the records' vertices recompute them.
     const bool vertices = !resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
     if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
-      resolve_lambert_gather(params, setup, indices, normals, triMaterial, materials, index, indexLanes, firstX, py,
-                             vertices, &f, &b1, &b2);
+      resolve_lambert_gather(params, setup, source, clipBary, indices, normals, triMaterial, materials, index,
+                             indexLanes, firstX, py, vertices, &f, &b1, &b2);
     } else {
       uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
-      resolve_lambert_take(params, setup, indices, normals, triMaterial, materials, index[lane], (intL)(-1), vertices,
-                           &f);
+      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
+                           (intL)(-1), vertices, &f);
       CLR_NO_UNROLL
       for (starts &= starts - 1; starts; starts &= starts - 1) {
         lane = 31 - clz(starts & (0u - starts));
-        resolve_lambert_take(params, setup, indices, normals, triMaterial, materials, index[lane],
+        resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
                              indexLanes == index[lane], vertices, &f);
       }
       if (vertices)
@@ -804,7 +818,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     }
     // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
     const floatL* q = f.invW;
-    const uintL flagsL = f.flags, clipSlotL = f.clipSlot;
+    const uintL sourceL = f.source;
     const floatL b[3] = {1.0f - b1 - b2, b1, b2};
     floatL lambda[3];
     const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
@@ -812,36 +826,42 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     // then the weights mu_j of the input vertices: lambda itself, with
     // vertices 1 and 2 swapped for a back face, or through ClipBary for a
     // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
-    // or swap matrix there, which gives the same floats.)
-    const intL clippedL = (clipSlotL != CLR_NOT_CLIPPED) & covered;
-    const intL swappedL = ((flagsL & CLR_FLAG_BACKFACING) != 0u) & CLR_NOT(clippedL);
+    // or swap matrix there, which gives the same floats.) A back face's
+    // normal flips: an unclipped one's source word says so (it is also the
+    // swap), a clipped one's ClipBary slot.
+    const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
+    const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
+    intL backL = swappedL;
     floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
     if (CLR_ANY(clippedL)) {
-      int clippedLane[CLR_LANES];
-      uint clipSlot[CLR_LANES];
+      int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
+      uint from[CLR_LANES];
       CLR_STORE_LANES(clippedL, clippedLane);
-      CLR_STORE_LANES(clipSlotL, clipSlot);
+      CLR_STORE_LANES(sourceL, from);
       float l[3][CLR_LANES], m[3][CLR_LANES];
       for (int i = 0; i < 3; ++i) {
         CLR_STORE_LANES(lambda[i], l[i]);
         CLR_STORE_LANES(mu[i], m[i]);
       }
       for (uint lane = 0; lane < CLR_LANES; ++lane) {
+        clippedBack[lane] = 0;
         if (!clippedLane[lane]) continue;
-        __global const ClipBary* w = &clipBary[clipSlot[lane]];
+        __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
         for (int j = 0; j < 3; ++j) {
           m[j][lane] = 0.0f;
           for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
         }
+        clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
       }
       for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
+      backL = backL | CLR_LOAD_LANES(clippedBack);
     }
     floatL n[3];
     for (int k = 0; k < 3; ++k) {
       n[k] = 0.0f;
       for (int j = 0; j < 3; ++j) n[k] += mu[j] * f.normal[j][k];
     }
-    resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, (flagsL & CLR_FLAG_BACKFACING) != 0u));
+    resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, backL));
     floatL diffuse, specular;
     const floatL p0[3] = {0.0f, 0.0f, 0.0f};
     shade_lights(params, n, p0, false, &diffuse, &specular);

@@ -14,7 +14,10 @@
  * one compile at a cold start (about 70 ms each for PoCL on the 2-core
  * development machine). Over the setup counts the apply phase also lists
  * the input triangle behind each setup record (listSources; shared.h,
- * setupSource), which saves the emit pass a kernel of its own.
+ * setupSource), which saves the emit pass a kernel of its own. Those
+ * counts are bytes (byteCounts: 0, 1 or CLR_MAX_SUBTRIS per input
+ * triangle) and are not turned into offsets: the listing is the only
+ * output, and setup_clip finds a clipped triangle's records in it.
  */
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
@@ -69,10 +72,31 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks)
 }
 #endif
 
+/* CLR_SCAN_APPLY over the setup counts of input triangles [begin, end),
+ * whose first record is `running`: lists the input triangle behind each
+ * record. An unclipped survivor (1) owns its record; a clipped triangle's
+ * CLR_MAX_SUBTRIS reserved records get CLR_SOURCE_CLIPPED | its index, so
+ * the listing stays sorted by input triangle and setup_clip finds them by
+ * binary search (clip_first_record); a culled one (0) owns none, and its
+ * store goes to the chunk's spare entry past the records instead of behind a
+ * branch (survivors and culled triangles alternate unpredictably on a dense
+ * mesh seen from afar). */
+CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint end, ulong running, ulong spare,
+                                  __global uint* sources)
+{
+  for (uint i = begin; i < end; ++i) {
+    const uint v = counts[i];
+    sources[v == 1 ? running : spare] = i;
+    for (uint k = 0; v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) sources[running + k] = CLR_SOURCE_CLIPPED | i;
+    running += v;
+  }
+}
+
 __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) void scan_chunks(
     __global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
-    __global ulong* partials,  // numChunks + 1
-    __global uint* sources,    // listSources: the total (setup records); else unused
+    __global ulong* partials,          // numChunks + 1
+    __global uint* sources,            // listSources: the total (setup records); else unused
+    __global const uchar* byteCounts,  // listSources: n, read instead of src; else unused
     uint phase, uint countNonZero, uint listSources)
 {
 #if CLR_LANES == 1
@@ -92,22 +116,21 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
   const uint end = min(begin + chunk, n);
   if (phase == CLR_SCAN_REDUCE) {
     ulong sum = 0;
-    for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
+    if (listSources)
+      for (uint i = begin; i < end; ++i) sum += byteCounts[i];
+    else
+      for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
     partials[g] = sum;
     return;
   }
   ulong running = partials[g];
-  const ulong spare = partials[numChunks] + g;  // listSources: this chunk's scratch entry past the records
+  if (listSources) {
+    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, sources);
+    return;
+  }
   for (uint i = begin; i < end; ++i) {
     const uint v = countNonZero ? (src[i] != 0) : src[i];
     dst[i] = (uint)running;
-    // Setup counts: an unclipped survivor (1) owns its record; a clipped
-    // triangle's CLR_MAX_SUBTRIS reserved records get CLR_NONE (setup_clip
-    // writes them); a culled one (0) owns none, and its store goes to the
-    // chunk's spare entry instead of behind a branch (survivors and culled
-    // triangles alternate unpredictably on a dense mesh seen from afar).
-    if (listSources) sources[v == 1 ? running : spare] = i;
-    for (uint k = 0; listSources && v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) sources[running + k] = CLR_NONE;
     running += v;
   }
   if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];

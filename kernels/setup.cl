@@ -13,11 +13,12 @@
  * writes how many screen triangles each input triangle yields: 0 or 1 when
  * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
  * (such triangles are also listed for setup_clip). An exclusive scan
- * (scan.cl) turns the counts into offsets and lists the input triangle
- * behind each record (setupSource); setup_clip clips the listed ones,
- * padding unused reserved slots with CLR_FLAG_DEAD records that binning
- * skips; and pass 2 (setup_emit) sets up the unclipped survivors again, 16
- * consecutive records at a time, and writes them at their offsets: it runs
+ * (scan.cl) lists the input triangle behind each record (setupSource);
+ * setup_clip clips the listed ones into their reserved records, whose
+ * unused ones it flags CLR_FLAG_DEAD for binning to skip; and pass 2
+ * (setup_emit) sets up the unclipped survivors again, 16 consecutive
+ * records at a time, and writes them and their winding (the source word,
+ * shared.h) at their places: it runs
  * over the records, not the input, which matters when most triangles are
  * culled (a 10M-triangle sphere keeps 1.5M). Output order is input order,
  * whatever the scheduling. Both passes handle CLR_LANES triangles per
@@ -38,7 +39,6 @@ typedef struct ClipBatch {
 typedef struct SetupBatch {
   intL x[3], y[3];
   floatL z[3], invW[3];
-  floatL invArea2;
   intL back;                            // mask: wound clockwise, vertices 1 and 2 swapped
   intL tileX0, tileY0, tileX1, tileY1;  // tiles of the pixel bounds (bin_tile_range)
 } SetupBatch;
@@ -47,7 +47,6 @@ typedef struct SetupBatch {
 typedef struct SetupLanes {
   int x[3][CLR_LANES], y[3][CLR_LANES];
   float z[3][CLR_LANES], invW[3][CLR_LANES];
-  float invArea2[CLR_LANES];
   int back[CLR_LANES];
   int tileX0[CLR_LANES], tileY0[CLR_LANES], tileX1[CLR_LANES], tileY1[CLR_LANES];
 } SetupLanes;
@@ -224,7 +223,6 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->z[2] = select(out->z[2], z1, back);
   out->invW[1] = select(w1, out->invW[2], back);
   out->invW[2] = select(out->invW[2], w1, back);
-  area2 = select(area2, -area2, convert_longL(back));
   out->back = back;
   // Step 4: cull triangles whose bounds hold no sample (as bin_pixel_bounds),
   // and keep the bounds' tiles for binning.
@@ -241,7 +239,6 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->tileY0 = y0 / CLR_TILE_SIZE;
   out->tileX1 = xEnd / CLR_TILE_SIZE;
   out->tileY1 = yEnd / CLR_TILE_SIZE;
-  out->invArea2 = 1.0f / convert_floatL(area2);
   // Step 5: a small triangle that covers none of its pixel centres.
   if (testCoverage && params->cullSampleFree)
     valid = valid & setup_covers_a_sample(out, minX, maxX, minY, maxY, x0, y0, xEnd, yEnd, params);
@@ -256,7 +253,6 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
     CLR_STORE_LANES(b->z[v], l->z[v]);
     CLR_STORE_LANES(b->invW[v], l->invW[v]);
   }
-  CLR_STORE_LANES(b->invArea2, l->invArea2);
   CLR_STORE_LANES(b->back, l->back);
   CLR_STORE_LANES(b->tileX0, l->tileX0);
   CLR_STORE_LANES(b->tileY0, l->tileY0);
@@ -268,26 +264,22 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
  * global memory. (Not a returned struct: Oclgrind cannot run the noalias
  * marker an inlined struct return leaves behind; and not a private record
  * copied whole: the CPU stalls loading it wide right after narrow stores.) */
-#define CLR_SETUP_LANE(l, lane, triIdValue, clipSlotValue, t) \
-  do {                                                        \
-    for (int v = 0; v < 3; ++v) {                             \
-      (t)->x[v] = (l)->x[v][lane];                            \
-      (t)->y[v] = (l)->y[v][lane];                            \
-      (t)->z[v] = (l)->z[v][lane];                            \
-      (t)->invW[v] = (l)->invW[v][lane];                      \
-    }                                                         \
-    (t)->invArea2 = (l)->invArea2[lane];                      \
-    (t)->triId = (triIdValue);                                \
-    (t)->clipSlot = (clipSlotValue);                          \
-    (t)->flags = (l)->back[lane] ? CLR_FLAG_BACKFACING : 0u;  \
+#define CLR_SETUP_LANE(l, lane, t)       \
+  do {                                   \
+    for (int v = 0; v < 3; ++v) {        \
+      (t)->x[v] = (l)->x[v][lane];       \
+      (t)->y[v] = (l)->y[v][lane];       \
+      (t)->z[v] = (l)->z[v][lane];       \
+      (t)->invW[v] = (l)->invW[v][lane]; \
+    }                                    \
   } while (0)
-CLR_INLINE void setup_lane(const SetupLanes* l, int lane, uint triId, uint clipSlot, TriSetup* t)
+CLR_INLINE void setup_lane(const SetupLanes* l, int lane, TriSetup* t)
 {
-  CLR_SETUP_LANE(l, lane, triId, clipSlot, t);
+  CLR_SETUP_LANE(l, lane, t);
 }
-CLR_INLINE void setup_lane_store(const SetupLanes* l, int lane, uint triId, uint clipSlot, __global TriSetup* t)
+CLR_INLINE void setup_lane_store(const SetupLanes* l, int lane, __global TriSetup* t)
 {
-  CLR_SETUP_LANE(l, lane, triId, clipSlot, t);
+  CLR_SETUP_LANE(l, lane, t);
 }
 
 /* One lane's tile range (bin_tile_range). */
@@ -304,12 +296,12 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
  * number from the scan's total, which saves an atomic add per batch on one
  * counter that both cores share.) */
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
-                                  __global uint* triCount, __global uint* tileCount, uint* clipMask)
+                                  __global uchar* triCount, __global uint* tileCount, uint* clipMask)
 {
   // Step 1: the counts, branch-free, and the mask of unclipped survivors.
   uint survivors = 0;
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) {
-    triCount[first + lane] = counts[lane];
+    triCount[first + lane] = (uchar)counts[lane];
     *clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
     survivors |= (counts[lane] == 1 ? 1u : 0u) << lane;
   }
@@ -332,29 +324,30 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
       continue;
     }
     TriSetup t;  // read only by hierarchical traversal's tile test
-    if (bin_hierarchical(params, r)) setup_lane(l, lane, first + lane, CLR_NOT_CLIPPED, &t);
+    if (bin_hierarchical(params, r)) setup_lane(l, lane, &t);
     bin_count_tiles(&t, r, params, tileCount);
   }
   if (runLength > 0) atomic_add(&tileCount[runTile], runLength);
 }
 
 /* Pass 2 for the same lanes: writes the unclipped screen triangles (the
- * `write` lanes) at their scanned offsets, and each into its tiles' bins;
- * runs of one-tile triangles in one tile take their entries with one atomic
- * add, as pass 1 counted them. */
+ * `write` lanes) at their places, with their winding in their source
+ * words, and each into its tiles' bins; runs of one-tile triangles in one
+ * tile take their entries with one atomic add, as pass 1 counted them. */
 CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
-                                 const SetupLanes* l, __global TriSetup* setup, __global const uint* tileOffset,
-                                 __global uint* tileCursor, __global uint* binEntries)
+                                 const SetupLanes* l, __global TriSetup* setup, __global uint* source,
+                                 __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
   uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     if (!write[lane]) continue;
     const uint s = first + lane;
-    setup_lane_store(l, lane, tri[lane], CLR_NOT_CLIPPED, &setup[s]);
+    setup_lane_store(l, lane, &setup[s]);
+    source[s] = tri[lane] | (l->back[lane] ? CLR_SOURCE_BACKFACING : 0u);
     const int4 r = setup_lane_tiles(l, lane);
     if (r.x != r.z || r.y != r.w) {
       TriSetup t;  // read only by hierarchical traversal's tile test
-      if (bin_hierarchical(params, r)) setup_lane(l, lane, tri[lane], CLR_NOT_CLIPPED, &t);
+      if (bin_hierarchical(params, r)) setup_lane(l, lane, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
       continue;
     }
@@ -371,16 +364,17 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
 
 /* Passes 1 and 2 are one kernel, launched twice with `pass`
  * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
- * device compiles the shared triangle setup once. triCount and tileCount
- * hold counts in pass 1 and, scanned, offsets in pass 2. The kernel's body
+ * device compiles the shared triangle setup once. Pass 1 writes triCount
+ * (listed by the scan into `source`) and tileCount, which pass 2 reads
+ * scanned into offsets. The kernel's body
  * is this function, for the CLR_LANES triangles of work-item `item`
  * (CLR_KERNEL_BODY, shared.h); the buffers are the kernel's, below. */
 CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __global const float* positions,
-                                          __global const uint* indices, __global uint* triCount,
+                                          __global const uint* indices, __global uchar* triCount,
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
-                                          __global uint* binEntries, __global const uint* source, uint numSetup,
-                                          uint pass, uint item)
+                                          __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
+                                          uint item)
 {
   // Step 1: the CLR_LANES triangles: in pass 1 input triangles from
   // `first`; in pass 2 the sources of setup records from `first` (lanes of
@@ -392,7 +386,8 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   if (emit) {
     for (uint lane = 0; lane < CLR_LANES; ++lane)
       from[lane] = first + lane < numSetup ? source[first + lane] : CLR_NONE;
-    for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = from[lane] != CLR_NONE ? from[lane] : 0;
+    // (a clipped triangle's records, CLR_SOURCE_CLIPPED, are setup_clip's)
+    for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = from[lane] < CLR_SOURCE_CLIPPED ? from[lane] : 0;
   } else {
     for (uint lane = 0; lane < CLR_LANES; ++lane) tri[lane] = min(first + lane, params->numTris - 1);
   }
@@ -409,8 +404,8 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   if (emit) {
     int write[CLR_LANES];
     CLR_STORE_LANES(simple, write);
-    for (uint lane = 0; lane < CLR_LANES; ++lane) write[lane] = write[lane] && from[lane] != CLR_NONE;
-    setup_emit_lanes(params, first, tri, write, &l, setup, tileCount, tileCursor, binEntries);
+    for (uint lane = 0; lane < CLR_LANES; ++lane) write[lane] = write[lane] && from[lane] < CLR_SOURCE_CLIPPED;
+    setup_emit_lanes(params, first, tri, write, &l, setup, source, tileCount, tileCursor, binEntries);
     return;
   }
   // Step 2 (pass 1): count; then the counters and the clip list (whose
@@ -432,37 +427,62 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __constant FrameParams* params,
     __global const float* positions,  // 3·numVerts
     __global const uint* indices,     // 3·numTris
-    __global uint* triCount,          // numTris + 1
+    __global uchar* triCount,         // numTris
     __global uint* counters,          // CLR_NUM_COUNTERS
     __global uint* clipList,          // clipListCapacity
     uint clipListCapacity,
-    __global uint* tileCount,     // tiles + 1
-    __global TriSetup* setup,     // pass 2: triOffset[numTris]
-    __global uint* tileCursor,    // pass 2: tiles, zeroed
-    __global uint* binEntries,    // pass 2: tileOffset[tiles]
-    __global const uint* source,  // pass 2: numSetup (the scan lists them)
+    __global uint* tileCount,   // tiles + 1
+    __global TriSetup* setup,   // pass 2: numSetup
+    __global uint* tileCursor,  // pass 2: tiles, zeroed
+    __global uint* binEntries,  // pass 2: tileOffset[tiles]
+    __global uint* source,      // pass 2: numSetup (the scan lists them; winding added)
     uint numSetup, uint pass)
 {
   setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
                        tileCursor, binEntries, source, numSetup, pass, get_global_id(0));
 }
 
+/* The first of clipped input triangle `tri`'s reserved records: the
+ * lowest s with source[s] == CLR_SOURCE_CLIPPED | tri. The listing is
+ * sorted by input triangle once that bit is masked off (scan.cl), so a
+ * binary search over its numSetup entries finds it in log2(numSetup)
+ * steps. */
+CLR_INLINE uint clip_first_record(__global const uint* source, uint numSetup, uint tri)
+{
+  uint lo = 0, hi = numSetup;
+  while (lo < hi) {
+    const uint mid = lo + (hi - lo) / 2;
+    if ((source[mid] & ~CLR_SOURCE_CLIPPED) < tri)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
 /* Pass 3 (before the tile scan): clips the listed triangles, fills their
- * reserved slots and counts the sub-triangles' tiles (bin_fill_clipped
- * fills their bins after the scan). */
+ * reserved records and ClipBary slots (clipList entry i owns slots
+ * i·CLR_MAX_SUBTRIS + k) and counts the sub-triangles' tiles
+ * (bin_fill_clipped fills their bins after the scan, from the first
+ * record's index that replaces the triangle in clipList, and writes their
+ * source words: not this kernel, whose work-items search the listing
+ * meanwhile). */
 __kernel void setup_clip(__constant FrameParams* params,
                          __global const float* positions,  // 3·numVerts
                          __global const uint* indices,     // 3·numTris
-                         __global const uint* triOffset,   // numTris + 1, scanned
-                         __global const uint* clipList,    // CLIPPED_TRIS counter
-                         __global TriSetup* setup,         // triOffset[numTris]
-                         __global ClipBary* clipBary,      // CLR_MAX_SUBTRIS · CLIPPED_TRIS
+                         __global const uint* source,      // numSetup, listed by the scan
+                         uint numSetup,
+                         __global uint* clipList,      // CLIPPED_TRIS counter
+                         __global TriSetup* setup,     // numSetup
+                         __global ClipBary* clipBary,  // CLR_MAX_SUBTRIS · CLIPPED_TRIS
                          __global uint* counters,
                          __global uint* tileCount)  // tiles + 1
 {
   const uint i = get_global_id(0);
   if (i >= counters[CLR_COUNTER_CLIPPED_TRIS]) return;
   const uint tri = clipList[i];
+  const uint base = clip_first_record(source, numSetup, tri);
+  clipList[i] = base;
   // Step 1: clip in homogeneous space against the planes a vertex is outside.
   ClipVertex poly[CLR_MAX_CLIP_VERTS];
   uint planes = 0;
@@ -474,7 +494,6 @@ __kernel void setup_clip(__constant FrameParams* params,
   }
   const int n = clip_polygon(poly, 3, planes, params->guardX, params->guardY, nearSign);
   // Step 2: fan the polygon; set up and write each surviving triangle.
-  const uint base = triOffset[tri];
   uint count = 0;
   for (int k = 1; k + 1 < n; ++k) {
     const float4 sc[3] = {poly[0].pos, poly[k].pos, poly[k + 1].pos};
@@ -488,21 +507,25 @@ __kernel void setup_clip(__constant FrameParams* params,
     setup_unpack(&b, &l);
     const float3 sb[3] = {poly[0].bary, l.back[0] ? poly[k + 1].bary : poly[k].bary,
                           l.back[0] ? poly[k].bary : poly[k + 1].bary};
-    const uint slot = atomic_inc(&counters[CLR_COUNTER_CLIP_SLOTS]);
+    __global ClipBary* bary = &clipBary[i * CLR_MAX_SUBTRIS + count];
     for (int v = 0; v < 3; ++v) {
-      clipBary[slot].w[v][0] = sb[v].x;
-      clipBary[slot].w[v][1] = sb[v].y;
-      clipBary[slot].w[v][2] = sb[v].z;
+      bary->w[v][0] = sb[v].x;
+      bary->w[v][1] = sb[v].y;
+      bary->w[v][2] = sb[v].z;
     }
+    bary->triId = tri;
+    bary->flags = l.back[0] ? CLR_FLAG_BACKFACING : 0u;
     TriSetup t;
-    setup_lane(&l, 0, tri, slot, &t);
+    setup_lane(&l, 0, &t);
     setup[base + count++] = t;
     bin_count_tiles(&t, bin_tile_range(&t, params), params, tileCount);
   }
-  // Step 3: pad the reservation with records that binning skips.
+  // Step 3: flag the reservation's unused slots, whose records binning skips.
   for (uint k = count; k < CLR_MAX_SUBTRIS; ++k) {
-    TriSetup dead = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0.0f, tri, CLR_NOT_CLIPPED, CLR_FLAG_DEAD};
-    setup[base + k] = dead;
+    const TriSetup deadRecord = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    const ClipBary deadSlot = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, tri, CLR_FLAG_DEAD};
+    setup[base + k] = deadRecord;
+    clipBary[i * CLR_MAX_SUBTRIS + k] = deadSlot;
   }
   atomic_add(&counters[CLR_COUNTER_DEAD_RECORDS], CLR_MAX_SUBTRIS - count);
   if (count == 0) atomic_inc(&counters[CLR_COUNTER_CULLED_TRIS]);

@@ -58,11 +58,27 @@ typedef uint32_t uint;
 /* Marks "no triangle" in a visibility sample. */
 #define CLR_NONE 0xFFFFFFFFu
 
-/* TriSetup.flags bits. */
+/* ClipBary.flags bits. */
 #define CLR_FLAG_BACKFACING 1u /* wound clockwise on screen (vertices swapped) */
-#define CLR_FLAG_DEAD 2u       /* unused slot of a clipped triangle; never binned */
+#define CLR_FLAG_DEAD 2u       /* unused slot of a clipped triangle; its record is never binned */
 
-/* TriSetup.clipSlot when the triangle was not clipped. */
+/* A setup record's source word (setupSource, below): who the record came
+ * from. The scan lists each record's input triangle; the emit pass adds
+ * CLR_SOURCE_BACKFACING to an unclipped record's, and bin_fill_clipped
+ * replaces a clipped triangle's by CLR_SOURCE_CLIPPED | its ClipBary slot
+ * (a padding record's slot is flagged CLR_FLAG_DEAD). An input triangle's index
+ * is below 2^30 (the host limits a scene to 2^32 / CLR_MAX_SUBTRIS
+ * triangles, pipeline.cpp) and a slot below CLR_MAX_CLIP_SLOTS (the host's
+ * limit on clipped triangles, setup.cpp), so the bits never collide. Until
+ * bin_fill_clipped runs, a clipped triangle's reserved records hold
+ * CLR_SOURCE_CLIPPED | its input triangle, which keeps the listing sorted
+ * for setup_clip's search. */
+#define CLR_SOURCE_CLIPPED 0x80000000u    /* clipped: the low 31 bits are the ClipBary slot */
+#define CLR_SOURCE_BACKFACING 0x40000000u /* unclipped: wound clockwise (vertices 1, 2 swapped) */
+#define CLR_SOURCE_TRIANGLE 0x3FFFFFFFu   /* unclipped: the input triangle */
+#define CLR_MAX_CLIP_SLOTS 0x7FFFFFFFu    /* ClipBary slots a frame may have */
+
+/* The clip slot of a record that was not clipped (clr_source_clip_slot). */
 #define CLR_NOT_CLIPPED 0xFFFFFFFFu
 
 /* Shading modes (FrameParams.shadeMode). */
@@ -170,9 +186,8 @@ typedef uint32_t uint;
  * (Pipeline::setup). */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* clipped input triangles that produced nothing */
-#define CLR_COUNTER_CLIP_SLOTS 2   /* ClipBary records written by setup_clip */
-#define CLR_COUNTER_DEAD_RECORDS 3 /* padding records written by setup_clip */
-#define CLR_NUM_COUNTERS 4
+#define CLR_COUNTER_DEAD_RECORDS 2 /* padding records written by setup_clip */
+#define CLR_NUM_COUNTERS 3
 
 /* Per-frame constants. Written by the host once per frame; read by every
  * kernel. One struct, 368 bytes. */
@@ -223,28 +238,70 @@ typedef struct FrameParams {
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to
- * counter-clockwise (y up). Written by setup_triangles' emit pass and
- * setup_clip, read by bin_fill_clipped, raster, resolve, lines_from_setup
- * and aov. Array size: the scanned setup
- * count (records flagged CLR_FLAG_DEAD are padding). */
+ * counter-clockwise (y up): its geometry only, 48 bytes. Its input
+ * triangle, winding and clip slot are in its source word (setupSource,
+ * CLR_SOURCE_*); its 1 / (2·area) is recomputed where needed
+ * (clr_inv_area2). Written by setup_triangles' emit pass and setup_clip,
+ * read by bin_fill_clipped, raster, resolve, lines_from_setup and aov.
+ * Array size: the scanned setup count (records whose ClipBary slot is
+ * flagged CLR_FLAG_DEAD are padding). */
 typedef struct TriSetup {
-  int x[3];       /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
-  int y[3];       /* snapped fixed-point screen y */
-  float z[3];     /* window depth in [0, 1] (reversed with CLR_DEPTH_REVERSED) */
-  float invW[3];  /* 1 / w_clip, for the perspective correction */
-  float invArea2; /* 1 / (2·signed area) in fixed units², area > 0 */
-  uint triId;     /* index of the input triangle it came from */
-  uint clipSlot;  /* index into the ClipBary buffer, or CLR_NOT_CLIPPED */
-  uint flags;     /* CLR_FLAG_* */
+  int x[3];      /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
+  int y[3];      /* snapped fixed-point screen y */
+  float z[3];    /* window depth in [0, 1] (reversed with CLR_DEPTH_REVERSED) */
+  float invW[3]; /* 1 / w_clip, for the perspective correction */
 } TriSetup;
 
+/* 1 / (2·signed area) of a counter-clockwise setup triangle, in fixed
+ * units⁻²: the scale from edge functions to screen barycentrics. Setup
+ * computes it to cull; the readers recompute it from the record instead of
+ * storing it (16 bytes a record with the source's fields). The doubled
+ * area is exact in 64 bits (fixed.h) and its conversion to float and the
+ * division are correctly rounded, so every stage gets the same float. */
+#ifdef __OPENCL_VERSION__
+CLR_INLINE float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
+{
+  const long area2 = (long)(x1 - x0) * (long)(y2 - y0) - (long)(x2 - x0) * (long)(y1 - y0);
+  return 1.0f / (float)area2;
+}
+#else
+inline float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
+{
+  const int64_t area2 = int64_t(x1 - x0) * int64_t(y2 - y0) - int64_t(x2 - x0) * int64_t(y1 - y0);
+  return 1.0f / float(area2);
+}
+#endif
+
 /* Barycentrics of a clipped sub-triangle's vertices with respect to its
- * input triangle: w[i][j] is the weight of input vertex j in sub-vertex i.
- * Written by setup_clip, read by resolve. Array size: CLR_MAX_SUBTRIS per
- * clipped input triangle. */
+ * input triangle (w[i][j] is the weight of input vertex j in sub-vertex i),
+ * and the input triangle with the sub-triangle's winding. Written by
+ * setup_clip, read by bin_fill_clipped, resolve, lines_from_setup and aov.
+ * Array size: CLR_MAX_SUBTRIS per clipped input triangle; clipList entry
+ * i owns slots i·CLR_MAX_SUBTRIS + k, its unused ones flagged
+ * CLR_FLAG_DEAD. */
 typedef struct ClipBary {
   float w[3][3];
+  uint triId; /* the input triangle */
+  uint flags; /* CLR_FLAG_* */
 } ClipBary;
+
+#ifdef __OPENCL_VERSION__
+/* A binned setup record's input triangle, winding and clip slot, from its
+ * source word. */
+CLR_INLINE uint clr_source_triangle(uint source, __global const ClipBary* clipBary)
+{
+  return (source & CLR_SOURCE_CLIPPED) ? clipBary[source & ~CLR_SOURCE_CLIPPED].triId : source & CLR_SOURCE_TRIANGLE;
+}
+CLR_INLINE bool clr_source_backfacing(uint source, __global const ClipBary* clipBary)
+{
+  return (source & CLR_SOURCE_CLIPPED) ? (clipBary[source & ~CLR_SOURCE_CLIPPED].flags & CLR_FLAG_BACKFACING) != 0
+                                       : (source & CLR_SOURCE_BACKFACING) != 0;
+}
+CLR_INLINE uint clr_source_clip_slot(uint source)
+{
+  return (source & CLR_SOURCE_CLIPPED) ? source & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
+}
+#endif
 
 /* A material's base colour: factor (RGBA, linear in the 8-bit values) times
  * the texture's texel when texture >= 0. Written by the host (scene upload),
@@ -328,19 +385,26 @@ typedef struct VisSample {
  *  clipPos    float4[numVerts]    transform_vertices, only when the host
  *                                 sorts for the painter's algorithm (which
  *                                 reads it) or a test asks; not a frame's
- *  triCount   uint[numTris + 1]   setup_triangles' count pass writes counts,
- *                                 the scan turns them into offsets (last =
- *                                 total); read by setup_clip and
- *                                 bin_fill_clipped
- *  setupSource uint[numSetup + chunks] the scan of triCount (scan.cl,
- *                                 listSources): the input triangle behind
- *                                 each setup record (CLR_NONE for a clipped
- *                                 triangle's), then a spare entry per scan
- *                                 chunk (at most 4096) that takes the culled
- *                                 ones' stores; read by the emit pass
+ *  triCount   uchar[numTris]      setup_triangles' count pass writes the
+ *                                 screen triangles each input triangle
+ *                                 yields (0, 1 or CLR_MAX_SUBTRIS); read by
+ *                                 the scan, which lists them (one byte per
+ *                                 triangle: offsets live only in the listing)
+ *  setupSource uint[numSetup + chunks] each setup record's source word
+ *                                 (CLR_SOURCE_*): the scan of triCount
+ *                                 (scan.cl, listSources) lists the input
+ *                                 triangle behind each record, then a spare
+ *                                 entry per scan chunk (at most 4096) that
+ *                                 takes the culled ones' stores; setup_clip
+ *                                 searches it; the emit pass and
+ *                                 bin_fill_clipped complete it; read by
+ *                                 raster (painter), resolve, lines_from_setup
+ *                                 and aov
  *  clipList   uint[CLIPPED_TRIS]  the count pass lists triangles to clip (the
  *                                 host grows it and recounts if it was
- *                                 short); read by setup_clip, bin_fill_clipped
+ *                                 short); setup_clip reads each and replaces
+ *                                 it with the index of the triangle's first
+ *                                 reserved record; bin_fill_clipped reads that
  *  tileCount  uint[tiles + 1]     the count pass and setup_clip count each
  *                                 tile's triangles (bin.cl), then scanned to
  *                                 offsets; read by the emit pass,
@@ -423,8 +487,8 @@ typedef struct LineParams {
 
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(FrameParams) == 368, "FrameParams layout must match the kernels");
-static_assert(sizeof(TriSetup) == 64, "TriSetup layout must match the kernels");
-static_assert(sizeof(ClipBary) == 36, "ClipBary layout must match the kernels");
+static_assert(sizeof(TriSetup) == 48, "TriSetup layout must match the kernels");
+static_assert(sizeof(ClipBary) == 44, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
 static_assert(sizeof(Material) == 32, "Material layout must match the kernels");
 static_assert(sizeof(TextureDesc) == 96, "TextureDesc layout must match the kernels");

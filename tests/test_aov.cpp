@@ -63,7 +63,7 @@ TEST_CASE("AOV channels match the host's values from the visibility buffer", "[a
   clr::Pipeline pipeline(test::context());
   const std::vector<float> aov = renderAov(pipeline, scene);
   const std::vector<VisSample> vis = pipeline.readVis(0);
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   const std::vector<ClipBary> clip = pipeline.readClipBary();
   const size_t P = size_t(W) * H;
   auto at = [&](int c, size_t p) { return double(aov[c * P + p]); };
@@ -78,7 +78,7 @@ TEST_CASE("AOV channels match the host's values from the visibility buffer", "[a
       continue;
     }
     // Step 2: the host's values, in double, from the same visibility sample.
-    const TriSetup& t = setup[vis[p].setupIndex];
+    const clr::SetupRecord& t = setup[vis[p].setupIndex];
     const double b[3] = {1.0 - double(vis[p].b1) - double(vis[p].b2), vis[p].b1, vis[p].b2};
     double q[3], sum = 0;
     for (int i = 0; i < 3; ++i) sum += q[i] = b[i] * double(t.invW[i]);

@@ -58,10 +58,10 @@ TEST_CASE("setup snaps to 1/256 pixel and orients triangles counter-clockwise", 
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
   const clr::FrameStats stats = pipeline.render(test::idSettings(32, 32), rgba);
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   REQUIRE(stats.setupTriangles == 1);
   REQUIRE(setup.size() == 1);
-  const TriSetup& t = setup[0];
+  const clr::SetupRecord& t = setup[0];
   CHECK(t.flags == CLR_FLAG_BACKFACING);
   // Vertices 1 and 2 were swapped to make the triangle counter-clockwise.
   CHECK(t.x[0] == 320);
@@ -102,7 +102,7 @@ TEST_CASE("setup culls degenerate, non-finite, outside and back-facing triangles
     CHECK(stats.trianglesIn == 8);
     CHECK(stats.setupTriangles == 2);
     CHECK(stats.trianglesCulled == 6);
-    const std::vector<TriSetup> setup = pipeline.readSetup();
+    const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
     REQUIRE(setup.size() == 2);
     CHECK(setup[0].triId == 6);
     CHECK(setup[1].triId == 7);
@@ -370,12 +370,17 @@ TEST_CASE("near-plane clipping: no projection through w <= 0, same pixels as the
   CHECK(stats.trianglesCulled == 1);
   CHECK(stats.setupTriangles == 3);
   // ClipBary rows are convex weights of the input vertices.
-  for (const ClipBary& cb : pipeline.readClipBary())
+  size_t live = 0;
+  for (const ClipBary& cb : pipeline.readClipBary()) {
+    if (cb.flags & CLR_FLAG_DEAD) continue;
+    ++live;
     for (int i = 0; i < 3; ++i) {
       const float sum = cb.w[i][0] + cb.w[i][1] + cb.w[i][2];
       CHECK(std::abs(sum - 1.0f) < 1e-6f);  // three float lerps of weights summing to 1
       for (int j = 0; j < 3; ++j) CHECK((cb.w[i][j] >= -1e-6f && cb.w[i][j] <= 1.0f + 1e-6f));
     }
+  }
+  CHECK(live == 3);  // the three setup triangles are all clipped ones
   for (const VisSample& v : pipeline.readVis())
     REQUIRE((std::isfinite(v.depth) && std::isfinite(v.b1) && std::isfinite(v.b2)));
   const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H, mvp));

@@ -231,13 +231,13 @@ TEST_CASE("wireframe edges pass the depth test on top and fail it behind a trian
   s.lineMethod = CLR_LINE_BRESENHAM;
   std::vector<uint32_t> rgba;
   pipeline.render(s, rgba);
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   REQUIRE(setup.size() == 2);
   // Step 1: each triangle's edge pixels by the classic algorithm.
   std::set<Pixel> edges[2];
   for (int t = 0; t < 2; ++t)
     for (int e = 0; e < 3; ++e) {
-      const TriSetup& r = setup[t];
+      const clr::SetupRecord& r = setup[t];
       const int a = e, b = (e + 1) % 3;
       for (const Pixel& p : classicBresenham(r.x[a] >> 8, r.y[a] >> 8, r.x[b] >> 8, r.y[b] >> 8))
         edges[r.triId].insert(p);
@@ -276,7 +276,7 @@ TEST_CASE("wireframe only draws edges over the background", "[lines]")
   s.lineMethod = CLR_LINE_BRESENHAM;
   std::vector<uint32_t> rgba;
   pipeline.render(s, rgba);
-  const TriSetup r = pipeline.readSetup().at(0);
+  const clr::SetupRecord r = pipeline.readSetup().at(0);
   std::set<Pixel> edges;
   for (int e = 0; e < 3; ++e)
     for (const Pixel& p : classicBresenham(r.x[e] >> 8, r.y[e] >> 8, r.x[(e + 1) % 3] >> 8, r.y[(e + 1) % 3] >> 8))
@@ -306,11 +306,11 @@ TEST_CASE("wireframe of a near-clipped triangle draws its input edges, not the f
   std::vector<uint32_t> rgba;
   REQUIRE(pipeline.render(s, rgba).trianglesClipped == 1);
   // Step 1: the sub-triangles' edges, kept (on an input edge) or dropped.
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   const std::vector<ClipBary> clip = pipeline.readClipBary();
   std::set<Pixel> kept, dropped;
   size_t subTriangles = 0;
-  for (const TriSetup& r : setup) {
+  for (const clr::SetupRecord& r : setup) {
     if (r.flags & CLR_FLAG_DEAD) continue;
     REQUIRE(r.clipSlot != CLR_NOT_CLIPPED);
     ++subTriangles;

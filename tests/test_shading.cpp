@@ -450,7 +450,7 @@ void checkRecomputedBarycentrics(const std::vector<RecomputeCase>& cases)
     // Step 3: the frame exercises both raster paths and many colours, and
     // the pixels agree exactly.
     bool wide = false, narrow = false;
-    for (const TriSetup& t : kept.readSetup()) {
+    for (const clr::SetupRecord& t : kept.readSetup()) {
       if (t.flags & CLR_FLAG_DEAD) continue;
       const int w = std::max({t.x[0], t.x[1], t.x[2]}) - std::min({t.x[0], t.x[1], t.x[2]});
       (w > 64 * CLR_FIXED_ONE ? wide : narrow) = true;

@@ -91,7 +91,7 @@ TEST_CASE("stability: triangles at the fixed-point limits match the oracle", "[s
   // Premise: the setup records reach the limits fixed.h derives.
   int maxCoord = 0;
   int64_t maxDelta = 0;
-  for (const TriSetup& t : pipeline.readSetup())
+  for (const clr::SetupRecord& t : pipeline.readSetup())
     for (int v = 0; v < 3; ++v) {
       maxCoord = std::max({maxCoord, std::abs(t.x[v]), std::abs(t.y[v])});
       maxDelta = std::max(
@@ -125,7 +125,7 @@ TEST_CASE("stability: huge finite vertices are clipped to the guard band exactly
   // The guard band is the square |x_s|, |y_s| <= 2^16 around the viewport;
   // both triangles contain it, so each clips to it: two sub-triangles each.
   CHECK(stats.setupTriangles == 4);
-  for (const TriSetup& t : pipeline.readSetup()) {
+  for (const clr::SetupRecord& t : pipeline.readSetup()) {
     if (t.flags & CLR_FLAG_DEAD) continue;
     for (int v = 0; v < 3; ++v) {
       CHECK((t.x[v] == (int(W) - CLR_GUARD_BAND_PIXELS) * CLR_FIXED_ONE ||

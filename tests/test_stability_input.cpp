@@ -101,7 +101,7 @@ TEST_CASE("stability: degenerate and non-finite triangles are culled or drawn an
   const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(kW, kH));
   const std::vector<uint32_t> alone = test::renderTriIds(m.base, test::idSettings(kW, kH));
   // Step 1: culled kinds never reach setup.
-  for (const TriSetup& t : pipeline.readSetup()) REQUIRE(m.kind.at(t.triId) != kCulled);
+  for (const clr::SetupRecord& t : pipeline.readSetup()) REQUIRE(m.kind.at(t.triId) != kCulled);
   // Step 2: a pixel that shows an ordinary triangle shows the one the
   // ordinary scene alone shows; only slivers may cover one, and the huge
   // triangles fill exactly the pixels the ordinary scene leaves empty.
@@ -136,7 +136,7 @@ TEST_CASE("stability: barycentrics of every covered sample are finite, in [0, 1]
   s.samples = samples;
   std::vector<uint32_t> rgba;
   pipeline.render(s, rgba);
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   const FrameParams& params = pipeline.params();
   size_t covered = 0, bad = 0;
   double worst = 0.0;
@@ -147,7 +147,7 @@ TEST_CASE("stability: barycentrics of every covered sample are finite, in [0, 1]
         const VisSample& v = vis[size_t(y) * kW + x];
         if (v.setupIndex == CLR_NONE) continue;
         ++covered;
-        const TriSetup& t = setup.at(v.setupIndex);
+        const clr::SetupRecord& t = setup.at(v.setupIndex);
         // Exact barycentrics at the sample position, from the snapped record.
         const int64_t px = int64_t(x) * CLR_FIXED_ONE + CLR_FIXED_HALF + params.sampleX[k];
         const int64_t py = int64_t(y) * CLR_FIXED_ONE + CLR_FIXED_HALF + params.sampleY[k];

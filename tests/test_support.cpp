@@ -78,7 +78,7 @@ std::vector<uint32_t> renderTriIds(clr::Pipeline& pipeline, const clr::FrameSett
 std::vector<uint32_t> readTriIds(const clr::Pipeline& pipeline, uint32_t sample)
 {
   const std::vector<VisSample> vis = pipeline.readVis(sample);
-  const std::vector<TriSetup> setup = pipeline.readSetup();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
   std::vector<uint32_t> ids(vis.size(), ref::kNone);
   for (size_t i = 0; i < vis.size(); ++i)
     if (vis[i].setupIndex != CLR_NONE) ids[i] = setup.at(vis[i].setupIndex).triId;
