@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <random>
 
@@ -331,4 +332,39 @@ TEST_CASE(
   buffer.reserve(3000, true);  // exact buffers never take slack
   CHECK(buffer.capacity() == 3000);
   CHECK(memory.bytesAllocated == 4 * 3000);
+}
+
+TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and an input triangle a one-byte count",
+          "[stability][load]")
+{
+  // Three scenes of a few small triangles over pixel (2, 2) of a 64×64
+  // viewport: `base` of them; the same and m more outside the viewport
+  // (setup's count pass culls them); the same and m more over the pixel.
+  // Fewer than 64 triangles in all keep the scans' chunk counts (scan.cpp)
+  // the same, and the visibility buffer is tile (0, 0)'s block in each, so
+  // the device bytes differ by what each triangle costs (shared.h): its
+  // vertices (three positions of 12 bytes; ID frames upload no normals),
+  // its indices (12) and its count (1); and for a setup triangle its record
+  // (48), its source word (4) and its bin entry (4). Each pipeline's first
+  // frame allocates exactly what it needs (buffer.h).
+  const uint32_t W = 64, H = 64, base = 16, m = 32;
+  auto render = [&](uint32_t outside, uint32_t inside) {
+    Geometry g;
+    for (uint32_t t = 0; t < base + inside; ++t) {
+      const float z = -0.5f + 0.01f * float(t);
+      g.addTriangle({-0.95f, -0.95f, z}, {-0.85f, -0.95f, z}, {-0.95f, -0.85f, z});
+    }
+    for (uint32_t t = 0; t < outside; ++t) g.addTriangle({2.0f, 0.0f, 0.0f}, {3.0f, 0.0f, 0.0f}, {2.0f, 1.0f, 0.0f});
+    auto pipeline = std::make_unique<clr::Pipeline>(test::context());
+    pipeline->uploadScene(g.mesh());
+    std::vector<uint32_t> rgba;
+    const clr::FrameStats stats = pipeline->render(test::idSettings(W, H), rgba);
+    CHECK(stats.setupTriangles == base + inside);
+    CHECK(stats.binEntries == base + inside);
+    CHECK(stats.trianglesCulled == outside);
+    return pipeline->deviceBytes();
+  };
+  const size_t bytesBase = render(0, 0), bytesCulled = render(m, 0), bytesKept = render(0, m);
+  CHECK(bytesCulled - bytesBase == m * (36 + 12 + 1));
+  CHECK(bytesKept - bytesBase == m * (36 + 12 + 1 + 48 + 4 + 4));
 }
