@@ -250,7 +250,7 @@ class Pipeline {
   DeviceBuffer<uint32_t> counters_;
   DeviceBuffer<uint32_t> clipList_;
   DeviceBuffer<TriSetup> setup_;
-  DeviceBuffer<uint32_t> setupSource_;  // input triangle of each setup record (shared.h)
+  DeviceBuffer<uint32_t> setupSource_;  // each setup record's source word (shared.h)
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
   DeviceBuffer<cl_ulong> scanPartials_;
