@@ -315,7 +315,7 @@ std::vector<SetupRecord> Pipeline::readSetup() const
       r.z[v] = t.z[v];
       r.invW[v] = t.invW[v];
     }
-    r.invArea2 = clr_inv_area2(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
+    r.invArea2 = CLR_RECORD_INV_AREA2(t);
     const bool clipped = (source[s] & CLR_SOURCE_CLIPPED) != 0;
     r.clipSlot = clipped ? source[s] & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
     r.triId = clipped ? clip.at(r.clipSlot).triId : source[s] & CLR_SOURCE_TRIANGLE;

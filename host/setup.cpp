@@ -3,8 +3,9 @@
 // unclipped one touches), scan the counts into the list of the input
 // triangle behind each setup record, size the setup and ClipBary buffers
 // from the totals, and clip the listed triangles into their reserved
-// records, which they find in that list (counting their tiles too). The unclipped triangles are emitted by bin() once
-// the tile offsets are known, because setup_emit also fills their bins.
+// records, which they find in that list (counting their tiles too). The
+// unclipped triangles are emitted by bin() once the tile offsets are known,
+// because setup_emit also fills their bins.
 #include "pipeline.h"
 
 namespace clr {

@@ -161,7 +161,7 @@ __kernel void lines_bin_fill(__constant FrameParams* params, __constant LinePara
 /* |dz/dx| + |dz/dy| of a setup triangle's window depth, per pixel. */
 CLR_INLINE float line_depth_slope(__global const TriSetup* t)
 {
-  const float s = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]) * (float)CLR_FIXED_ONE;
+  const float s = CLR_RECORD_INV_AREA2(*t) * (float)CLR_FIXED_ONE;
   const float dz1 = t->z[1] - t->z[0], dz2 = t->z[2] - t->z[0];
   const float gx = s * (dz1 * (float)(t->y[2] - t->y[0]) + dz2 * (float)(t->y[0] - t->y[1]));
   const float gy = s * (dz1 * (float)(t->x[0] - t->x[2]) + dz2 * (float)(t->x[1] - t->x[0]));

@@ -167,8 +167,8 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
     const intL inside = ((e0 > 0.0f) | ((e0 == 0.0f) & on0)) & ((e1 > 0.0f) | ((e1 == 0.0f) & on1)) &
                         ((e2 > 0.0f) | ((e2 == 0.0f) & on2));
     if (!CLR_ANY(inside)) return;
-    const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]) *
-                           (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
+    const float invArea2 =
+        CLR_RECORD_INV_AREA2(*t) * (float)(CLR_FIXED_ONE * CLR_FIXED_ONE);  // per pixel², not subpixel²
     raster_depth_test(t, s, inside, e1 * invArea2, e2 * invArea2, best, rule, rank);
     return;
   }
@@ -181,7 +181,7 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
                                    (e2 + edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]) > 0));
   if (!CLR_ANY(inside)) return;
   // Step 2: barycentrics, then the depth test.
-  const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);
+  const float invArea2 = CLR_RECORD_INV_AREA2(*t);
   raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, best, rule, rank);
 }
 
@@ -231,7 +231,7 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
     const edge low0 = -(edge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                                       \
     const edge low1 = -(edge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                                       \
     const edge low2 = -(edge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                                       \
-    const float invArea2 = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);                   \
+    const float invArea2 = CLR_RECORD_INV_AREA2(*t);                                                              \
     /* Step 2: each row: coverage, barycentrics, depth test; then step. */                                        \
     for (int row = rowBegin; row <= rowEnd; ++row) {                                                              \
       intL inside = (intL)(-1);                                                                                   \

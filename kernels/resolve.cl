@@ -150,9 +150,9 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
     const uint lane = first[run], index = visIndex[lane];
     const bool covered = index != CLR_NONE;
     const TriSetup t = setup[covered ? index : 0];
-    const uint from = source[covered ? index : 0], clipSlot = clr_source_clip_slot(from);
-    const bool backfacing = clr_source_backfacing(from, clipBary);
-    g->triId[lane] = covered ? clr_source_triangle(from, clipBary) : CLR_NONE;
+    const uint word = source[covered ? index : 0], clipSlot = clr_source_clip_slot(word);
+    const bool backfacing = clr_source_backfacing(word, clipBary);
+    g->triId[lane] = covered ? clr_source_triangle(word, clipBary) : CLR_NONE;
     g->backfacing[lane] = backfacing;
     for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
     const bool clipped = covered && clipSlot != CLR_NOT_CLIPPED;
@@ -167,8 +167,7 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIn
     // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
     for (int i = 0; g->needGradients && i < 3; ++i) {
       const int a = (i + 1) % 3, b = (i + 2) % 3;
-      const float scale =
-          covered ? clr_inv_area2(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]) * (float)CLR_FIXED_ONE : 0.0f;
+      const float scale = covered ? CLR_RECORD_INV_AREA2(t) * (float)CLR_FIXED_ONE : 0.0f;
       g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
       g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
     }
@@ -271,7 +270,7 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
   // index as a vector.
   __global const TriSetup* t = &setup[index[0] != CLR_NONE ? index[0] : 0];
   intL x0 = t->x[0], y0 = t->y[0], x1 = t->x[1], y1 = t->y[1], x2 = t->x[2], y2 = t->y[2];
-  floatL scale = clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]);
+  floatL scale = CLR_RECORD_INV_AREA2(*t);
   if (CLR_ANY(lanes != index[0])) {
     CLR_NO_UNROLL
     for (uint lane = 1; lane < CLR_LANES; ++lane) {
@@ -284,7 +283,7 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
       y1 = select(y1, (intL)t->y[1], run);
       x2 = select(x2, (intL)t->x[2], run);
       y2 = select(y2, (intL)t->y[2], run);
-      scale = select(scale, (floatL)clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]), run);
+      scale = select(scale, (floatL)CLR_RECORD_INV_AREA2(*t), run);
     }
   }
   // Step 2: the edge functions and barycentrics, as raster has them.
@@ -684,7 +683,7 @@ CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global co
       CLR_TAKE(f->x[i], (intL)t->x[i]);
       CLR_TAKE(f->y[i], (intL)t->y[i]);
     }
-    CLR_TAKE(f->scale, (floatL)clr_inv_area2(t->x[0], t->y[0], t->x[1], t->y[1], t->x[2], t->y[2]));
+    CLR_TAKE(f->scale, (floatL)CLR_RECORD_INV_AREA2(*t));
   }
   const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
   const Material m = materials[materialsOn ? triMaterial[triId] : 0];

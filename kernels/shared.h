@@ -271,6 +271,9 @@ inline float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
   return 1.0f / float(area2);
 }
 #endif
+/* clr_inv_area2 of setup record t (a TriSetup, or a record read back with
+ * its fields). */
+#define CLR_RECORD_INV_AREA2(t) clr_inv_area2((t).x[0], (t).y[0], (t).x[1], (t).y[1], (t).x[2], (t).y[2])
 
 /* Barycentrics of a clipped sub-triangle's vertices with respect to its
  * input triangle (w[i][j] is the weight of input vertex j in sub-vertex i),
