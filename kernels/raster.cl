@@ -98,6 +98,7 @@ CLR_INLINE void row_best_init(RowBest* b, float clearKey)
 typedef struct DepthRule {
   uint depthMode, visibility;
   float clearKey;
+  bool barycentrics;  // keep the nearest fragment's b1, b2 (FrameParams.visAttributes)
 } DepthRule;
 
 CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params)
@@ -106,6 +107,7 @@ CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params)
   r.depthMode = params->depthMode;
   r.visibility = params->visibility;
   r.clearKey = raster_clear_key(r.depthMode);
+  r.barycentrics = params->visAttributes != 0;
   return r;
 }
 
@@ -143,6 +145,7 @@ CLR_INLINE void raster_depth_test(__global const TriSetup* t, uint s, intL insid
   // Step 2: keep the fragment.
   best->index = select(best->index, (uintL)s, take);
   best->depth = select(best->depth, kept, take);
+  if (!rule->barycentrics) return;  // no plane will hold them
   best->b1 = select(best->b1, b1, take);
   best->b2 = select(best->b2, b2, take);
 }
@@ -185,11 +188,15 @@ CLR_INLINE void raster_row(__global const TriSetup* t, uint s, intL sx, int sy, 
   raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, best, rule, rank);
 }
 
-/* The edge function of a→b at the samples in 32 bits: exact when the
- * triangle's bounds span at most CLR_EDGE32_SPAN fixed units each way. */
-CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
+/* The edge function of a→b at the samples in 32 bits, modulo 2^32
+ * (unsigned arithmetic, whose wrapping is defined): read as an int it is E
+ * wherever E fits an int, whatever its terms do. That holds at every sample
+ * raster tests of a triangle whose bounds span at most CLR_EDGE32_SPAN
+ * fixed units each way (below), and over a row segment that
+ * raster_segment_rows admits. (The deltas and offsets fit an int: fixed.h.) */
+CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
 {
-  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+  return (uint)(bx - ax) * (uint)(py - ay) - (uint)(by - ay) * as_uintL(px - ax);
 }
 
 /* The widest and tallest triangle bounds (fixed units, 64 pixels) whose
@@ -209,44 +216,112 @@ CLR_INLINE intL edge_function32(int ax, int ay, int bx, int by, intL px, int py)
  * integers. Defined twice by the macro below, with the same body:
  * raster_rows_fixed in 64-bit lanes for any triangle, and
  * raster_rows_fixed32 in 32-bit lanes (half the vector work) for one within
- * CLR_EDGE32_SPAN; the barycentrics convert the same integers to float, so
- * both give bit-identical results. skipEmptyRows: a row no sample of which
+ * CLR_EDGE32_SPAN or a segment that raster_segment_rows admits, stepped
+ * modulo 2^32 and read as ints (signedL); the barycentrics convert the
+ * same integers to float, so both give bit-identical results. skipEmptyRows: a row no sample of which
  * is inside skips the depth test. That pays on large triangles, whose empty
  * rows come in long runs; a small triangle's empty rows are few and
  * unpredictable, and the branch's mispredictions cost more than testing
  * them with an all-false mask (measured on 252k- and 121k-triangle meshes at
  * 1080p: raster 37% and 18% faster with the 32-bit rows branch-free). */
-#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, edgeFunction, toEdgeL, skipEmptyRows)                           \
-  CLR_INLINE void name(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,        \
-                       RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)                     \
-  {                                                                                                               \
-    /* Step 1: the edge functions at the first row, their row steps, and the */                                   \
-    /* fill rule's thresholds (inside when e > −bias). */                                                       \
-    edgeL e0 = edgeFunction(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);                                     \
-    edgeL e1 = edgeFunction(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);                                     \
-    edgeL e2 = edgeFunction(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);                                     \
-    const edge step0 = (edge)(t->x[2] - t->x[1]) * CLR_FIXED_ONE;                                                 \
-    const edge step1 = (edge)(t->x[0] - t->x[2]) * CLR_FIXED_ONE;                                                 \
-    const edge step2 = (edge)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;                                                 \
-    const edge low0 = -(edge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                                       \
-    const edge low1 = -(edge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                                       \
-    const edge low2 = -(edge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                                       \
-    const float invArea2 = CLR_RECORD_INV_AREA2(*t);                                                              \
-    /* Step 2: each row: coverage, barycentrics, depth test; then step. */                                        \
-    for (int row = rowBegin; row <= rowEnd; ++row) {                                                              \
-      intL inside = (intL)(-1);                                                                                   \
-      if (!acceptAll) inside = toEdgeL((e0 > low0) & (e1 > low1) & (e2 > low2));                                  \
-      if (acceptAll || !(skipEmptyRows) || CLR_ANY(inside))                                                       \
-        raster_depth_test(t, s, inside, convert_floatL(e1) * invArea2, convert_floatL(e2) * invArea2, &best[row], \
-                          rule, rank);                                                                            \
-      e0 += step0;                                                                                                \
-      e1 += step1;                                                                                                \
-      e2 += step2;                                                                                                \
-    }                                                                                                             \
+#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, signedL, signedEdge, edgeFunction, toIntL, skipEmptyRows) \
+  CLR_INLINE void name(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,  \
+                       RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)               \
+  {                                                                                                         \
+    /* Step 1: the edge functions at the first row, their row steps, and the */                             \
+    /* fill rule's thresholds (inside when e > −bias). */                                                 \
+    edgeL e0 = edgeFunction(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);                               \
+    edgeL e1 = edgeFunction(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);                               \
+    edgeL e2 = edgeFunction(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);                               \
+    const edge step0 = (edge)(t->x[2] - t->x[1]) * CLR_FIXED_ONE;                                           \
+    const edge step1 = (edge)(t->x[0] - t->x[2]) * CLR_FIXED_ONE;                                           \
+    const edge step2 = (edge)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;                                           \
+    const signedEdge low0 = -(signedEdge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                     \
+    const signedEdge low1 = -(signedEdge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                     \
+    const signedEdge low2 = -(signedEdge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                     \
+    const float invArea2 = CLR_RECORD_INV_AREA2(*t);                                                        \
+    /* Step 2: each row: coverage, barycentrics, depth test; then step. */                                  \
+    for (int row = rowBegin; row <= rowEnd; ++row) {                                                        \
+      intL inside = (intL)(-1);                                                                             \
+      if (!acceptAll) inside = toIntL((signedL(e0) > low0) & (signedL(e1) > low1) & (signedL(e2) > low2));  \
+      if (acceptAll || !(skipEmptyRows) || CLR_ANY(inside))                                                 \
+        raster_depth_test(t, s, inside, convert_floatL(signedL(e1)) * invArea2,                             \
+                          convert_floatL(signedL(e2)) * invArea2, &best[row], rule, rank);                  \
+      e0 += step0;                                                                                          \
+      e1 += step1;                                                                                          \
+      e2 += step2;                                                                                          \
+    }                                                                                                       \
   }
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, edge_function, convert_intL, true)
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, intL, int, edge_function32, , false)
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, , long, edge_function, convert_intL, true)
+CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, uintL, uint, as_intL, int, edge_function32, , false)
 #undef CLR_DEFINE_RASTER_ROWS
+
+/* For a large triangle's row segment of CLR_LANES samples from sample x
+ * firstSx (row r at sample y (firstY + r)·CLR_FIXED_ONE + centreY):
+ * narrows rows *rowBegin .. *rowEnd to those where every edge function can
+ * pass the fill rule at some lane, and returns whether the three edge
+ * functions fit an int over the rows kept, so that raster_rows_fixed32
+ * gives the integers of the 64-bit loop (it steps them in unsigned
+ * arithmetic, modulo 2^32, so that a row step beyond an int, up to 2^33,
+ * or the step past its last row, wraps harmlessly: a signed overflow there
+ * let the compiler change the pixels of a frame of the Haus model).
+ * - The rows: an edge function is linear, so over a row's lanes it is
+ *   largest at the first lane or the last, and that largest value changes
+ *   by the row step (bx − ax)·CLR_FIXED_ONE from row to row. Each edge
+ *   holds the rows on one side of a boundary k (rows from the first,
+ *   eMax + k·step = low), and the range kept is the intersection. k is
+ *   computed in float as k' and clamped to ±(CLR_TILE_SIZE + 2), beyond
+ *   which the boundary leaves every row of the tile on one side; inside
+ *   that range |k' − k| < 1 (a quotient of two roundings: relative error
+ *   below 2^-22). Truncating k' then never drops a row with a sample
+ *   inside: a rising edge's first such row is floor(k) + 1, and trunc(k')
+ *   is at most that (floor(k') for k' >= 0; for k' < 0 all rows are kept);
+ *   a falling edge's last is ceil(k) − 1, and trunc(k') >= ceil(k') >=
+ *   ceil(k − 1) for k' < 0, floor(k') >= ceil(k) − 1 for k' >= 0. Rows
+ *   kept may still be empty; the row loops skip or mask those.
+ * - The fit: the extremes of a linear function over the rectangle lie at
+ *   its corners, computed in 64 bits (fixed.h: |E| < 2^51). A large
+ *   triangle fits near its edges (E grows with the distance from an edge
+ *   times its length: a 1000-pixel edge fits within about 8 pixels of it)
+ *   and not deep inside.
+ * Branch-free, the three edges in the lanes of vectors. */
+CLR_INLINE bool raster_segment_rows(__global const TriSetup* t, int firstSx, int firstY, int centreY, int* rowBegin,
+                                    int* rowEnd)
+{
+  // The three edges side by side in the lanes x, y, z of 4-vectors (edge i
+  // runs from vertex i + 1 to vertex i + 2, as in raster_rows_fixed); w is
+  // unused.
+  const int first = *rowBegin, firstSy = (firstY + first) * CLR_FIXED_ONE + centreY;
+  const int4 ax = (int4)(t->x[1], t->x[2], t->x[0], 0), ay = (int4)(t->y[1], t->y[2], t->y[0], 0);
+  const int4 bx = (int4)(t->x[2], t->x[0], t->x[1], 0), by = (int4)(t->y[2], t->y[0], t->y[1], 0);
+  // Step 1: each edge's largest value over the lanes of the first row
+  // (E = dx·(py − ay) − dy·(px − ax)), its spread over the lanes, its row
+  // step and its threshold (inside when E > low, the fill rule's bias).
+  const int4 dx = bx - ax, dy = by - ay;
+  const int4 px = select((int4)(firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE), (int4)firstSx, dy > 0);
+  const long4 eMax = convert_long4(dx) * convert_long4(firstSy - ay) - convert_long4(dy) * convert_long4(px - ax);
+  const long4 across = convert_long4(abs(dy)) * ((CLR_LANES - 1) * CLR_FIXED_ONE);
+  const long4 step = convert_long4(dx) * CLR_FIXED_ONE;
+  const long4 low = convert_long4(CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by));  // −1 or 0
+  // Step 2: the rows k from the first where eMax + k·step > low: from the
+  // boundary on when the edge rises (a level edge: all rows or none), up
+  // to it when it falls.
+  const float bound = CLR_TILE_SIZE + 2;
+  const int4 level = convert_int4(step == 0), rising = convert_int4(step >= 0);
+  const float4 quotient = convert_float4(low - eMax) / convert_float4(select(step, (long4)1, step == 0));
+  const float4 k =
+      select(clamp(quotient, -bound, bound), select((float4)bound, (float4)(-bound), convert_int4(eMax > low)), level);
+  const int4 boundary = first + convert_int4(k);  // truncated
+  const int4 fromRow = select((int4)(*rowBegin), boundary, rising);
+  const int4 toRow = select(boundary, (int4)(*rowEnd), rising);
+  const int begin = max(fromRow.x, max(fromRow.y, fromRow.z)), end = min(toRow.x, min(toRow.y, toRow.z));
+  *rowBegin = begin;
+  *rowEnd = end;
+  // Step 3: the fit, over rows begin .. end.
+  const long4 top0 = eMax + (long)(begin - first) * step, top1 = eMax + (long)(end - first) * step;
+  const int4 fits = convert_int4((min(top0, top1) - across >= INT_MIN) & (max(top0, top1) <= INT_MAX));
+  return (fits.x & fits.y & fits.z) != 0;
+}
 
 /* The visibility buffer's index planes (shared.h): 16-bit entries, 0xFFFF
  * for none, when FrameParams.visIndex16, else 32-bit ones; i counts
@@ -420,8 +495,8 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
   // specialised below, have no branch on the rule, so the compiler keeps
   // their masks in mask registers (raster on yxa_1 filling 1080p 1.98 ->
   // 1.79 ms, the engine filling it 9.80 -> 9.41 ms).
-  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f};
-  const bool defaultRule = rule.depthMode == CLR_DEPTH_FLOAT32 && !painter;
+  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false};
+  const bool defaultRule = rule.depthMode == CLR_DEPTH_FLOAT32 && !painter && !rule.barycentrics;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
@@ -453,27 +528,35 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col) {
       const int firstSx = (int)(tileX * CLR_TILE_SIZE + col * CLR_LANES) * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX;
       if (firstSx > maxX || firstSx + (CLR_LANES - 1) * CLR_FIXED_ONE < minX) continue;
-      if (edgeMode == CLR_EDGES_FIXED && small && defaultRule) {
-        raster_rows_fixed32(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+      // A large triangle's segment: the rows that can hold a sample inside,
+      // in 32-bit lanes where its edge functions fit (near its edges).
+      int rowFirst = rowBegin, rowLast = rowEnd;
+      bool rows32 = small;
+      if (edgeMode == CLR_EDGES_FIXED && !small && !(hierarchical && acceptAll)) {
+        rows32 = raster_segment_rows(t, firstSx, firstY, centreY, &rowFirst, &rowLast);
+        if (rowFirst > rowLast) continue;
+      }
+      if (edgeMode == CLR_EDGES_FIXED && rows32 && defaultRule) {
+        raster_rows_fixed32(t, s, sx[col], (firstY + rowFirst) * CLR_FIXED_ONE + centreY, rowFirst, rowLast, best[col],
                             &zbufferFloat32, rank, hierarchical && acceptAll);
         continue;
       }
-      if (edgeMode == CLR_EDGES_FIXED && small) {
-        raster_rows_fixed32(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+      if (edgeMode == CLR_EDGES_FIXED && rows32) {
+        raster_rows_fixed32(t, s, sx[col], (firstY + rowFirst) * CLR_FIXED_ONE + centreY, rowFirst, rowLast, best[col],
                             &rule, rank, hierarchical && acceptAll);
         continue;
       }
       if (edgeMode == CLR_EDGES_FIXED && defaultRule) {
-        raster_rows_fixed(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+        raster_rows_fixed(t, s, sx[col], (firstY + rowFirst) * CLR_FIXED_ONE + centreY, rowFirst, rowLast, best[col],
                           &zbufferFloat32, rank, hierarchical && acceptAll);
         continue;
       }
       if (edgeMode == CLR_EDGES_FIXED) {
-        raster_rows_fixed(t, s, sx[col], (firstY + rowBegin) * CLR_FIXED_ONE + centreY, rowBegin, rowEnd, best[col],
+        raster_rows_fixed(t, s, sx[col], (firstY + rowFirst) * CLR_FIXED_ONE + centreY, rowFirst, rowLast, best[col],
                           &rule, rank, hierarchical && acceptAll);
         continue;
       }
-      for (int row = rowBegin; row <= rowEnd; ++row) {
+      for (int row = rowFirst; row <= rowLast; ++row) {
         const int sy = (firstY + row) * CLR_FIXED_ONE + centreY;
         raster_row(t, s, sx[col], sy, &best[col][row], &rule, rank, edgeMode);
       }

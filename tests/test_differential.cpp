@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -131,6 +132,86 @@ TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[dif
   size_t covered = 0;
   for (uint32_t id : expected.triId) covered += id != ref::kNone;
   CHECK(covered > size * size / 2);
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+}
+
+TEST_CASE("differential: huge triangles whose edge functions leave 32 bits inside a tile", "[differential][raster]")
+{
+  // raster tests a large triangle's tile rows in 32 bits where all three
+  // edge functions fit an int over the rows kept (near its edges), and
+  // keeps only the rows an edge can hold (raster_segment_rows): triangles
+  // reaching 30000 pixels beyond a 256-pixel viewport, edges long and
+  // nearly level (a row step beyond 2^31) or tall (a spread over 16 lanes
+  // beyond 2^31), wide ones whose edge functions leave 32 bits a few rows
+  // into a tile, and ones with a vertex inside, in both windings, must
+  // match the 64-bit oracle. (Without either bound of that fit, with the
+  // fit checked at the first row only, or keeping a row less at either end,
+  // this test fails.)
+  const uint32_t size = 256;
+  const float reach = 30000.0f;
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), far(-reach, reach + size);
+  test::Geometry g;
+  for (int t = 0; t < 1200; ++t) {
+    const glm::vec2 inside(unit(rng) * size, unit(rng) * size), offset(unit(rng) * 8.0f - 4.0f, unit(rng) * 8.0f);
+    glm::vec2 v[3];
+    switch (t % 6) {
+      case 0:  // a long, nearly level sliver through the viewport
+        v[0] = {-reach, inside.y};
+        v[1] = {reach, inside.y + offset.x};
+        v[2] = {unit(rng) * size, inside.y + offset.y};
+        break;
+      case 1:  // a tall sliver
+        v[0] = {inside.x, -reach};
+        v[1] = {inside.x + offset.x, reach};
+        v[2] = {inside.x + offset.y, unit(rng) * size};
+        break;
+      case 4:  // 2200-4300 pixels tall, 1-4 wide: an edge spreads beyond 2^31 over 16 lanes, one side of it
+               // within an int
+      {
+        const float h = 2200.0f + 2100.0f * unit(rng), w = 1.0f + 3.0f * unit(rng);
+        v[0] = {inside.x, inside.y - h / 2};
+        v[1] = {inside.x + offset.x, inside.y + h / 2};
+        v[2] = {inside.x + w, inside.y + (unit(rng) - 0.5f) * h};
+        break;
+      }
+      case 5:  // 2000-5000 pixels wide, 20-60 tall: an edge function leaves 32 bits a few rows into a tile
+      {
+        const float w = 2000.0f + 3000.0f * unit(rng), h = 20.0f + 40.0f * unit(rng);
+        v[0] = {inside.x - w / 2, inside.y};
+        v[1] = {inside.x + w / 2, inside.y + offset.x};
+        v[2] = {inside.x + (unit(rng) - 0.5f) * w, inside.y + h};
+        break;
+      }
+      case 2:  // one vertex inside, two far away
+        v[0] = inside;
+        v[1] = {far(rng), far(rng)};
+        v[2] = {far(rng), far(rng)};
+        break;
+      default:  // all three far away
+        v[0] = {far(rng), far(rng)};
+        v[1] = {far(rng), far(rng)};
+        v[2] = {far(rng), far(rng)};
+    }
+    if (t % 12 >= 6) std::swap(v[1], v[2]);
+    // Slivers in front, the triangles that cover the viewport behind them.
+    const float z0 = t % 6 < 2 || t % 6 >= 4 ? -0.9f : t % 6 == 2 ? -0.3f : 0.3f;
+    g.addTriangle(test::screen(v[0].x, v[0].y, z0 + 0.6f * unit(rng), size, size),
+                  test::screen(v[1].x, v[1].y, z0 + 0.6f * unit(rng), size, size),
+                  test::screen(v[2].x, v[2].y, z0 + 0.6f * unit(rng), size, size));
+  }
+  const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(size, size));
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {size, size, false});
+  size_t covered = 0;
+  std::vector<bool> shown(g.numTris(), false);
+  for (uint32_t id : expected.triId)
+    if (id != ref::kNone) {
+      ++covered;
+      shown[id] = true;
+    }
+  INFO("triangles shown: " << std::count(shown.begin(), shown.end(), true));
+  CHECK(covered == size * size);
+  CHECK(std::count(shown.begin(), shown.end(), true) > 100);
   CHECK(test::countDifferences(ids, expected.triId) == 0);
 }
 
