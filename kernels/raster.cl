@@ -398,14 +398,16 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
                                  intL sx, int sy, floatL* b1, floatL* b2)
 {
   // E1 of edge 2→0 and E2 of edge 0→1, as raster_row has them. In 32 bits
-  // when every covered lane's triangle spans at most CLR_EDGE32_SPAN each
-  // way: unsigned arithmetic is exact modulo 2^32, and a covered sample's E
-  // lies in [0, 2·area] ⊂ [0, 2^28], so the low 32 bits read as int are E
-  // (uncovered lanes may wrap; they are discarded). Else in 64 bits. Either
-  // way the same integers, so the same floats.
-  const intL spanX = max(x0, max(x1, x2)) - min(x0, min(x1, x2));
-  const intL spanY = max(y0, max(y1, y2)) - min(y0, min(y1, y2));
-  if (!CLR_ANY(covered & ((spanX > CLR_EDGE32_SPAN) | (spanY > CLR_EDGE32_SPAN)))) {
+  // when every covered lane's scale is at least 2^-30: unsigned arithmetic
+  // is exact modulo 2^32, and a covered sample's E lies in [0, 2·area],
+  // where scale = RN(1 / RN(2·area)) >= 2^-30 bounds RN(2·area) by 2^30 and
+  // so 2·area below 2^30 + 64 < 2^31: the low 32 bits read as int are E
+  // (uncovered lanes may wrap; they are discarded). That holds for every
+  // triangle within CLR_EDGE32_SPAN (2·area <= 2^28) and for larger ones
+  // up to about 8000 square pixels. Else in 64 bits. Either way the same
+  // integers, so the same floats.
+  const float minScale = 1.0f / 1073741824.0f;  // 2^-30
+  if (!CLR_ANY(covered & (scale < minScale))) {
     const uintL py = (uintL)(uint)sy, px = as_uintL(sx);
     const uintL ax0 = as_uintL(x0), ax1 = as_uintL(x1), ax2 = as_uintL(x2);
     const uintL ay0 = as_uintL(y0), ay1 = as_uintL(y1), ay2 = as_uintL(y2);

@@ -418,11 +418,13 @@ void checkRecomputedBarycentrics(const std::vector<RecomputeCase>& cases)
 {
   // Step 1: the grazing grid at 160 x 100 (triangles within 64 pixels:
   // raster's 32-bit edge rows) and a large backdrop triangle behind it
-  // (its 64-bit rows).
+  // (its 64-bit rows; its doubled area, about 7·10^9 fixed units², leaves
+  // 32 bits, so resolve recomputes its barycentrics in 64 bits: with the
+  // 32-bit ones up to 2^33 this test fails).
   GrazingGrid grid = grazingGrid(160, 100);
   clr::Mesh& mesh = grid.mesh;
   const uint32_t first = uint32_t(mesh.positions.size() / 3);
-  mesh.positions.insert(mesh.positions.end(), {-9.0f, -2.0f, -7.0f, 9.0f, -2.0f, -7.0f, 0.0f, 9.0f, -7.0f});
+  mesh.positions.insert(mesh.positions.end(), {-19.8f, -4.4f, -7.0f, 19.8f, -4.4f, -7.0f, 0.0f, 19.8f, -7.0f});
   mesh.normals.insert(mesh.normals.end(), {-0.2f, 0.1f, 1.0f, 0.3f, 0.0f, 1.0f, 0.0f, 0.4f, 0.9f});
   mesh.uvs.insert(mesh.uvs.end(), {0.0f, 0.0f, 1.0f, 0.0f, 0.5f, 1.0f});
   mesh.indices.insert(mesh.indices.end(), {first, first + 1, first + 2});
