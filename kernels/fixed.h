@@ -32,10 +32,13 @@
  *   E = difference of two terms, |E| <= 2^51         -> int64 exact, 2^12 slack
  *   2·area = E evaluated at a vertex, same bound     -> int64 exact
  * Pixel-centre sample positions (i·256 + 128 for i < 2^14) stay below 2^22.
- * A 32-bit edge evaluation is exact only for small triangles: raster uses
- * 32-bit lanes when a triangle's bounds span at most 2^14 units (64 pixels)
- * each way, with the derivation beside CLR_EDGE32_SPAN in raster.cl, and
- * 64-bit lanes otherwise; setup and binning always use 64 bits. */
+ * A 32-bit edge evaluation (modulo 2^32, read as an int) is exact only
+ * where E fits an int: raster uses 32-bit lanes when a triangle's bounds
+ * span at most 2^14 units (64 pixels) each way, with the derivation beside
+ * CLR_EDGE32_SPAN in raster.cl, and for a larger triangle's tile rows over
+ * which raster_segment_rows bounds all three edge functions within an int;
+ * 64-bit lanes otherwise. Resolve recomputes barycentrics in 32 bits when
+ * 2·area < 2^31 (vis_barycentrics). Setup and binning always use 64 bits. */
 #define CLR_GUARD_BAND_PIXELS 65536
 
 /* Screen tiles used by binning and by the per-pixel kernel's work-groups.
