@@ -104,3 +104,22 @@ CLR_INLINE uintL clr_permute(uintL v, uintL from)
   return v;
 }
 #endif
+
+/* A row of CLR_LANES values stored around the caches (a non-temporal
+ * store), where the compiler is clang targeting x86 with 16 lanes (PoCL's
+ * CPU device): the image is written once per frame and read by the host
+ * afterwards, and a plain store first reads each line it fills. The
+ * pointer must be aligned to the row (64 bytes). Streamed stores are weakly
+ * ordered; the device signals a kernel's end to the host through locked
+ * instructions (PoCL's mutexes and atomics), and a LOCK instruction drains
+ * the write-combining buffers they go through (Intel SDM vol. 3, 11.3.1),
+ * so the host sees them. An sfence per tile instead made an empty
+ * 3840×2160 frame's resolve twice as slow as plain stores. Elsewhere a
+ * plain store. */
+#if CLR_LANES == 16 && defined(__clang__) && defined(__SSE2__)
+#define CLR_STREAMS 1
+#define CLR_STREAM_STORE(value, pointer) __builtin_nontemporal_store((value), (pointer))
+#else
+#define CLR_STREAMS 0
+#define CLR_STREAM_STORE(value, pointer) (*(pointer) = (value))
+#endif
