@@ -29,7 +29,7 @@
 #
 # Environment: WARMUP (default 3) and FRAMES (default 20) per case; the 10M
 # cases use 1 and 5. LP_NUM_THREADS (llvmpipe threads) defaults to the core
-# count. Took about a minute on the 2-core development machine (well under
+# count, POCL_AFFINITY to 1 (below). Took about a minute on the 2-core development machine (well under
 # the suite's 15-minute budget); do not run it beside other heavy jobs if the
 # numbers matter. Any failure stops the suite with a message and a non-zero
 # exit, leaving earlier results in place.
@@ -49,6 +49,13 @@ grid_mesh="$models/OFF/Wuson.off"
 warmup="${WARMUP:-3}"
 frames="${FRAMES:-20}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
+# PoCL's worker threads pinned one per core (POCL_AFFINITY, unless set):
+# unpinned, in about one process in five the scheduler left both workers on
+# one core for the first frames, and a case's median came out at one core's
+# speed (raster on the IFC house at 1080p 4.1 ms against 2.1; 7 of 36
+# twenty-frame runs, none of 36 pinned). Mesa has no such setting for
+# llvmpipe's threads.
+export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 export POCL_CACHE_DIR="$PWD/build/pocl-cache"
 out_dir=docs/bench
 suite_start=$(date +%s.%N)
@@ -141,7 +148,7 @@ md="$work/results.md"
     "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- host kernels 2>/dev/null || echo ' with uncommitted changes to host/ or kernels/')."
   echo "CPU: $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) cores." \
     "clraster device: $(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv") (PoCL $(dpkg-query -W -f='${Version}' pocl-opencl-icd 2>/dev/null || echo '?'))." \
-    "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?'), LP_NUM_THREADS=$LP_NUM_THREADS."
+    "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?'), LP_NUM_THREADS=$LP_NUM_THREADS; POCL_AFFINITY=$POCL_AFFINITY."
   echo "Frames: $warmup warm-up then $frames timed per case (10M-triangle cases: 1 and 5); times are medians with (min–max)."
   echo
   echo "## Device peaks (clraster_peak, best of 50)"
