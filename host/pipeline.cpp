@@ -316,8 +316,8 @@ std::vector<SetupRecord> Pipeline::readSetup() const
       r.invW[v] = t.invW[v];
     }
     r.invArea2 = CLR_RECORD_INV_AREA2(t);
-    const bool clipped = (source[s] & CLR_SOURCE_CLIPPED) != 0;
-    r.clipSlot = clipped ? source[s] & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
+    r.clipSlot = clr_source_clip_slot(source[s]);
+    const bool clipped = r.clipSlot != CLR_NOT_CLIPPED;
     r.triId = clipped ? clip.at(r.clipSlot).triId : source[s] & CLR_SOURCE_TRIANGLE;
     r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
   }

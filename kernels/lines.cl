@@ -56,7 +56,11 @@ __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
   const uint s = get_global_id(0);
   if (s >= numSetup) return;
   const TriSetup t = setup[s];
-  const uint from = source[s], clipSlot = clr_source_clip_slot(from);
+  const uint from = source[s], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
+  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
+  ClipBary w;
+  if (clipped) w = clipBary[clipSlot];
+  const bool dead = clipped && (w.flags & CLR_FLAG_DEAD) != 0;
   for (int e = 0; e < 3; ++e) {
     const int a = e, b = (e + 1) % 3;
     LineSeg seg;
@@ -66,10 +70,9 @@ __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
     seg.y[1] = t.y[b];
     seg.z[0] = t.z[a];
     seg.z[1] = t.z[b];
-    seg.triId = clr_source_triangle(from, clipBary);
-    bool skip = clipSlot != CLR_NOT_CLIPPED && (clipBary[clipSlot].flags & CLR_FLAG_DEAD) != 0;
-    if (!skip && clipSlot != CLR_NOT_CLIPPED) {
-      const ClipBary w = clipBary[clipSlot];
+    seg.triId = triId;
+    bool skip = dead;
+    if (clipped && !dead) {
       bool onInputEdge = false;
       for (int j = 0; j < 3; ++j) onInputEdge = onInputEdge || (w.w[a][j] == 0.0f && w.w[b][j] == 0.0f);
       skip = !onInputEdge;

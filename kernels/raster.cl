@@ -223,12 +223,13 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
  * raster_rows_fixed32 in 32-bit lanes (half the vector work) for one within
  * CLR_EDGE32_SPAN or a segment that raster_segment_rows admits, stepped
  * modulo 2^32 and read as ints (signedL); the barycentrics convert the
- * same integers to float, so both give bit-identical results. skipEmptyRows: a row no sample of which
- * is inside skips the depth test. That pays on large triangles, whose empty
- * rows come in long runs; a small triangle's empty rows are few and
- * unpredictable, and the branch's mispredictions cost more than testing
- * them with an all-false mask (measured on 252k- and 121k-triangle meshes at
- * 1080p: raster 37% and 18% faster with the 32-bit rows branch-free). */
+ * same integers to float, so both give bit-identical results.
+ * skipEmptyRows: a row no sample of which is inside skips the depth test.
+ * That pays on large triangles, whose empty rows come in long runs; a small
+ * triangle's empty rows are few and unpredictable, and the branch's
+ * mispredictions cost more than testing them with an all-false mask
+ * (measured on 252k- and 121k-triangle meshes at 1080p: raster 37% and 18%
+ * faster with the 32-bit rows branch-free). */
 #define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, signedL, signedEdge, edgeFunction, toIntL, skipEmptyRows) \
   CLR_INLINE void name(__global const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,  \
                        RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll)               \
@@ -363,21 +364,20 @@ CLR_INLINE uintL vis_load_index_lanes(__constant FrameParams* params, __global c
 }
 CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL index, __global uint* visIndex, uint i)
 {
+  if (!params->visIndex16) {
+    CLR_STORE_LANES(index, visIndex + i);
+    return;
+  }
+  // (CLR_NONE keeps its low 16 bits, 0xFFFF.)
 #if CLR_LANES == 16
-  // 16-bit entries in one aligned vector store: i is a multiple of 16 (a
-  // row segment of a tile's block, vis_address, in a plane of whole
-  // blocks). vstore16 of ushorts compiles to 16 two-byte stores on PoCL
-  // (raster on the close 10k sphere 1.88 -> 1.64 ms); of uints, to three
-  // vector stores, which measured no slower than one.
-  if (params->visIndex16)
-    *(__global ushort16*)((__global ushort*)visIndex + i) = convert_ushort16(index);  // CLR_NONE: 0xFFFF
-  else
-    CLR_STORE_LANES(index, visIndex + i);
+  // One aligned vector store: i is a multiple of 16 (a row segment of a
+  // tile's block, vis_address, in a plane of whole blocks). vstore16 of
+  // ushorts compiles to 16 two-byte stores on PoCL (raster on the close 10k
+  // sphere 1.88 -> 1.64 ms); of uints, to three vector stores, which
+  // measured no slower than one.
+  *(__global ushort16*)((__global ushort*)visIndex + i) = convert_ushort16(index);
 #else
-  if (params->visIndex16)
-    CLR_STORE_LANES(convert_ushortL(index), (__global ushort*)visIndex + i);  // CLR_NONE keeps its low 16 bits, 0xFFFF
-  else
-    CLR_STORE_LANES(index, visIndex + i);
+  CLR_STORE_LANES(convert_ushortL(index), (__global ushort*)visIndex + i);
 #endif
 }
 
@@ -385,9 +385,8 @@ CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL inde
  * buffer (shared.h) at address a of the plane: one vector store per plane,
  * the depth and barycentric planes only when the frame has them; with the
  * z-buffer, a sample whose depth is still the clear key gets CLR_NONE
- * (RowBest). The
- * tile's block has room for its whole rows, so lanes past the viewport's
- * edge are stored too (and never read). */
+ * (RowBest). The tile's block has room for its whole rows, so lanes past
+ * the viewport's edge are stored too (and never read). */
 CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, uint k, uint a, const RowBest* best,
                                  __global uint* visIndex, __global float* visAttr)
 {

@@ -288,21 +288,30 @@ typedef struct ClipBary {
   uint flags; /* CLR_FLAG_* */
 } ClipBary;
 
+/* A setup record's clip slot from its source word, or CLR_NOT_CLIPPED
+ * (host and kernels). */
 #ifdef __OPENCL_VERSION__
-/* A binned setup record's input triangle, winding and clip slot, from its
- * source word. */
+CLR_INLINE uint clr_source_clip_slot(uint source)
+#else
+inline uint clr_source_clip_slot(uint source)
+#endif
+{
+  return (source & CLR_SOURCE_CLIPPED) ? source & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
+}
+
+#ifdef __OPENCL_VERSION__
+/* A binned setup record's input triangle and winding, from its source word
+ * (and its ClipBary slot when clipped). */
 CLR_INLINE uint clr_source_triangle(uint source, __global const ClipBary* clipBary)
 {
-  return (source & CLR_SOURCE_CLIPPED) ? clipBary[source & ~CLR_SOURCE_CLIPPED].triId : source & CLR_SOURCE_TRIANGLE;
+  const uint slot = clr_source_clip_slot(source);
+  return slot != CLR_NOT_CLIPPED ? clipBary[slot].triId : source & CLR_SOURCE_TRIANGLE;
 }
 CLR_INLINE bool clr_source_backfacing(uint source, __global const ClipBary* clipBary)
 {
-  return (source & CLR_SOURCE_CLIPPED) ? (clipBary[source & ~CLR_SOURCE_CLIPPED].flags & CLR_FLAG_BACKFACING) != 0
-                                       : (source & CLR_SOURCE_BACKFACING) != 0;
-}
-CLR_INLINE uint clr_source_clip_slot(uint source)
-{
-  return (source & CLR_SOURCE_CLIPPED) ? source & ~CLR_SOURCE_CLIPPED : CLR_NOT_CLIPPED;
+  const uint slot = clr_source_clip_slot(source);
+  return slot != CLR_NOT_CLIPPED ? (clipBary[slot].flags & CLR_FLAG_BACKFACING) != 0
+                                 : (source & CLR_SOURCE_BACKFACING) != 0;
 }
 #endif
 
