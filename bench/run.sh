@@ -29,7 +29,13 @@
 #
 # Environment: WARMUP (default 3) and FRAMES (default 20) per case; the 10M
 # cases use 1 and 5. LP_NUM_THREADS (llvmpipe threads) defaults to the core
-# count, POCL_AFFINITY to 1 (below). Took about a minute on the 2-core development machine (well under
+# count, POCL_AFFINITY to 1 (below). DEVICE picks clraster's OpenCL device
+# (as --device: an index or a name substring; default: the first GPU, else
+# the first CPU). BENCH_OUT replaces docs/bench as the results' folder.
+# BENCH_BIN names a folder of already built clraster, clraster_bench and
+# clraster_peak and skips the build, for a machine without the build tools
+# (a GPU machine the binaries were copied to); there, BENCH_CHARTS=0 skips the
+# charts, which `bash bench/charts.sh RESULTS.csv DIR` draws later elsewhere. Took about a minute on the 2-core development machine (well under
 # the suite's 15-minute budget); do not run it beside other heavy jobs if the
 # numbers matter. Any failure stops the suite with a message and a non-zero
 # exit, leaving earlier results in place.
@@ -57,7 +63,9 @@ export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
 # llvmpipe's threads.
 export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 export POCL_CACHE_DIR="$PWD/build/pocl-cache"
-out_dir=docs/bench
+out_dir="${BENCH_OUT:-docs/bench}"
+device_args=()
+[[ -n "${DEVICE:-}" ]] && device_args=(--device "$DEVICE")
 suite_start=$(date +%s.%N)
 
 fail() { echo "bench/run.sh: $*" >&2; exit 1; }
@@ -66,30 +74,35 @@ fail() { echo "bench/run.sh: $*" >&2; exit 1; }
 for mesh in "${real_meshes[@]}" "$grid_mesh" "$@"; do
   [[ -r "$mesh" ]] || fail "cannot read mesh '$mesh' (real meshes need assimp-testmodels)"
 done
-if ! command -v gnuplot >/dev/null; then
+if [[ "${BENCH_CHARTS:-1}" != 0 ]] && ! command -v gnuplot >/dev/null; then
   echo "bench/run.sh: installing gnuplot-nox"
   DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gnuplot-nox >/dev/null ||
     { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gnuplot-nox >/dev/null; } ||
     fail "cannot install gnuplot-nox"
 fi
 
-# Step 2: build.
-[[ -f build/CMakeCache.txt ]] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j "$(nproc)" --target clraster clraster_bench clraster_peak >/dev/null ||
-  fail "build failed (run: cmake --build build --target clraster_bench)"
-[[ -x build/clraster_bench ]] || fail "clraster_bench was not built (is libosmesa6-dev installed?)"
+# Step 2: build (unless BENCH_BIN names built binaries).
+built="${BENCH_BIN:-build}"
+if [[ -z "${BENCH_BIN:-}" ]]; then
+  [[ -f build/CMakeCache.txt ]] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build build -j "$(nproc)" --target clraster clraster_bench clraster_peak >/dev/null ||
+    fail "build failed (run: cmake --build build --target clraster_bench)"
+fi
+for program in clraster clraster_bench clraster_peak; do
+  [[ -x "$built/$program" ]] || fail "$built/$program was not built (is libosmesa6-dev installed?)"
+done
 # The suite runs private copies, so that a rebuild in build/ meanwhile (kernels
 # are embedded in the binaries) cannot change or break the code it measures.
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/bin"
-cp build/clraster build/clraster_bench build/clraster_peak "$work/bin/"
+cp "$built/clraster" "$built/clraster_bench" "$built/clraster_peak" "$work/bin/"
 bin="$work/bin"
 csv="$work/results.csv"
 
 # Step 3: the device's peaks, best of 50 runs each.
 echo "bench/run.sh: peaks"
-peak_json=$("$bin/clraster_peak" --repeats 50)
+peak_json=$("$bin/clraster_peak" ${device_args[@]+"${device_args[@]}"} --repeats 50)
 peak() { sed -n "s/.*\"$1\":\([0-9.]*\).*/\1/p" <<<"$peak_json"; }
 peak_fp32=$(peak fp32_gflops)
 peak_mad=$(peak int64_mad_gops)
@@ -103,7 +116,7 @@ bench_case() {  # NAME ARGS...
   local name=$1
   shift
   echo "bench/run.sh: $name $*"
-  "$bin/clraster_bench" "$@" --name "$name" --csv "$csv" \
+  "$bin/clraster_bench" "$@" ${device_args[@]+"${device_args[@]}"} --name "$name" --csv "$csv" \
     --peak-lane-gops "$peak_lanes" --peak-copy-gbs "$peak_copy" >/dev/null ||
     fail "case $name failed"
 }
@@ -123,10 +136,12 @@ for view in far near; do
 done
 
 # Step 5: cold start, the whole process, with an empty and then a warm cache.
-wall() {  # seconds taken by a clraster render with POCL_CACHE_DIR=$1
+wall() {  # seconds taken by a clraster render with its kernel cache in $1
   local start end
   start=$(date +%s.%N)
-  POCL_CACHE_DIR="$1" "$bin/clraster" render -o "$work/cold.png" --size 1920x1080 >/dev/null ||
+  # PoCL's cache, and NVIDIA's (its OpenCL driver caches built programs there too).
+  POCL_CACHE_DIR="$1" CUDA_CACHE_PATH="$1" "$bin/clraster" render ${device_args[@]+"${device_args[@]}"} \
+    -o "$work/cold.png" --size 1920x1080 >/dev/null ||
     fail "clraster render failed"
   end=$(date +%s.%N)
   awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }'
@@ -141,13 +156,21 @@ warm_s=$(for i in 1 2 3; do wall "$work/pocl-cold1"; echo; done | sort -n | sed 
 # Step 6: the Markdown report; awk programs address CSV columns by name.
 columns='NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } '
 md="$work/results.md"
+# BENCH_COMMIT names the commit where the tree is no git checkout (a copy on another machine).
+if commit=$(git rev-parse --short HEAD 2>/dev/null); then
+  git diff --quiet HEAD -- host kernels || commit="$commit with uncommitted changes to host/ or kernels/"
+else
+  commit="${BENCH_COMMIT:-unknown}"
+fi
+clr_device=$(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv")
+clr_driver="$(sed -n 's/.*"platform":"\([^"]*\)".*/\1/p' <<<"$peak_json"), driver $(sed -n 's/.*"driver":"\([^"]*\)".*/\1/p' <<<"$peak_json")"
 {
   echo "# clraster vs llvmpipe: benchmark results"
   echo
   echo "Generated by \`bash bench/run.sh\` on $(date -u '+%Y-%m-%d %H:%M UTC'), commit" \
-    "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- host kernels 2>/dev/null || echo ' with uncommitted changes to host/ or kernels/')."
+    "$commit."
   echo "CPU: $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) cores." \
-    "clraster device: $(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv") (PoCL $(dpkg-query -W -f='${Version}' pocl-opencl-icd 2>/dev/null || echo '?'))." \
+    "clraster device: $clr_device ($clr_driver)." \
     "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?'), LP_NUM_THREADS=$LP_NUM_THREADS; POCL_AFFINITY=$POCL_AFFINITY."
   echo "Frames: $warmup warm-up then $frames timed per case (10M-triangle cases: 1 and 5); times are medians with (min–max)."
   echo
@@ -188,7 +211,7 @@ md="$work/results.md"
   echo
   echo "Whole \`build/clraster render -o OUT.png --size 1920x1080\` process (built-in scene, one frame), wall time:"
   echo
-  echo "| empty POCL_CACHE_DIR (kernels compiled; median of 3, range) | warm cache (median of 3) | difference |"
+  echo "| empty kernel cache (POCL_CACHE_DIR, CUDA_CACHE_PATH; kernels compiled; median of 3, range) | warm cache (median of 3) | difference |"
   echo "|---|---|---|"
   awk -v c="$cold_s" -v lo="$cold_min" -v hi="$cold_max" -v w="$warm_s" \
     'BEGIN { printf "| %.3f s (%.3f–%.3f) | %.3f s | %.3f s |\n", c, lo, hi, w, c - w }'
@@ -223,26 +246,15 @@ md="$work/results.md"
   echo "- Other engineers' jobs may share the 2 cores; treat single runs as noisy."
 } >"$md"
 
-# Step 7: the charts.
-series() {  # PATTERN: triangles, pixels, clraster ms, llvmpipe ms of the matching cases
-  awk -F, -v pattern="$1" "$columns"'$c["name"] ~ pattern { print $c["triangles"], $c["pixels"], $c["clr_ms"], $c["llvm_ms"] }' "$csv"
-}
-series '^sphere-far$' >"$work/sphere_far.dat"
-series '^sphere-near$' >"$work/sphere_near.dat"
-series '^grid16-far$' >"$work/grid_far.dat"
-series '^grid16-near$' >"$work/grid_near.dat"
-# One block per mesh (two blank lines apart), its name on the block's first line.
-awk -F, "$columns"'$c["name"] ~ /^mesh-/ {
-    name = substr($c["name"], 6)
-    if (!(name in seen)) { seen[name] = ++n; order[n] = name }
-    rows[name] = rows[name] $c["pixels"] " " $c["clr_ms"] " " $c["llvm_ms"] "\n"
-  }
-  END { for (i = 1; i <= n; ++i) printf "%s%s\n%s", (i > 1 ? "\n\n" : ""), order[i], rows[order[i]] }' "$csv" >"$work/meshes.dat"
-mesh_count=$(awk -F, "$columns"'$c["name"] ~ /^mesh-/ && !($c["name"] in seen) { seen[$c["name"]]; ++n } END { print n + 0 }' "$csv")
-gnuplot -e "dir='$work'; meshes=$mesh_count" bench/plots.gnuplot || fail "gnuplot failed"
+# Step 7: the charts (bench/charts.sh), unless BENCH_CHARTS=0.
+charts=()
+if [[ "${BENCH_CHARTS:-1}" != 0 ]]; then
+  bash bench/charts.sh "$csv" "$work" || fail "charts failed"
+  charts=("$work/scaling_triangles.png" "$work/scaling_pixels.png")
+fi
 
 # Step 8: replace the published results.
 mkdir -p "$out_dir"
-cp "$csv" "$md" "$work/scaling_triangles.png" "$work/scaling_pixels.png" "$out_dir/"
+cp "$csv" "$md" ${charts[@]+"${charts[@]}"} "$out_dir/"
 elapsed=$(awk -v a="$suite_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.0f", b - a }')
-echo "bench/run.sh: wrote $out_dir/results.csv, results.md, scaling_triangles.png, scaling_pixels.png in ${elapsed} s"
+echo "bench/run.sh: wrote $out_dir/results.csv, results.md${charts[*]:+, scaling_triangles.png, scaling_pixels.png} in ${elapsed} s"

@@ -47,6 +47,7 @@ struct ClContext {
   const cl::Program& extras();
   size_t maxAllocBytes = 0;  // the device's, or CLRASTER_MAX_ALLOC_BYTES when lower
   size_t globalMemBytes = 0;
+  const std::string& buildOptions() const { return buildOptions_; }
 
  private:
   std::string buildOptions_;  // without CLR_EXTRAS
@@ -58,7 +59,12 @@ struct ClContext {
 // prefetch: the compiler takes __builtin_prefetch (PoCL's clang does; with
 // -D CLR_PREFETCH raster fetches the setup records of later bin entries,
 // and resolve_lambert those of later rows, while it works).
-std::string kernelBuildOptions(int lanes, bool prefetch = false);
+// exactDivide: the device divides and takes square roots correctly rounded
+// on request (CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT), and the build asks for
+// it. OpenCL C otherwise allows 2.5 ulp for x / y and 3 ulp for sqrt, and
+// NVIDIA's driver takes that licence: setup's 1 / w then snaps a vertex to
+// another subpixel, and coverage and depth part from the oracle's.
+std::string kernelBuildOptions(int lanes, bool prefetch = false, bool exactDivide = false);
 
 // extras: the extras program rather than the frame program (shared.h).
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options,
