@@ -35,9 +35,10 @@
 # BENCH_BIN names a folder of already built clraster, clraster_bench and
 # clraster_peak and skips the build, for a machine without the build tools
 # (a GPU machine the binaries were copied to); there, BENCH_CHARTS=0 skips the
-# charts, which `bash bench/charts.sh RESULTS.csv DIR` draws later elsewhere. Took about a minute on the 2-core development machine (well under
-# the suite's 15-minute budget); do not run it beside other heavy jobs if the
-# numbers matter. Any failure stops the suite with a message and a non-zero
+# charts, which `bash bench/charts.sh RESULTS.csv DIR` draws later elsewhere;
+# BENCH_COMMIT, when set, is the commit the results name. Took about a minute
+# on the 2-core development machine (well under the suite's 15-minute
+# budget); do not run it beside other heavy jobs if the numbers matter. Any failure stops the suite with a message and a non-zero
 # exit, leaving earlier results in place.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -156,11 +157,14 @@ warm_s=$(for i in 1 2 3; do wall "$work/pocl-cold1"; echo; done | sort -n | sed 
 # Step 6: the Markdown report; awk programs address CSV columns by name.
 columns='NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } '
 md="$work/results.md"
-# BENCH_COMMIT names the commit where the tree is no git checkout (a copy on another machine).
-if commit=$(git rev-parse --short HEAD 2>/dev/null); then
+# BENCH_COMMIT names the commit where the tree's git metadata cannot be
+# trusted or is missing (a copy on another machine, with BENCH_BIN).
+if [[ -n "${BENCH_COMMIT:-}" ]]; then
+  commit="$BENCH_COMMIT"
+elif commit=$(git rev-parse --short HEAD 2>/dev/null); then
   git diff --quiet HEAD -- host kernels || commit="$commit with uncommitted changes to host/ or kernels/"
 else
-  commit="${BENCH_COMMIT:-unknown}"
+  commit=unknown
 fi
 clr_device=$(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv")
 clr_driver="$(sed -n 's/.*"platform":"\([^"]*\)".*/\1/p' <<<"$peak_json"), driver $(sed -n 's/.*"driver":"\([^"]*\)".*/\1/p' <<<"$peak_json")"
@@ -243,7 +247,7 @@ clr_driver="$(sed -n 's/.*"platform":"\([^"]*\)".*/\1/p' <<<"$peak_json"), drive
   echo "- **raster+resolve GB/s** = (12 B per pixel: the visible triangle's 4-B index written by raster and read"
   echo "  by resolve, the 4-B image written; plus 64 B of triangle setup read per bin entry) / (raster + resolve time);"
   echo "  **% peak** is relative to the copy bandwidth (bytes read + written)."
-  echo "- Other engineers' jobs may share the 2 cores; treat single runs as noisy."
+  echo "- Other engineers' jobs may share the host's cores; treat single runs as noisy."
 } >"$md"
 
 # Step 7: the charts (bench/charts.sh), unless BENCH_CHARTS=0.
