@@ -76,7 +76,9 @@ __kernel void aov(__constant FrameParams* params,
   // Step 4: the interpolated normal.
   float3 n = (float3)(0.0f);
   for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * triId + j], normals);
-  const float len = length(n);
+  // Not length(): its rounding is the driver's (NVIDIA's differed from
+  // PoCL's by an ulp or two in most pixels); each operation here is IEEE.
+  const float len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   n = len > 0.0f ? n / len : (float3)(0.0f);
   // Step 5: write.
   out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)triId;

@@ -109,6 +109,27 @@ TEST_CASE("AOV channels match the host's values from the visibility buffer", "[a
     CHECK(at(CLR_AOV_NORMAL_X, p) == Approx(n.x).margin(1e-5));
     CHECK(at(CLR_AOV_NORMAL_Y, p) == Approx(n.y).margin(1e-5));
     CHECK(at(CLR_AOV_NORMAL_Z, p) == Approx(n.z).margin(1e-5));
+    // Step 4: the kernel's own float operations, in its order, give its
+    // channels bit for bit: every step is an IEEE operation (no contraction,
+    // correctly rounded division and square root), so a driver that rounds
+    // one differently (NVIDIA's length() did) fails here.
+    const float bf[3] = {1.0f - vis[p].b1 - vis[p].b2, vis[p].b1, vis[p].b2};
+    const float qf[3] = {bf[0] * t.invW[0], bf[1] * t.invW[1], bf[2] * t.invW[2]};
+    const float eyeDepth = 1.0f / (qf[0] + qf[1] + qf[2]);
+    float muf[3] = {0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int input = swapped && i != 0 ? 3 - i : i;
+        muf[j] += (qf[i] * eyeDepth) * (isClipped ? clip.at(t.clipSlot).w[i][j] : float(input == j));
+      }
+    float nf[3] = {0.0f, 0.0f, 0.0f};
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) nf[k] += muf[j] * scene.mesh.normals[3 * scene.mesh.indices[3 * t.triId + j] + k];
+    const float len = std::sqrt(nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]);
+    CHECK(aov[CLR_AOV_BARY_U * P + p] == muf[1]);
+    CHECK(aov[CLR_AOV_BARY_V * P + p] == muf[2]);
+    CHECK(aov[CLR_AOV_EYE_DEPTH * P + p] == eyeDepth);
+    for (int k = 0; k < 3; ++k) CHECK(aov[(CLR_AOV_NORMAL_X + k) * P + p] == (len > 0.0f ? nf[k] / len : 0.0f));
     ++perTri[t.triId];
     clipped += isClipped;
   }
