@@ -322,6 +322,34 @@ TEST_CASE("z-test keeps the nearest fragment, ties go to the earlier triangle", 
   }
 }
 
+TEST_CASE("raster walks a tile of more bin entries than the GPU shape's batch", "[raster]")
+{
+  // The GPU shape copies a tile's records into local memory 256 at a time
+  // (raster_pixel): 700 overlapping triangles in one tile, at random depths,
+  // take three batches, and the nearest fragment can come from any of them.
+  // Under Oclgrind (tests/oclgrind_check.sh) this also checks the batches'
+  // barriers for races.
+  const uint32_t W = 32, H = 32;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> corner(0.0f, float(CLR_TILE_SIZE)), depth(-0.9f, 0.9f);
+  Geometry g;
+  for (int t = 0; t < 700; ++t)
+    g.addTriangle(screen(corner(rng), corner(rng), depth(rng), W, H),
+                  screen(corner(rng), corner(rng), depth(rng), W, H),
+                  screen(corner(rng), corner(rng), depth(rng), W, H));
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H));
+  const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
+  CHECK(offsets[1] - offsets[0] > 2 * CLR_TILE_SIZE * CLR_TILE_SIZE);
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
+  CHECK(test::countDifferences(ids, expected.triId) == 0);
+  size_t uncovered = 0;  // in tile 0, which the triangles nearly fill
+  for (uint32_t y = 0; y < CLR_TILE_SIZE; ++y)
+    for (uint32_t x = 0; x < CLR_TILE_SIZE; ++x) uncovered += ids[y * W + x] == ref::kNone;
+  CHECK(uncovered < 8);
+}
+
 TEST_CASE("binning keeps every triangle, however many share a tile", "[bin]")
 {
   const uint32_t W = 64, H = 48;
