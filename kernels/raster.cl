@@ -479,10 +479,14 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
  * global memory one after another, raster on an H100 took the same 0.74 ms
  * on the IFC house at every resolution, as if bound by the latency of those
  * loads along its longest bin list; with the batches it takes 0.40 ms
- * filling 1080p (the engine 0.84 -> 0.56 ms, yxa_1 0.36 -> 0.24 ms). */
+ * filling 1080p (the engine 0.84 -> 0.56 ms, yxa_1 0.36 -> 0.24 ms). The
+ * loading work-item also stores the record's bounds, and a sample outside
+ * them skips the record's edge tests: yxa_1 0.24 -> 0.14 ms, the 1M sphere
+ * far 0.59 -> 0.27 ms, the engine 0.56 -> 0.44 ms; the IFC house, whose
+ * triangles span its tiles, is unchanged. */
 #define CLR_RASTER_BATCH (CLR_TILE_SIZE * CLR_TILE_SIZE)
-CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local TriSetup* records, __local uint* indices,
-                             __local uint* ranks)
+CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local TriSetup* records, __local int4* bounds,
+                             __local uint* indices, __local uint* ranks)
 {
   const uint px = get_global_id(0), py = get_global_id(1), k = get_global_id(2);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
@@ -501,25 +505,34 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
     barrier(CLK_LOCAL_MEM_FENCE);  // the previous batch is tested
     if (item < count) {
       const uint s = binEntries[first + item];
-      records[item] = setup[s];
+      const TriSetup t = setup[s];
+      records[item] = t;
+      bounds[item] = (int4)(min(t.x[0], min(t.x[1], t.x[2])), min(t.y[0], min(t.y[1], t.y[2])),
+                            max(t.x[0], max(t.x[1], t.x[2])), max(t.y[0], max(t.y[1], t.y[2])));
       indices[item] = s;
       ranks[item] = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    // Step 2: this sample against each, in bin order.
-    for (uint n = 0; n < count; ++n) raster_row(&records[n], indices[n], sx, sy, &best, &rule, ranks[n], edgeMode);
+    // Step 2: this sample against each, in bin order; a sample outside a
+    // triangle's bounds is outside the triangle, and skips its edge tests.
+    for (uint n = 0; n < count; ++n) {
+      const int4 b = bounds[n];
+      if (sx < b.x || sy < b.y || sx > b.z || sy > b.w) continue;
+      raster_row(&records[n], indices[n], sx, sy, &best, &rule, ranks[n], edgeMode);
+    }
   }
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
 
 /* Each kernel declares the batch's local memory (OpenCL 1.2 allows it only
- * at kernel scope): 256 records of 48 bytes and two words each, 14 KB. */
+ * at kernel scope): 256 records of 48 bytes, their bounds and two words each, 18 KB. */
 #define CLR_DEFINE_RASTER_PIXEL_KERNEL(name, edgeMode)                                                         \
   __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void name(CLR_RASTER_PARAMS) \
   {                                                                                                            \
     __local TriSetup records[CLR_RASTER_BATCH];                                                                \
+    __local int4 bounds[CLR_RASTER_BATCH];                                                                     \
     __local uint indices[CLR_RASTER_BATCH], ranks[CLR_RASTER_BATCH];                                           \
-    raster_pixel(CLR_RASTER_ARGS, edgeMode, records, indices, ranks);                                          \
+    raster_pixel(CLR_RASTER_ARGS, edgeMode, records, bounds, indices, ranks);                                  \
   }
 #if !CLR_EXTRAS
 CLR_DEFINE_RASTER_PIXEL_KERNEL(raster, CLR_EDGES_FIXED)
