@@ -33,10 +33,10 @@ namespace {
 
 const char* const kPeakSource = R"CLC(
 #define CHAINS8(op) op(0) op(1) op(2) op(3) op(4) op(5) op(6) op(7)
-// Every lane starts from its own value and reaches the output: a compiler
-// that scalarises the vectors (NVIDIA's) would otherwise compute one lane of
-// identical ones, or only the lanes read, and report several times the
-// device's peak (179 TFLOP/s on an H100, whose peak is about 67).
+// Every lane starts from its own value and reaches the output, so that a
+// compiler that scalarises the vectors (NVIDIA's) cannot compute one lane
+// of identical ones, or only the lanes read: when the lanes were equal and
+// four were read, an H100 (fp32 peak about 67 TFLOP/s) reported 179.
 #define LANES_F ((float16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) * 1e-3f)
 #define LANES_L ((long16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) * 977)
 #define SUM8(v) ((v).s0 + (v).s1 + (v).s2 + (v).s3 + (v).s4 + (v).s5 + (v).s6 + (v).s7)
