@@ -38,8 +38,9 @@
 # charts, which `bash bench/charts.sh RESULTS.csv DIR` draws later elsewhere;
 # BENCH_COMMIT, when set, is the commit the results name. Took about a minute
 # on the 2-core development machine (well under the suite's 15-minute
-# budget); do not run it beside other heavy jobs if the numbers matter. Any failure stops the suite with a message and a non-zero
-# exit, leaving earlier results in place.
+# budget); do not run it beside other heavy jobs if the numbers matter. Any
+# failure stops the suite with a message and a non-zero exit, leaving
+# earlier results in place.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -90,7 +91,7 @@ if [[ -z "${BENCH_BIN:-}" ]]; then
     fail "build failed (run: cmake --build build --target clraster_bench)"
 fi
 for program in clraster clraster_bench clraster_peak; do
-  [[ -x "$built/$program" ]] || fail "$built/$program was not built (is libosmesa6-dev installed?)"
+  [[ -x "$built/$program" ]] || fail "no $built/$program (clraster_bench is built only with libosmesa6-dev)"
 done
 # The suite runs private copies, so that a rebuild in build/ meanwhile (kernels
 # are embedded in the binaries) cannot change or break the code it measures.
@@ -105,6 +106,7 @@ csv="$work/results.csv"
 echo "bench/run.sh: peaks"
 peak_json=$("$bin/clraster_peak" ${device_args[@]+"${device_args[@]}"} --repeats 50)
 peak() { sed -n "s/.*\"$1\":\([0-9.]*\).*/\1/p" <<<"$peak_json"; }
+peak_text() { sed -n "s/.*\"$1\":\"\([^\"]*\)\".*/\1/p" <<<"$peak_json"; }
 peak_fp32=$(peak fp32_gflops)
 peak_mad=$(peak int64_mad_gops)
 peak_wmad=$(peak int64_wmad_gops)
@@ -167,7 +169,7 @@ else
   commit=unknown
 fi
 clr_device=$(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv")
-clr_driver="$(sed -n 's/.*"platform":"\([^"]*\)".*/\1/p' <<<"$peak_json"), driver $(sed -n 's/.*"driver":"\([^"]*\)".*/\1/p' <<<"$peak_json")"
+clr_driver="$(peak_text platform), driver $(peak_text driver)"
 {
   echo "# clraster vs llvmpipe: benchmark results"
   echo

@@ -106,9 +106,7 @@ std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide)
 {
   std::ostringstream options;
   options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
-  // On NVIDIA's H100 driver, without this option, 1 / w in setup moved
-  // vertices by a subpixel: 1-5 of 30,000 pixels' triangle IDs and the
-  // interpolated depths differed from the oracle (clraster_tests).
+  // Why exactDivide matters: device.h.
   if (exactDivide) options << " -cl-fp32-correctly-rounded-divide-sqrt";
   // Raster fetches 12 bin entries ahead: measured 10-20% off raster on the
   // 2-core development machine against no prefetch (Suzanne and a

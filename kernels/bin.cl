@@ -36,15 +36,12 @@ CLR_INLINE int fixed_ceil(int a)
  * when x0 > x1 or y0 > y1. setup_make computes the same in lane types. */
 CLR_INLINE int4 bin_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
 {
-  const int minX = min(t->x[0], min(t->x[1], t->x[2]));
-  const int maxX = max(t->x[0], max(t->x[1], t->x[2]));
-  const int minY = min(t->y[0], min(t->y[1], t->y[2]));
-  const int maxY = max(t->y[0], max(t->y[1], t->y[2]));
+  const int4 b = CLR_RECORD_BOUNDS(*t);
   int4 r;
-  r.x = max(0, fixed_ceil(minX - CLR_FIXED_HALF - params->sampleMaxX));
-  r.y = max(0, fixed_ceil(minY - CLR_FIXED_HALF - params->sampleMaxY));
-  r.z = min((int)params->width - 1, fixed_floor(maxX - CLR_FIXED_HALF - params->sampleMinX));
-  r.w = min((int)params->height - 1, fixed_floor(maxY - CLR_FIXED_HALF - params->sampleMinY));
+  r.x = max(0, fixed_ceil(b.x - CLR_FIXED_HALF - params->sampleMaxX));
+  r.y = max(0, fixed_ceil(b.y - CLR_FIXED_HALF - params->sampleMaxY));
+  r.z = min((int)params->width - 1, fixed_floor(b.z - CLR_FIXED_HALF - params->sampleMinX));
+  r.w = min((int)params->height - 1, fixed_floor(b.w - CLR_FIXED_HALF - params->sampleMinY));
   return r;
 }
 

@@ -507,8 +507,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
       const uint s = binEntries[first + item];
       const TriSetup t = setup[s];
       records[item] = t;
-      bounds[item] = (int4)(min(t.x[0], min(t.x[1], t.x[2])), min(t.y[0], min(t.y[1], t.y[2])),
-                            max(t.x[0], max(t.x[1], t.x[2])), max(t.y[0], max(t.y[1], t.y[2])));
+      bounds[item] = CLR_RECORD_BOUNDS(t);
       indices[item] = s;
       ranks[item] = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     }
@@ -578,8 +577,8 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     if (n + CLR_PREFETCH < end) __builtin_prefetch(&setup[binEntries[n + CLR_PREFETCH]]);
 #endif
     const uint rank = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
-    const int minY = min(t->y[0], min(t->y[1], t->y[2])), maxY = max(t->y[0], max(t->y[1], t->y[2]));
-    const int minX = min(t->x[0], min(t->x[1], t->x[2])), maxX = max(t->x[0], max(t->x[1], t->x[2]));
+    const int4 bounds = CLR_RECORD_BOUNDS(*t);
+    const int minX = bounds.x, minY = bounds.y, maxX = bounds.z, maxY = bounds.w;
     const bool small = maxX - minX <= CLR_EDGE32_SPAN && maxY - minY <= CLR_EDGE32_SPAN;
     const int centreY = CLR_FIXED_HALF + offsetY;
     const int rowBegin = max(0, ((minY - centreY + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS) - firstY);

@@ -274,6 +274,11 @@ inline float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
 /* clr_inv_area2 of setup record t (a TriSetup, or a record read back with
  * its fields). */
 #define CLR_RECORD_INV_AREA2(t) clr_inv_area2((t).x[0], (t).y[0], (t).x[1], (t).y[1], (t).x[2], (t).y[2])
+/* The bounds of setup record t's snapped vertices, fixed units, as an
+ * int4 (min x, min y, max x, max y); kernels only. */
+#define CLR_RECORD_BOUNDS(t)                                                              \
+  ((int4)(min((t).x[0], min((t).x[1], (t).x[2])), min((t).y[0], min((t).y[1], (t).y[2])), \
+          max((t).x[0], max((t).x[1], (t).x[2])), max((t).y[0], max((t).y[1], (t).y[2]))))
 
 /* Barycentrics of a clipped sub-triangle's vertices with respect to its
  * input triangle (w[i][j] is the weight of input vertex j in sub-vertex i),
