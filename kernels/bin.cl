@@ -99,6 +99,59 @@ CLR_CALLED void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParam
       if (!hierarchical || bin_tile_class(t, params, tx, ty) >= 0) atomic_inc(&tileCount[ty * params->tilesX + tx]);
 }
 
+/* True when r (a tile range) is two tiles, side by side or one above the
+ * other: a small triangle across a tile edge, which the passes bin without
+ * a loop (and without traversal's tile test, which a frame of bbox
+ * traversal skips anyway). */
+CLR_INLINE bool bin_two_tiles(__constant FrameParams* params, int4 r)
+{
+  return params->traversal != CLR_TRAVERSAL_HIERARCHICAL && (r.z - r.x) + (r.w - r.y) == 1;
+}
+
+/* Pass 1's counts for the one- and two-tile triangles of one setup batch
+ * (CLR_LANES, setup.cl), held for the two tiles most recently counted: a
+ * tile's count takes one atomic add when it leaves the pair or the batch
+ * ends. Meshes are coherent: consecutive small triangles fall in one tile,
+ * or in the two on either side of a tile edge, where a run of one tile
+ * would take an atomic add at every crossing and one per two-tile
+ * triangle's tile. Slot `front` holds the more recent tile. */
+typedef struct BinTally {
+  uint tile[2], count[2], front;
+} BinTally;
+
+CLR_INLINE void bin_tally_init(BinTally* t)
+{
+  t->tile[0] = t->tile[1] = CLR_NONE;
+  t->count[0] = t->count[1] = 0;
+  t->front = 0;
+}
+
+CLR_INLINE void bin_tally_flush(BinTally* t, uint k, __global uint* tileCount)
+{
+  if (t->count[k]) atomic_add(&tileCount[t->tile[k]], t->count[k]);
+  t->count[k] = 0;
+}
+
+CLR_INLINE void bin_tally_add(BinTally* t, uint tile, __global uint* tileCount)
+{
+  uint k = t->front;
+  if (tile != t->tile[k]) {
+    k ^= 1u;
+    if (tile != t->tile[k]) {
+      bin_tally_flush(t, k, tileCount);
+      t->tile[k] = tile;
+    }
+    t->front = k;
+  }
+  ++t->count[k];
+}
+
+CLR_INLINE void bin_tally_end(BinTally* t, __global uint* tileCount)
+{
+  bin_tally_flush(t, 0, tileCount);
+  bin_tally_flush(t, 1, tileCount);
+}
+
 /* Pass 2: writes setup index s into the same tiles, at the scanned offset
  * plus a per-tile cursor. */
 CLR_CALLED void bin_fill_tiles(const TriSetup* t, int4 r, uint s, __constant FrameParams* params,
@@ -111,6 +164,15 @@ CLR_CALLED void bin_fill_tiles(const TriSetup* t, int4 r, uint s, __constant Fra
       const uint tile = ty * params->tilesX + tx;
       binEntries[tileOffset[tile] + atomic_inc(&tileCursor[tile])] = s;
     }
+}
+
+/* Pass 2 for a two-tile triangle (bin_two_tiles): s into both tiles. */
+CLR_INLINE void bin_fill_two_tiles(int4 r, uint s, __constant FrameParams* params, __global const uint* tileOffset,
+                                   __global uint* tileCursor, __global uint* binEntries)
+{
+  const uint a = r.y * params->tilesX + r.x, b = r.w * params->tilesX + r.z;
+  binEntries[tileOffset[a] + atomic_inc(&tileCursor[a])] = s;
+  binEntries[tileOffset[b] + atomic_inc(&tileCursor[b])] = s;
 }
 
 /* Pass 2 for a run of triangles binned to one tile: one atomic add takes
