@@ -1,5 +1,6 @@
 // bench_suite.cpp — clraster_bench: one benchmark case, clraster against
-// Mesa llvmpipe, both shading lambert.
+// Mesa llvmpipe, both shading lambert per pixel (the same image), and
+// llvmpipe again with its fixed-function lighting per vertex.
 //
 //   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--device SEL]
@@ -10,13 +11,17 @@
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
 // optionally --grid N (N x N instanced copies of the scene), seen from the
 // --view "far" (whole scene), "fill" (the scene filling the viewport) or
-// "near" (camera close). Each renderer draws K
-// warm-up then N timed frames, each up to an RGBA8 image the host can read
-// where the renderer left it: clraster is Pipeline::render into an ImageView
-// (parameter upload to the image buffer mapped, which on a CPU device is no
-// copy) on the clraster device; llvmpipe is glClear + glDrawElements +
-// glFinish into OSMesa's host buffer, with LP_NUM_THREADS threads (set here
-// to the core count when unset). Then, unless
+// "near" (camera close). A file's materials, textures and vertex colours are
+// set aside, so that both renderers light the built-in grey albedo. Each
+// renderer draws K warm-up then N timed frames, each up to an RGBA8 image the
+// host can read where the renderer left it: clraster is Pipeline::render into
+// an ImageView (parameter upload to the image buffer mapped, which on a CPU
+// device is no copy) on the clraster device; llvmpipe is glClear +
+// glDrawElements + glFinish into OSMesa's host buffer, with LP_NUM_THREADS
+// threads (set here to the core count when unset), first with a GLSL program
+// of clraster's lambert (llvm_ms, ratio, shade_mad), then with fixed-function
+// lighting at the vertices (llvm_vertex_ms, ratio_vertex, shade_mad_vertex;
+// llvmpipe_render.h). Then, unless
 // --no-ids, one triangle-ID frame of each is compared as clraster_vs_llvmpipe
 // does. Prints one JSON line on stdout; --csv appends one row (and the
 // header to an empty file); --images writes both lambert images as
@@ -154,7 +159,12 @@ BenchScene buildScene(const Args& args)
     BenchScene sphere = displacedSphere(args.sphereTriangles);
     return args.gridSide ? instancedGrid(sphere.mesh, args.gridSide) : sphere;
   }
-  const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  // Geometry only: llvmpipe lights the built-in albedo, so clraster does too.
+  Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
+  mesh.triMaterial.clear();
+  mesh.materials.clear();
+  mesh.textures.clear();
+  mesh.colors.clear();
   if (args.gridSide) return instancedGrid(mesh, args.gridSide);
   return BenchScene{mesh, meshBounds(mesh)};
 }
@@ -222,11 +232,12 @@ struct Report {
   std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer;
   uint64_t pixels = 0, triangles = 0, vertices = 0;
   double clrMs = 0, clrMin = 0, clrMax = 0, llvmMs = 0, llvmMin = 0, llvmMax = 0;
+  double llvmVertexMs = 0, llvmVertexMin = 0, llvmVertexMax = 0;  // llvmpipe lit per vertex
   double rasterMs = NAN, resolveMs = NAN, otherMs = 0;
   std::string stages;  // "name=ms;..." for the CSV
   uint64_t minBytes = 0;
   std::optional<IdComparison> ids;
-  double shadeDifference = 0;
+  double shadeDifference = 0, shadeDifferenceVertex = 0;
   double edgeEvalsPerS = NAN, rasterResolveBytesPerS = NAN;
 };
 
@@ -269,6 +280,10 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"llvm_ms_min", number(r.llvmMin, "%.3f")},
       {"llvm_ms_max", number(r.llvmMax, "%.3f")},
       {"ratio", number(r.clrMs / r.llvmMs, "%.3f")},
+      {"llvm_vertex_ms", number(r.llvmVertexMs, "%.3f")},
+      {"llvm_vertex_ms_min", number(r.llvmVertexMin, "%.3f")},
+      {"llvm_vertex_ms_max", number(r.llvmVertexMax, "%.3f")},
+      {"ratio_vertex", number(r.clrMs / r.llvmVertexMs, "%.3f")},
       {"clr_mtris_s", number(perS(double(r.triangles), r.clrMs) * 1e-6)},
       {"llvm_mtris_s", number(perS(double(r.triangles), r.llvmMs) * 1e-6)},
       {"clr_mpix_s", number(perS(double(r.pixels), r.clrMs) * 1e-6)},
@@ -285,6 +300,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"differing_fraction", r.ids ? number(r.ids->differingFraction(), "%.3e") : ""},
       {"differing_not_near_edge", r.ids ? std::to_string(r.ids->differingNotNearEdge) : ""},
       {"shade_mad", number(r.shadeDifference, "%.3f")},
+      {"shade_mad_vertex", number(r.shadeDifferenceVertex, "%.3f")},
       {"edge_gevals_s", number(r.edgeEvalsPerS * 1e-9)},
       {"edge_frac_lane_ops", fraction(r.edgeEvalsPerS * 1e-9, args.peakLaneGops)},
       {"rr_gbs", number(r.rasterResolveBytesPerS * 1e-9)},
@@ -359,14 +375,17 @@ int run(const Args& args)
   // Step 2: both renderers, one after the other (never concurrently).
   const ClrasterRun clr = runClraster(args, mesh, camera);
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
-  const LlvmpipeFrames llvm =
-      renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(), args.warmup, args.frames);
+  const LlvmpipeFrames llvm = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(),
+                                                    LambertShading::perPixel, args.warmup, args.frames);
+  const LlvmpipeFrames llvmVertex = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(),
+                                                          LambertShading::perVertex, args.warmup, args.frames);
 
   // Step 3: agreement: ID coverage and the lambert images.
   Report r;
   if (args.ids)
     r.ids = compareIds(clr.ids, renderLlvmpipeIds(mesh, args.width, args.height, mvp).image, args.width, args.height);
   r.shadeDifference = meanShadeDifference(clr.image, llvm.image, 0xFF261F1Au);
+  r.shadeDifferenceVertex = meanShadeDifference(clr.image, llvmVertex.image, 0xFF261F1Au);
 
   // Step 4: derived numbers (definitions in the header comment).
   r.name = caseName(args);
@@ -383,6 +402,9 @@ int run(const Args& args)
   r.llvmMs = median(llvm.frameMs);
   r.llvmMin = *std::min_element(llvm.frameMs.begin(), llvm.frameMs.end());
   r.llvmMax = *std::max_element(llvm.frameMs.begin(), llvm.frameMs.end());
+  r.llvmVertexMs = median(llvmVertex.frameMs);
+  r.llvmVertexMin = *std::min_element(llvmVertex.frameMs.begin(), llvmVertex.frameMs.end());
+  r.llvmVertexMax = *std::max_element(llvmVertex.frameMs.begin(), llvmVertex.frameMs.end());
   for (const auto& [stage, ms] : clr.stageMs) {
     if (stage == "raster")
       r.rasterMs = ms;

@@ -90,8 +90,78 @@ void fixHeapTrimThreshold()
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 }
 
+namespace {
+
+// clraster's lambert shade per pixel (resolve.cl, shade.cl), in GLSL 1.20:
+// the normal interpolated with the 1/w rule (GL's smooth varyings), made
+// unit (the eye-facing one when zero) and flipped on back faces, then
+// albedo · (0.12 + 0.88 · max(n·l, 0)).
+const char* const kLambertVertexShader = R"(#version 120
+varying vec3 normal;
+void main()
+{
+  normal = gl_Normal;
+  gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;
+}
+)";
+const char* const kLambertFragmentShader = R"(#version 120
+varying vec3 normal;
+uniform vec3 lightDir;
+uniform vec3 albedo;
+void main()
+{
+  float len = sqrt(normal.x * normal.x + normal.y * normal.y + normal.z * normal.z);
+  float facing = gl_FrontFacing ? 1.0 : -1.0;
+  vec3 n = len > 0.0 ? normal * (facing / len) : vec3(0.0, 0.0, facing);
+  float diffuse = max(dot(n, lightDir), 0.0);
+  gl_FragColor = vec4(albedo * (0.12 + 0.88 * diffuse), 1.0);
+}
+)";
+
+GLuint compileShader(GLenum kind, const char* text)
+{
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok) return shader;
+  char log[2048] = "";
+  glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+  glDeleteShader(shader);
+  throw Error(std::string("llvmpipe: the lambert shader does not compile: ") + log);
+}
+
+// Links the per-pixel lambert program and makes it current.
+GLuint useLambertProgram(const glm::vec3& light, const GLfloat* albedo)
+{
+  const GLuint program = glCreateProgram();
+  const GLuint vertex = compileShader(GL_VERTEX_SHADER, kLambertVertexShader);
+  const GLuint fragment = compileShader(GL_FRAGMENT_SHADER, kLambertFragmentShader);
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = "";
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw Error(std::string("llvmpipe: the lambert program does not link: ") + log);
+  }
+  glUseProgram(program);
+  glUniform3f(glGetUniformLocation(program, "lightDir"), light.x, light.y, light.z);
+  glUniform3f(glGetUniformLocation(program, "albedo"), albedo[0], albedo[1], albedo[2]);
+  return program;
+}
+
+}  // namespace
+
 LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
-                                     const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames)
+                                     const glm::vec3& lightDir, LambertShading shading, uint32_t warmupFrames,
+                                     uint32_t timedFrames)
 {
   // Step 1: context and state; lighting equal to clraster's lambert shade.
   OsMesaContext gl(width, height);
@@ -114,6 +184,8 @@ LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t 
   glShadeModel(GL_SMOOTH);
   glFrontFace(GL_CCW);
   glClearColor(0x1A / 255.0f, 0x1F / 255.0f, 0x26 / 255.0f, 1.0f);  // clraster's lambert background
+  const GLuint program = shading == LambertShading::perPixel ? useLambertProgram(light, albedo) : 0;
+  gl.checkError("setting up the lambert shading");
 
   // Step 2: positions, normals and indices in buffer objects, uploaded once.
   GLuint buffers[3];
@@ -148,6 +220,10 @@ LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t 
   gl.readImage(rows, out.image);
   gl.checkError("drawing");
   glDeleteBuffers(3, buffers);
+  if (program) {
+    glUseProgram(0);
+    glDeleteProgram(program);
+  }
   return out;
 }
 

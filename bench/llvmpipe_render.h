@@ -1,13 +1,17 @@
 // llvmpipe_render.h — Mesa llvmpipe (OSMesa) as the benchmark's reference
 // renderer, and the triangle-ID comparison of two images.
 //
-// renderLlvmpipeLambert draws the mesh from GL buffer objects with
-// glDrawElements, fixed-function lighting equal to clraster's lambert shade
-// (one directional light, ambient 0.12 + diffuse 0.88 times the albedo
-// (0.80, 0.78, 0.74), two-sided, no specular, no global ambient; smooth
-// vertex normals renormalised (GL_NORMALIZE: some files' normals are not
-// unit, and clraster normalises), GL_SMOOTH, so per-vertex rather than
-// per-pixel), 24-bit depth, LESS, and clraster's background colour. A frame is timed from
+// renderLlvmpipeLambert draws the mesh (its positions, normals and indices)
+// from GL buffer objects with glDrawElements and the lighting of clraster's
+// lambert shade: one directional light, ambient 0.12 + diffuse 0.88 times the
+// built-in albedo (0.80, 0.78, 0.74), two-sided, no specular. perPixel does it
+// as clraster does, in a GLSL program: the normal interpolated (with the 1/w
+// rule, as GL's smooth varyings are), made unit and lit at each pixel, so the
+// two images differ only by rounding. perVertex uses fixed-function lighting:
+// no global ambient, vertex normals renormalised (GL_NORMALIZE: some files'
+// normals are not unit), lit at the vertices and the colours interpolated
+// (GL_SMOOTH), a different image. Both: 24-bit depth, LESS, and clraster's
+// background colour. A frame is timed from
 // glClear through glDrawElements and glFinish, when the RGBA8 image lies in
 // OSMesa's host buffer; the image is read back once, after the timed frames.
 // renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat
@@ -45,8 +49,14 @@ struct LlvmpipeFrames {
   std::string renderer;         // GL_RENDERER
 };
 
+enum class LambertShading {
+  perVertex,  // fixed-function lighting at the vertices, colours interpolated (GL_SMOOTH)
+  perPixel,   // a GLSL program: clraster's lambert, normal interpolated and lit per pixel
+};
+
 LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
-                                     const glm::vec3& lightDir, uint32_t warmupFrames, uint32_t timedFrames);
+                                     const glm::vec3& lightDir, LambertShading shading, uint32_t warmupFrames,
+                                     uint32_t timedFrames);
 
 // frames ID frames, each timed from glClear to glFinish; image is the last.
 LlvmpipeFrames renderLlvmpipeIds(const Mesh& mesh, uint32_t width, uint32_t height, const glm::mat4& mvp,
@@ -67,7 +77,7 @@ IdComparison compareIds(const std::vector<uint32_t>& ours, const std::vector<uin
 
 // Mean absolute difference of the RGB channels (0..255) over the pixels
 // that differ from `background` in either image; a sanity check that both
-// renderers shade alike (they differ by Gouraud versus per-pixel normals).
+// renderers shade alike (per pixel, they differ only by rounding).
 double meanShadeDifference(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b, uint32_t background);
 
 }  // namespace clr::bench
