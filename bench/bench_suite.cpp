@@ -5,7 +5,7 @@
 //   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
-//                  [--peak-lane-gops X] [--peak-copy-gbs Y]
+//                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
 //
 // The case: SCENE (a file assimp reads; the built-in scene when absent), or
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
@@ -43,6 +43,8 @@
 //                   barycentrics), image written, 4; plus the 48 B TriSetup
 //                   read per bin entry) / (raster + resolve time); rr_frac_copy =
 //                   rr_gbs / the peak copy bandwidth (read + write bytes).
+// --max-shade-mad M fails the run (after printing) when shade_mad exceeds M:
+// CTest's check that both renderers draw the same lambert image.
 // Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
 #include "procedural.h"
@@ -84,6 +86,7 @@ struct Args {
   std::string csvPath;
   std::string imagePrefix;
   std::optional<double> peakLaneGops, peakCopyGbs;
+  std::optional<double> maxShadeMad;  // fail when the per-pixel images differ more (a CTest check)
 };
 
 double parsePositive(const std::string& flag, const std::string& text)
@@ -128,6 +131,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.peakLaneGops = parsePositive(a, flagValue(args, i));
     } else if (a == "--peak-copy-gbs") {
       r.peakCopyGbs = parsePositive(a, flagValue(args, i));
+    } else if (a == "--max-shade-mad") {
+      r.maxShadeMad = parsePositive(a, flagValue(args, i));
     } else {
       takeScenePath(a, r.scenePath);
     }
@@ -428,6 +433,10 @@ int run(const Args& args)
   const auto cols = columns(args, r, clr);
   printJson(cols, clr);
   if (!args.csvPath.empty()) appendCsv(args.csvPath, cols);
+  if (args.maxShadeMad && !(r.shadeDifference <= *args.maxShadeMad))
+    throw Error("the lambert images of clraster and llvmpipe (per pixel) differ by a mean of " +
+                number(r.shadeDifference, "%.4f") + " of 255, more than --max-shade-mad " +
+                number(*args.maxShadeMad, "%.4f"));
   return 0;
 }
 
