@@ -382,6 +382,70 @@ TEST_CASE("binning keeps every triangle, however many share a tile", "[bin]")
   CHECK(test::countDifferences(ids, expected.triId) == 0);
 }
 
+TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds touch it", "[bin]")
+{
+  // A coherent mesh of small triangles in row order, as setup's count pass
+  // tallies them for the two tiles it counted last (bin_tally) and the emit
+  // pass writes them: one-tile triangles, two-tile ones across a tile edge,
+  // four-tile ones at tile corners, and every 37th a larger one over several
+  // tiles between them. The expected bins come from the records' snapped
+  // vertices, as bin_pixel_bounds takes them.
+  const uint32_t W = 100, H = 70;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> jitter(-0.3f, 0.3f), depth(-0.9f, 0.9f);
+  Geometry g;
+  const float cell = 1.7f;
+  int n = 0;
+  for (float y = 0.2f; y + cell < float(H); y += cell)
+    for (float x = 0.2f; x + cell < float(W); x += cell, ++n) {
+      const float z = depth(rng), big = n % 37 == 0 ? 30.0f : cell;
+      const glm::vec3 a = screen(x + jitter(rng), y + jitter(rng), z, W, H);
+      const glm::vec3 b = screen(x + big + jitter(rng), y + jitter(rng), z, W, H);
+      const glm::vec3 c = screen(x + jitter(rng), y + cell + jitter(rng), z, W, H);
+      g.addTriangle(a, b, c);
+      g.addTriangle(b, screen(x + big + jitter(rng), y + cell + jitter(rng), z, W, H), c);
+    }
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H));
+  const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
+  const std::vector<uint32_t> entries = pipeline.readBinEntries();
+  const std::vector<clr::SetupRecord> setup = pipeline.readSetup();
+  const uint32_t tilesX = pipeline.params().tilesX, tiles = tilesX * pipeline.params().tilesY;
+  // Step 1: each record's tiles (one sample per pixel, at the centre).
+  std::vector<std::vector<uint32_t>> expected(tiles);
+  size_t oneTile = 0, twoTiles = 0, more = 0;
+  for (uint32_t s = 0; s < setup.size(); ++s) {
+    const clr::SetupRecord& r = setup[s];
+    const int minX = std::min({r.x[0], r.x[1], r.x[2]}), maxX = std::max({r.x[0], r.x[1], r.x[2]});
+    const int minY = std::min({r.y[0], r.y[1], r.y[2]}), maxY = std::max({r.y[0], r.y[1], r.y[2]});
+    const int half = CLR_FIXED_ONE / 2;
+    const int x0 = std::max(0, (minX - half + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS);
+    const int y0 = std::max(0, (minY - half + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS);
+    const int x1 = std::min(int(W) - 1, (maxX - half) >> CLR_SUBPIXEL_BITS);
+    const int y1 = std::min(int(H) - 1, (maxY - half) >> CLR_SUBPIXEL_BITS);
+    REQUIRE((x0 <= x1 && y0 <= y1));  // setup keeps only triangles over a pixel centre
+    const int tx0 = x0 / CLR_TILE_SIZE, tx1 = x1 / CLR_TILE_SIZE, ty0 = y0 / CLR_TILE_SIZE, ty1 = y1 / CLR_TILE_SIZE;
+    const int count = (tx1 - tx0 + 1) * (ty1 - ty0 + 1);
+    oneTile += count == 1;
+    twoTiles += count == 2;
+    more += count > 2;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) expected[ty * tilesX + tx].push_back(s);
+  }
+  // Step 2: the bins, tile by tile, in any order within a tile.
+  REQUIRE(offsets.size() == tiles + 1);
+  CHECK(offsets[tiles] == entries.size());
+  for (uint32_t t = 0; t < tiles; ++t) {
+    std::vector<uint32_t> bin(entries.begin() + offsets[t], entries.begin() + offsets[t + 1]);
+    std::sort(bin.begin(), bin.end());
+    CHECK(bin == expected[t]);
+  }
+  CHECK((oneTile > 1000 && twoTiles > 100 && more > 20));  // the premise: all three kinds occur
+  const ref::Result reference = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
+  CHECK(test::countDifferences(ids, reference.triId) == 0);
+}
+
 TEST_CASE("near-plane clipping: no projection through w <= 0, same pixels as the oracle", "[clip]")
 {
   const uint32_t W = 80, H = 60;
