@@ -232,12 +232,21 @@ ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera
   return run;
 }
 
+// A renderer's timed frames: median, fastest and slowest, ms.
+struct FrameTimes {
+  double median = 0, min = 0, max = 0;
+};
+
+FrameTimes frameTimes(const std::vector<double>& ms)
+{
+  return {median(ms), *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end())};
+}
+
 // The numbers of one case, as printed.
 struct Report {
   std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer;
   uint64_t pixels = 0, triangles = 0, vertices = 0;
-  double clrMs = 0, clrMin = 0, clrMax = 0, llvmMs = 0, llvmMin = 0, llvmMax = 0;
-  double llvmVertexMs = 0, llvmVertexMin = 0, llvmVertexMax = 0;  // llvmpipe lit per vertex
+  FrameTimes clr, llvm, llvmVertex;  // llvmVertex: llvmpipe lit per vertex
   double rasterMs = NAN, resolveMs = NAN, otherMs = 0;
   std::string stages;  // "name=ms;..." for the CSV
   uint64_t minBytes = 0;
@@ -278,21 +287,21 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"bin_entries", std::to_string(s.binEntries)},
       {"warmup", std::to_string(args.warmup)},
       {"frames", std::to_string(args.frames)},
-      {"clr_ms", number(r.clrMs, "%.3f")},
-      {"clr_ms_min", number(r.clrMin, "%.3f")},
-      {"clr_ms_max", number(r.clrMax, "%.3f")},
-      {"llvm_ms", number(r.llvmMs, "%.3f")},
-      {"llvm_ms_min", number(r.llvmMin, "%.3f")},
-      {"llvm_ms_max", number(r.llvmMax, "%.3f")},
-      {"ratio", number(r.clrMs / r.llvmMs, "%.3f")},
-      {"llvm_vertex_ms", number(r.llvmVertexMs, "%.3f")},
-      {"llvm_vertex_ms_min", number(r.llvmVertexMin, "%.3f")},
-      {"llvm_vertex_ms_max", number(r.llvmVertexMax, "%.3f")},
-      {"ratio_vertex", number(r.clrMs / r.llvmVertexMs, "%.3f")},
-      {"clr_mtris_s", number(perS(double(r.triangles), r.clrMs) * 1e-6)},
-      {"llvm_mtris_s", number(perS(double(r.triangles), r.llvmMs) * 1e-6)},
-      {"clr_mpix_s", number(perS(double(r.pixels), r.clrMs) * 1e-6)},
-      {"llvm_mpix_s", number(perS(double(r.pixels), r.llvmMs) * 1e-6)},
+      {"clr_ms", number(r.clr.median, "%.3f")},
+      {"clr_ms_min", number(r.clr.min, "%.3f")},
+      {"clr_ms_max", number(r.clr.max, "%.3f")},
+      {"llvm_ms", number(r.llvm.median, "%.3f")},
+      {"llvm_ms_min", number(r.llvm.min, "%.3f")},
+      {"llvm_ms_max", number(r.llvm.max, "%.3f")},
+      {"ratio", number(r.clr.median / r.llvm.median, "%.3f")},
+      {"llvm_vertex_ms", number(r.llvmVertex.median, "%.3f")},
+      {"llvm_vertex_ms_min", number(r.llvmVertex.min, "%.3f")},
+      {"llvm_vertex_ms_max", number(r.llvmVertex.max, "%.3f")},
+      {"ratio_vertex", number(r.clr.median / r.llvmVertex.median, "%.3f")},
+      {"clr_mtris_s", number(perS(double(r.triangles), r.clr.median) * 1e-6)},
+      {"llvm_mtris_s", number(perS(double(r.triangles), r.llvm.median) * 1e-6)},
+      {"clr_mpix_s", number(perS(double(r.pixels), r.clr.median) * 1e-6)},
+      {"llvm_mpix_s", number(perS(double(r.pixels), r.llvm.median) * 1e-6)},
       {"raster_ms", number(r.rasterMs, "%.3f")},
       {"resolve_ms", number(r.resolveMs, "%.3f")},
       {"other_stages_ms", number(r.otherMs, "%.3f")},
@@ -401,15 +410,9 @@ int run(const Args& args)
   r.pixels = uint64_t(args.width) * args.height;
   r.triangles = mesh.numTris();
   r.vertices = mesh.numVerts();
-  r.clrMs = median(clr.frameMs);
-  r.clrMin = *std::min_element(clr.frameMs.begin(), clr.frameMs.end());
-  r.clrMax = *std::max_element(clr.frameMs.begin(), clr.frameMs.end());
-  r.llvmMs = median(llvm.frameMs);
-  r.llvmMin = *std::min_element(llvm.frameMs.begin(), llvm.frameMs.end());
-  r.llvmMax = *std::max_element(llvm.frameMs.begin(), llvm.frameMs.end());
-  r.llvmVertexMs = median(llvmVertex.frameMs);
-  r.llvmVertexMin = *std::min_element(llvmVertex.frameMs.begin(), llvmVertex.frameMs.end());
-  r.llvmVertexMax = *std::max_element(llvmVertex.frameMs.begin(), llvmVertex.frameMs.end());
+  r.clr = frameTimes(clr.frameMs);
+  r.llvm = frameTimes(llvm.frameMs);
+  r.llvmVertex = frameTimes(llvmVertex.frameMs);
   for (const auto& [stage, ms] : clr.stageMs) {
     if (stage == "raster")
       r.rasterMs = ms;
