@@ -337,6 +337,17 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
   bin_tally_end(&tally, tileCount);
 }
 
+/* Pass 1 for CLR_LANES triangles from `first` of which none yields a
+ * screen triangle: zero counts, and no tiles. Measured (medians of three
+ * alternated runs, 1080p): on the 1M-triangle sphere seen from inside
+ * (near) the count pass took 4.5 instead of 5.5 ms, on the near view of
+ * the 16 × 16 grid 3.9 instead of 5.4 ms; where the view holds the whole
+ * scene it changes nothing (yxa_1 filling the screen). */
+CLR_INLINE void setup_count_none(__constant FrameParams* params, uint first, __global uchar* triCount)
+{
+  for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) triCount[first + lane] = 0;
+}
+
 /* Pass 2 for the same lanes: writes the unclipped screen triangles (the
  * `write` lanes) at their places, with their winding in their source
  * words, and each into its tiles' bins; runs of one-tile triangles in one
@@ -407,9 +418,20 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   ClipBatch c;
   setup_load_batch(tri, params, positions, indices, &c);
   const uintL kind = setup_classify(&c, params);
+  // (Pass 1 stops early for a batch that yields no record, before setup_make
+  // when every lane is culled here: a batch beside the view, which is much
+  // of a scene seen from inside or close up.)
+  if (!emit && !CLR_ANY(kind != CLR_SETUP_CULLED)) {
+    setup_count_none(params, first, triCount);
+    return;
+  }
   SetupBatch b;
   const intL made = setup_make(&c, params, &b, !emit);  // emit's sources passed the test in pass 1
   const intL simple = made & (kind == CLR_SETUP_SIMPLE);
+  if (!emit && !CLR_ANY(simple | (kind == CLR_SETUP_CLIP))) {
+    setup_count_none(params, first, triCount);
+    return;
+  }
   SetupLanes l;
   setup_unpack(&b, &l);
   // Step 2 (pass 2): emit; a source's recomputed setup is the one pass 1
