@@ -51,12 +51,16 @@
 /* RGBA8 (R in the low byte, alpha 255) from colour channels in [0, 1]. */
 CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 {
-  const floatL lo = 0.0f, hi = 1.0f;
+  const floatL lo = 0.0f, hi = 1.0f, big = 8388608.0f;  // 2^23
   // Round to nearest even as convert_uint_sat_rte would (the clamp makes
-  // saturation moot), with clr_rint (lanes.h), then an exact conversion.
-  const uintL qr = convert_uintL(clr_rint(clamp(r, lo, hi) * 255.0f));
-  const uintL qg = convert_uintL(clr_rint(clamp(g, lo, hi) * 255.0f));
-  const uintL qb = convert_uintL(clr_rint(clamp(b, lo, hi) * 255.0f));
+  // saturation moot), then an exact conversion. The clamped channel times
+  // 255 lies in [0, 255], where adding 2^23 leaves no fraction bits, so the
+  // sum is rounded as rint rounds, and subtracting 2^23 again is exact:
+  // clr_rint (lanes.h) without the selects that negative and large values
+  // need (two instructions instead of seven per channel).
+  const uintL qr = convert_uintL((clamp(r, lo, hi) * 255.0f + big) - big);
+  const uintL qg = convert_uintL((clamp(g, lo, hi) * 255.0f + big) - big);
+  const uintL qb = convert_uintL((clamp(b, lo, hi) * 255.0f + big) - big);
   return qr | (qg << 8) | (qb << 16) | 0xFF000000u;
 }
 
@@ -758,6 +762,72 @@ CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global 
   }
 }
 
+/* Step 2 of resolve_lambert_row, from the lanes' values `f` and screen
+ * barycentrics: resolve_shade's lambert path in lane types, the same
+ * operations in the same order. Returns the packed colours, the background
+ * where not `covered`. */
+CLR_INLINE uintL resolve_lambert_colour(__constant FrameParams* params, __global const ClipBary* clipBary,
+                                        const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
+{
+  // Step 1: the 1/w rule,
+  const floatL* q = f->invW;
+  const uintL sourceL = f->source;
+  const floatL b[3] = {1.0f - b1 - b2, b1, b2};
+  floatL lambda[3];
+  const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
+  for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
+  // Step 2: the weights mu_j of the input vertices: lambda itself, with
+  // vertices 1 and 2 swapped for a back face, or through ClipBary for a
+  // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
+  // or swap matrix there, which gives the same floats.) A back face's
+  // normal flips: an unclipped one's source word says so (it is also the
+  // swap), a clipped one's ClipBary slot.
+  const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
+  const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
+  intL backL = swappedL;
+  floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
+  if (CLR_ANY(clippedL)) {
+    int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
+    uint from[CLR_LANES];
+    CLR_STORE_LANES(clippedL, clippedLane);
+    CLR_STORE_LANES(sourceL, from);
+    float l[3][CLR_LANES], m[3][CLR_LANES];
+    for (int i = 0; i < 3; ++i) {
+      CLR_STORE_LANES(lambda[i], l[i]);
+      CLR_STORE_LANES(mu[i], m[i]);
+    }
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      clippedBack[lane] = 0;
+      if (!clippedLane[lane]) continue;
+      __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
+      for (int j = 0; j < 3; ++j) {
+        m[j][lane] = 0.0f;
+        for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
+      }
+      clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
+    }
+    for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
+    backL = backL | CLR_LOAD_LANES(clippedBack);
+  }
+  floatL n[3];
+  for (int k = 0; k < 3; ++k) {
+    n[k] = 0.0f;
+    for (int j = 0; j < 3; ++j) n[k] += mu[j] * f->normal[j][k];
+  }
+  resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, backL));
+  floatL diffuse, specular;
+  const floatL p0[3] = {0.0f, 0.0f, 0.0f};
+  shade_lights(params, n, p0, false, &diffuse, &specular);
+  const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
+  const ColourL lit =
+      colour_make(f->albedo[0] * light + highlight, f->albedo[1] * light + highlight, f->albedo[2] * light + highlight);
+  const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
+                                    (floatL)(((background >> 8) & 0xFFu) / 255.0f),
+                                    (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
+  const ColourL c = colour_select(backgroundColour, lit, covered);
+  return pack_rgba(c.r, c.g, c.b);
+}
+
 /* The common case, lean: lambert at one sample per pixel with the 1/w rule,
  * the directional light only, and no textures or vertex colours (materials
  * give each triangle a flat base colour). The host launches this kernel
@@ -796,14 +866,26 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     // cache misses: run by run, resolve of a 10M-triangle sphere took 9.6
     // ms instead of 6.0. Uncovered lanes hold some triangle's values and
     // are replaced by the background at the end.
-    const bool uniform = !CLR_ANY(indexLanes != index[0]);  // a vector compare, not a branch per lane
-    uint starts = uniform ? 1u : 0u;                        // bit lane: a covered run starts there
-    for (uint lane = 0; lane < CLR_LANES && !uniform; ++lane)
-      starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
-    LambertLanes f;
     floatL b1, b2;
     // Without the barycentric planes, the records' vertices recompute them.
     const bool vertices = !resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
+    if (!CLR_ANY(indexLanes != index[0])) {  // a vector compare, not a branch per lane
+      // A uniform row (most rows of large triangles) has its own copy of
+      // the steps, with its own LambertLanes: taken whole, it stays in
+      // registers, where the runs' copy goes through memory.
+      LambertLanes one;
+      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[0],
+                           (intL)(-1), vertices, &one);
+      if (vertices)
+        vis_barycentrics(one.x[0], one.y[0], one.x[1], one.y[1], one.x[2], one.y[2], one.scale, covered,
+                         resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
+      store_row(resolve_lambert_colour(params, clipBary, &one, b1, b2, covered, background), count, out);
+      return;
+    }
+    uint starts = 0;  // bit lane: a covered run starts there
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
+    LambertLanes f;
     if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
       resolve_lambert_gather(params, setup, source, clipBary, indices, normals, triMaterial, materials, index,
                              indexLanes, firstX, py, vertices, &f, &b1, &b2);
@@ -821,63 +903,7 @@ CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
         vis_barycentrics(f.x[0], f.y[0], f.x[1], f.y[1], f.x[2], f.y[2], f.scale, covered,
                          resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
     }
-    // Step 2: resolve_shade's lambert path in lane types: the 1/w rule,
-    const floatL* q = f.invW;
-    const uintL sourceL = f.source;
-    const floatL b[3] = {1.0f - b1 - b2, b1, b2};
-    floatL lambda[3];
-    const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
-    for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
-    // then the weights mu_j of the input vertices: lambda itself, with
-    // vertices 1 and 2 swapped for a back face, or through ClipBary for a
-    // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
-    // or swap matrix there, which gives the same floats.) A back face's
-    // normal flips: an unclipped one's source word says so (it is also the
-    // swap), a clipped one's ClipBary slot.
-    const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
-    const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
-    intL backL = swappedL;
-    floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
-    if (CLR_ANY(clippedL)) {
-      int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
-      uint from[CLR_LANES];
-      CLR_STORE_LANES(clippedL, clippedLane);
-      CLR_STORE_LANES(sourceL, from);
-      float l[3][CLR_LANES], m[3][CLR_LANES];
-      for (int i = 0; i < 3; ++i) {
-        CLR_STORE_LANES(lambda[i], l[i]);
-        CLR_STORE_LANES(mu[i], m[i]);
-      }
-      for (uint lane = 0; lane < CLR_LANES; ++lane) {
-        clippedBack[lane] = 0;
-        if (!clippedLane[lane]) continue;
-        __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
-        for (int j = 0; j < 3; ++j) {
-          m[j][lane] = 0.0f;
-          for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
-        }
-        clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
-      }
-      for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
-      backL = backL | CLR_LOAD_LANES(clippedBack);
-    }
-    floatL n[3];
-    for (int k = 0; k < 3; ++k) {
-      n[k] = 0.0f;
-      for (int j = 0; j < 3; ++j) n[k] += mu[j] * f.normal[j][k];
-    }
-    resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, backL));
-    floatL diffuse, specular;
-    const floatL p0[3] = {0.0f, 0.0f, 0.0f};
-    shade_lights(params, n, p0, false, &diffuse, &specular);
-    const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
-    const ColourL lit =
-        colour_make(f.albedo[0] * light + highlight, f.albedo[1] * light + highlight, f.albedo[2] * light + highlight);
-    const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
-                                      (floatL)(((background >> 8) & 0xFFu) / 255.0f),
-                                      (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
-    const ColourL c = colour_select(backgroundColour, lit, covered);
-    colour = pack_rgba(c.r, c.g, c.b);
+    colour = resolve_lambert_colour(params, clipBary, &f, b1, b2, covered, background);
   }
   // Step 3: store the row.
   store_row(colour, count, out);
