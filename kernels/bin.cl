@@ -184,6 +184,33 @@ CLR_INLINE void bin_fill_run(uint tile, const uint* setupIndex, uint count, __gl
   for (uint i = 0; i < count; ++i) binEntries[at + i] = setupIndex[i];
 }
 
+/* True when tile ranges a and b are the same. */
+CLR_INLINE bool bin_same_range(int4 a, int4 b)
+{
+  return a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w;
+}
+
+/* Pass 1 for a run of `count` consecutive triangles on one range r of
+ * several tiles under bbox traversal: one atomic add per tile for the whole
+ * run. Large triangles come in such runs where a mesh is made of quads (the
+ * two halves of a wall share their tiles). */
+CLR_CALLED void bin_count_range_run(int4 r, uint count, __constant FrameParams* params, __global uint* tileCount)
+{
+  for (int ty = r.y; ty <= r.w; ++ty)
+    for (int tx = r.x; tx <= r.z; ++tx) atomic_add(&tileCount[ty * params->tilesX + tx], count);
+}
+
+/* Pass 2 for the same runs: one atomic add per tile takes the run's
+ * entries there (bin_fill_run). */
+CLR_CALLED void bin_fill_range_run(int4 r, const uint* setupIndex, uint count, __constant FrameParams* params,
+                                   __global const uint* tileOffset, __global uint* tileCursor,
+                                   __global uint* binEntries)
+{
+  for (int ty = r.y; ty <= r.w; ++ty)
+    for (int tx = r.x; tx <= r.z; ++tx)
+      bin_fill_run(ty * params->tilesX + tx, setupIndex, count, tileOffset, tileCursor, binEntries);
+}
+
 /* Pass 2 for clipped triangles: their records lie in CLR_MAX_SUBTRIS
  * reserved slots from clipList[i] (setup_clip put the first record's index
  * there); one work-item per slot. Each writes its record's source word,

@@ -320,6 +320,8 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
   // branch per lane on survival costs more than the counting.
   BinTally tally;
   bin_tally_init(&tally);
+  int4 rangeRun = (int4)(0);
+  uint rangeRunLength = 0;
   while (survivors) {
     const uint lane = 31 - clz(survivors & (0u - survivors));  // the lowest set bit
     survivors &= survivors - 1;
@@ -330,10 +332,21 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
       if (!one) bin_tally_add(&tally, r.w * params->tilesX + r.z, tileCount);
       continue;
     }
-    TriSetup t;  // read only by hierarchical traversal's tile test
-    if (bin_hierarchical(params, r)) setup_lane(l, lane, &t);
-    bin_count_tiles(&t, r, params, tileCount);
+    if (bin_hierarchical(params, r)) {
+      TriSetup t;  // for traversal's tile test
+      setup_lane(l, lane, &t);
+      bin_count_tiles(&t, r, params, tileCount);
+      continue;
+    }
+    // Several tiles, bbox traversal: runs on one range (bin_count_range_run).
+    if (rangeRunLength > 0 && !bin_same_range(r, rangeRun)) {
+      bin_count_range_run(rangeRun, rangeRunLength, params, tileCount);
+      rangeRunLength = 0;
+    }
+    rangeRun = r;
+    ++rangeRunLength;
   }
+  if (rangeRunLength > 0) bin_count_range_run(rangeRun, rangeRunLength, params, tileCount);
   bin_tally_end(&tally, tileCount);
 }
 
@@ -359,6 +372,8 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
                                  __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
   uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
+  int4 rangeRun = (int4)(0);
+  uint rangeRunLength = 0, rangeRunSetup[CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     if (!write[lane]) continue;
     const uint s = first + lane;
@@ -369,10 +384,19 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
       bin_fill_two_tiles(r, s, params, tileOffset, tileCursor, binEntries);
       continue;
     }
-    if (r.x != r.z || r.y != r.w) {
-      TriSetup t;  // read only by hierarchical traversal's tile test
-      if (bin_hierarchical(params, r)) setup_lane(l, lane, &t);
+    if (bin_hierarchical(params, r)) {
+      TriSetup t;  // for traversal's tile test
+      setup_lane(l, lane, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
+      continue;
+    }
+    if (r.x != r.z || r.y != r.w) {  // as in pass 1: runs on one range
+      if (rangeRunLength > 0 && !bin_same_range(r, rangeRun)) {
+        bin_fill_range_run(rangeRun, rangeRunSetup, rangeRunLength, params, tileOffset, tileCursor, binEntries);
+        rangeRunLength = 0;
+      }
+      rangeRun = r;
+      rangeRunSetup[rangeRunLength++] = s;
       continue;
     }
     const uint tile = r.y * params->tilesX + r.x;
@@ -384,6 +408,8 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
     runSetup[runLength++] = s;
   }
   if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
+  if (rangeRunLength > 0)
+    bin_fill_range_run(rangeRun, rangeRunSetup, rangeRunLength, params, tileOffset, tileCursor, binEntries);
 }
 
 /* Passes 1 and 2 are one kernel, launched twice with `pass`

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -388,7 +389,9 @@ TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds 
   // tallies them for the two tiles it counted last (bin_tally) and the emit
   // pass writes them: one-tile triangles, two-tile ones across a tile edge,
   // four-tile ones at tile corners, and every 37th a larger one over several
-  // tiles between them. The expected bins come from the records' snapped
+  // tiles between them, whose two halves share their tiles (the passes bin
+  // such a run with one atomic add per tile: bin_count_range_run and
+  // bin_fill_range_run). The expected bins come from the records' snapped
   // vertices, as bin_pixel_bounds takes them.
   const uint32_t W = 100, H = 70;
   std::mt19937 rng(5);
@@ -414,7 +417,8 @@ TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds 
   const uint32_t tilesX = pipeline.params().tilesX, tiles = tilesX * pipeline.params().tilesY;
   // Step 1: each record's tiles (one sample per pixel, at the centre).
   std::vector<std::vector<uint32_t>> expected(tiles);
-  size_t oneTile = 0, twoTiles = 0, more = 0;
+  size_t oneTile = 0, twoTiles = 0, more = 0, moreAfterSameRange = 0;
+  std::array<int, 4> previousRange{-1, -1, -1, -1};
   for (uint32_t s = 0; s < setup.size(); ++s) {
     const clr::SetupRecord& r = setup[s];
     const int minX = std::min({r.x[0], r.x[1], r.x[2]}), maxX = std::max({r.x[0], r.x[1], r.x[2]});
@@ -430,6 +434,9 @@ TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds 
     oneTile += count == 1;
     twoTiles += count == 2;
     more += count > 2;
+    const std::array<int, 4> range{tx0, ty0, tx1, ty1};
+    moreAfterSameRange += count > 2 && range == previousRange;
+    previousRange = range;
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx) expected[ty * tilesX + tx].push_back(s);
   }
@@ -441,7 +448,8 @@ TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds 
     std::sort(bin.begin(), bin.end());
     CHECK(bin == expected[t]);
   }
-  CHECK((oneTile > 1000 && twoTiles > 100 && more > 20));  // the premise: all three kinds occur
+  CHECK((oneTile > 1000 && twoTiles > 100 && more > 20));  // the premise: all three kinds occur,
+  CHECK(moreAfterSameRange > 5);                           // and runs on one range of several tiles
   const ref::Result reference = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
   CHECK(test::countDifferences(ids, reference.triId) == 0);
 }
