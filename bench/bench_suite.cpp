@@ -3,7 +3,7 @@
 // llvmpipe again with its fixed-function lighting per vertex.
 //
 //   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
-//                  [--size WxH] [--warmup K] [--frames N] [--device SEL]
+//                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
 //
@@ -13,8 +13,10 @@
 // --view "far" (whole scene), "fill" (the scene filling the viewport) or
 // "near" (camera close). A file's materials, textures and vertex colours are
 // set aside, so that both renderers light the built-in grey albedo. Each
-// renderer draws K warm-up then N timed frames, each up to an RGBA8 image the
-// host can read where the renderer left it: clraster is Pipeline::render into
+// renderer draws N timed frames, in R rounds (4 unless --rounds; at most N)
+// that take turns between the renderers, each round K warm-up frames then
+// its share of the N, each frame up to an RGBA8 image the host can read
+// where the renderer left it: clraster is Pipeline::render into
 // an ImageView (parameter upload to the image buffer mapped, which on a CPU
 // device is no copy) on the clraster device; llvmpipe is glClear +
 // glDrawElements + glFinish into OSMesa's host buffer, with LP_NUM_THREADS
@@ -79,7 +81,7 @@ struct Args {
   uint32_t gridSide = 0;
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
-  uint32_t warmup = 2, frames = 5;
+  uint32_t warmup = 2, frames = 5, rounds = 4;
   std::string device;
   bool ids = true;
   std::string name;
@@ -117,6 +119,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.warmup = uint32_t(parseUnsigned(a, flagValue(args, i), 0, 100000));
     } else if (a == "--frames") {
       r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
+    } else if (a == "--rounds") {
+      r.rounds = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
     } else if (a == "--device") {
       r.device = flagValue(args, i);
     } else if (a == "--no-ids") {
@@ -193,28 +197,28 @@ struct ClrasterRun {
   std::vector<uint32_t> image, ids;
 };
 
-ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera)
+// clraster's timed frames of one round (after `warmup` untimed ones),
+// appended to run.frameMs and `timed`; run.image holds the last frame.
+void timeClrasterRound(Pipeline& pipeline, const FrameSettings& settings, uint32_t warmup, uint32_t frames,
+                       ClrasterRun& run, std::vector<FrameStats>& timed)
 {
-  // Step 1: device, program and scene upload (not timed).
-  ClContext cl(args.device);
-  Pipeline pipeline(cl);
-  pipeline.uploadScene(mesh);
-  FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
-
-  // Step 2: warm-up and timed frames.
-  ClrasterRun run;
-  run.device = cl.info.name;
-  std::vector<FrameStats> timed;
   ImageView view;
-  for (uint32_t f = 0; f < args.warmup + args.frames; ++f) {
+  for (uint32_t f = 0; f < warmup + frames; ++f) {
     const auto start = std::chrono::steady_clock::now();
     FrameStats stats = pipeline.render(settings, view);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (f < args.warmup) continue;
+    if (f < warmup) continue;
     run.frameMs.push_back(ms);
     timed.push_back(std::move(stats));
   }
   run.image.assign(view.pixels, view.pixels + size_t(view.width) * view.height);
+}
+
+// After the rounds: the stages' medians, the memory, and the ID frame for
+// the coverage comparison.
+void finishClraster(const Args& args, Pipeline& pipeline, FrameSettings settings, const std::vector<FrameStats>& timed,
+                    ClrasterRun& run)
+{
   for (const auto& entry : timed.front().stageMs) {
     std::vector<double> perFrame;
     for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);
@@ -222,14 +226,11 @@ ClrasterRun runClraster(const Args& args, const Mesh& mesh, const Camera& camera
   }
   run.last = timed.back();
   run.deviceBytes = pipeline.deviceBytes();
-
-  // Step 3: the ID frame for the coverage comparison.
   if (args.ids) {
     settings.shadeMode = CLR_SHADE_ID;
     pipeline.render(settings, run.ids);
     for (uint32_t& p : run.ids) p &= kIdMask;
   }
-  return run;
 }
 
 // A renderer's timed frames: median, fastest and slowest, ms.
@@ -386,13 +387,33 @@ int run(const Args& args)
   if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
   const Camera camera = benchCamera(scene, args.view, args.width, args.height);
 
-  // Step 2: both renderers, one after the other (never concurrently).
-  const ClrasterRun clr = runClraster(args, mesh, camera);
+  // Step 2: the three renderers in turn (never concurrently), round after
+  // round, each round with its own warm-up: a slower spell of the shared
+  // host then falls on all three, not on whichever ran during it. clraster's
+  // device, program and scene stay loaded across the rounds.
+  ClContext cl(args.device);
+  Pipeline pipeline(cl);
+  pipeline.uploadScene(mesh);
+  const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
-  const LlvmpipeFrames llvm = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(),
-                                                    LambertShading::perPixel, args.warmup, args.frames);
-  const LlvmpipeFrames llvmVertex = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(),
-                                                          LambertShading::perVertex, args.warmup, args.frames);
+  ClrasterRun clr;
+  clr.device = cl.info.name;
+  std::vector<FrameStats> timed;
+  LlvmpipeFrames llvm, llvmVertex;
+  const uint32_t rounds = std::min(args.rounds, args.frames);
+  for (uint32_t round = 0; round < rounds; ++round) {
+    const uint32_t frames = args.frames / rounds + (round < args.frames % rounds ? 1 : 0);
+    timeClrasterRound(pipeline, settings, args.warmup, frames, clr, timed);
+    for (LambertShading shading : {LambertShading::perPixel, LambertShading::perVertex}) {
+      LlvmpipeFrames part = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(), shading,
+                                                  args.warmup, frames);
+      LlvmpipeFrames& all = shading == LambertShading::perPixel ? llvm : llvmVertex;
+      all.frameMs.insert(all.frameMs.end(), part.frameMs.begin(), part.frameMs.end());
+      all.image = std::move(part.image);
+      all.renderer = part.renderer;
+    }
+  }
+  finishClraster(args, pipeline, settings, timed, clr);
 
   // Step 3: agreement: ID coverage and the lambert images.
   Report r;

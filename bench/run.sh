@@ -180,7 +180,7 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "CPU: $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) cores." \
     "clraster device: $clr_device ($clr_driver)." \
     "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?'), LP_NUM_THREADS=$LP_NUM_THREADS; POCL_AFFINITY=$POCL_AFFINITY."
-  echo "Frames: $warmup warm-up then $frames timed per case (10M-triangle cases: 1 and 5); times are medians with (min–max)."
+  echo "Frames: $frames timed per case and renderer (10M-triangle cases: 5), in four rounds that take turns between the renderers, each round after $warmup warm-up frames (10M: 1); times are medians with (min–max)."
   echo
   echo "## Device peaks (clraster_peak, best of 50)"
   echo
