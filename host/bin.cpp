@@ -1,7 +1,8 @@
 // bin.cpp — host side of kernels/bin.cl. setup() has counted every
 // triangle's tiles; this scans the counts into per-tile offsets, gives each
 // non-empty tile its block of the visibility buffer, sizes binEntries from
-// the exact total (one synchronisation reads both totals), then emits the
+// the exact total (one synchronisation reads both totals, setup's own when
+// it enqueued the scans before it: setup.cpp), then emits the
 // unclipped triangles with setup_emit, which fills their bins as it writes
 // their records, and fills the clipped triangles' bins.
 #include "pipeline.h"
@@ -10,15 +11,15 @@ namespace clr {
 
 void Pipeline::bin()
 {
-  // Step 1: a slot of the visibility buffer for each tile with triangles
-  // (the non-zero counts, scanned before the counts are), the tile offsets,
-  // and both totals in one read.
-  cl_ulong binTotal = 0, slotTotal = 0;
-  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", &slotTotal);
-  scan(tileCount_, numTiles_, "bin_scan", &binTotal);
-  cl_.queue.finish();
-  numBinEntries_ = binTotal;
-  numVisSlots_ = uint32_t(slotTotal);
+  // Step 1: a slot of the visibility buffer for each tile with triangles,
+  // the tile offsets, and both totals in one read (setup() may have done
+  // this before its own wait).
+  if (!binScanned_) {
+    enqueueBinScans();
+    cl_.queue.finish();
+  }
+  numBinEntries_ = binTotal_;
+  numVisSlots_ = uint32_t(slotTotal_);
   if (numBinEntries_ > UINT32_MAX)
     throw Error("the frame needs " + std::to_string(numBinEntries_) +
                 " bin entries, more than the 2^32 a 32-bit offset can address");
@@ -44,6 +45,13 @@ void Pipeline::bin()
   cl_.queue.enqueueNDRangeKernel(binFillClippedKernel_, cl::NullRange, linear(uint64_t(numClipped_) * CLR_MAX_SUBTRIS),
                                  cl::NDRange(64), nullptr, &fillEvent);
   record("bin_fill", fillEvent);
+}
+
+void Pipeline::enqueueBinScans()
+{
+  // The non-zero counts are scanned before the counts are, in place.
+  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", &slotTotal_);
+  scan(tileCount_, numTiles_, "bin_scan", &binTotal_);
 }
 
 }  // namespace clr

@@ -112,6 +112,7 @@ Pipeline::Pipeline(ClContext& cl)
       tileSlot_(memory_, "tile slots"),
       binEntries_(memory_, "bin entries"),
       scanPartials_(memory_, "scan partial sums"),
+      listingPartials_(memory_, "setup scan partial sums"),
       visIndex_(memory_, "visibility buffer (triangles)"),
       visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
       image_(memory_, "image"),

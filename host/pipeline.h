@@ -189,15 +189,34 @@ class Pipeline {
   // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
   uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
                        cl_ulong* total = nullptr);
-  // The scan of the setup counts (one byte per input triangle): lists the
-  // input triangle behind each setup record into `sources`, sized to the
-  // total, which it returns (shared.h, setupSource).
-  uint64_t scanListingSources(const DeviceBuffer<uint8_t>& counts, uint32_t n, DeviceBuffer<uint32_t>& sources,
-                              const char* stage);
-  // The three phases of scan_chunks over n counts: `src` into `dst`, or with
-  // `sources`, `byteCounts` listed into them (src and dst then unused).
+  // The scan of the setup counts (one byte per input triangle), which lists
+  // the input triangle behind each setup record into `sources` (shared.h,
+  // setupSource), in two calls: Begin sums the chunks and enqueues the total
+  // to land in *total (valid once the queue has finished); Finish sizes
+  // `sources` to it and lists. Other scans may run between the two.
+  void scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, cl_ulong* total);
+  void scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
+                         DeviceBuffer<uint32_t>& sources, const char* stage);
+  // A scan of n counts: src into dst (countNonZero: whether a count adds
+  // itself or 1 when non-zero); a listing reads the byte counts `bytes`
+  // and writes sources to scanApply's `out`.
+  struct ScanJob {
+    const cl::Buffer& src;
+    const cl::Buffer& dst;
+    const cl::Buffer& bytes;
+    uint32_t nonZero, listing;
+  };
   uint64_t scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n, const char* stage,
-                    cl_ulong* total, const cl::Buffer* byteCounts = nullptr, DeviceBuffer<uint32_t>* sources = nullptr);
+                    cl_ulong* total);
+  // scan_chunks' phases (scan.cl): the chunk sums and their scan into
+  // `partials`, then the rescan of every chunk into `out`.
+  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
+  void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const cl::Buffer& out,
+                 const char* stage);
+  // bin()'s two scans of the tile counts (the visibility slots, then the
+  // offsets in place), their totals enqueued to land in binTotal_ and
+  // slotTotal_.
+  void enqueueBinScans();
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
@@ -253,7 +272,12 @@ class Pipeline {
   DeviceBuffer<uint32_t> setupSource_;  // each setup record's source word (shared.h)
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
-  DeviceBuffer<cl_ulong> scanPartials_;
+  DeviceBuffer<cl_ulong> scanPartials_, listingPartials_;
+  // The tile scans' totals; binScanned_: setup() enqueued the scans before
+  // its wait, as it does when the previous frame clipped nothing
+  // (clippedLastFrame_), so that a frame without clipping waits once.
+  cl_ulong binTotal_ = 0, slotTotal_ = 0;
+  bool binScanned_ = false, clippedLastFrame_ = false;
   DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
   DeviceBuffer<float> visAttr_;
   DeviceBuffer<uint32_t> image_;
