@@ -10,7 +10,13 @@
  * (host bin.cpp, shared.h); then the emit pass writes each unclipped
  * triangle's record and its bin entries in one go (bin_fill_tiles), and
  * bin_fill_clipped fills the entries of the clipped triangles' records.
- * Fusing the passes this way saves reading every setup record twice more. The order inside a tile is
+ * Fusing the passes this way saves reading every setup record twice more.
+ * Both group their atomic adds where a mesh is coherent: the count pass
+ * tallies one- and two-tile triangles for the two tiles it counted last
+ * (bin_tally), the emit pass takes one add for a run of one-tile triangles
+ * in one tile (bin_fill_run), and both take one add per tile for a run of
+ * triangles on one range of several tiles (bin_count_range_run,
+ * bin_fill_range_run). The order inside a tile is
  * not deterministic; the raster kernel breaks depth ties by setup index,
  * which is input order. With hierarchical traversal (FrameParams.traversal)
  * a tile of the bounds is skipped when all of it lies strictly outside one
