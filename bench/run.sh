@@ -38,8 +38,8 @@
 # charts, which `bash bench/charts.sh RESULTS.csv DIR` draws later elsewhere;
 # BENCH_COMMIT, when set, is the commit the results name. Each case times
 # llvmpipe twice: lighting per pixel as clraster does (the ratio), and per
-# vertex (bench_suite.cpp). Took about 70 s
-# on the 2-core development machine (well under the suite's 15-minute
+# vertex, the three renderers taking turns in four rounds (bench_suite.cpp).
+# Took 94-105 s on the 2-core development machine (well under the suite's 15-minute
 # budget); do not run it beside other heavy jobs if the numbers matter. Any
 # failure stops the suite with a message and a non-zero exit, leaving
 # earlier results in place.
