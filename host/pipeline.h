@@ -209,8 +209,9 @@ class Pipeline {
   uint64_t scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n, const char* stage,
                     cl_ulong* total);
   // scan_chunks' phases (scan.cl): the chunk sums and their scan into
-  // `partials`, then the rescan of every chunk into `out`.
-  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
+  // `partials` (the total enqueued to land in *total when given), then the
+  // rescan of every chunk into `out`.
+  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage, cl_ulong* total);
   void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const cl::Buffer& out,
                  const char* stage);
   // bin()'s two scans of the tile counts (the visibility slots, then the

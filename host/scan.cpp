@@ -38,7 +38,8 @@ ScanChunks scanChunks(uint32_t n)
 
 }  // namespace
 
-void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage)
+void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage,
+                        cl_ulong* total)
 {
   // One kernel object per phase, each with its own arguments.
   const ScanChunks c = scanChunks(n);
@@ -53,6 +54,9 @@ void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& 
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, group, group, nullptr, &partialsEvent);
   record(stage, reduceEvent);
   record(stage, partialsEvent);
+  // The 64-bit total, which the partials phase writes after the chunks'
+  // sums: enqueued to land in *total, valid once the queue has finished.
+  if (total) cl_.queue.enqueueReadBuffer(partials.get(), CL_FALSE, c.count * sizeof(cl_ulong), sizeof(cl_ulong), total);
 }
 
 void Pipeline::scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const cl::Buffer& out,
@@ -71,9 +75,7 @@ void Pipeline::scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n,
 {
   // (src and dst are not read: any buffer of the frame will do.)
   const ScanJob job{counts.get(), counts.get(), counts.get(), 0u, 1u};
-  scanSums(job, n, listingPartials_, stage);
-  cl_.queue.enqueueReadBuffer(listingPartials_.get(), CL_FALSE, scanChunks(n).count * sizeof(cl_ulong),
-                              sizeof(cl_ulong), total);
+  scanSums(job, n, listingPartials_, stage, total);
 }
 
 void Pipeline::scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
@@ -89,16 +91,10 @@ uint64_t Pipeline::scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool c
 {
   // (bytes is read only by a listing: src will do.)
   const ScanJob job{src, dst, src, countNonZero ? 1u : 0u, 0u};
-  scanSums(job, n, scanPartials_, stage);
+  scanSums(job, n, scanPartials_, stage, total);
   scanApply(job, n, scanPartials_, dst, stage);
-  // The 64-bit total: read now, or (with `total`) enqueued to land in
-  // *total, valid once the queue has finished.
-  const uint32_t numChunks = scanChunks(n).count;
-  if (total) {
-    cl_.queue.enqueueReadBuffer(scanPartials_.get(), CL_FALSE, numChunks * sizeof(cl_ulong), sizeof(cl_ulong), total);
-    return 0;
-  }
-  return scanPartials_.download(1, numChunks)[0];
+  // The 64-bit total: enqueued (with `total`), or read now.
+  return total ? 0 : scanPartials_.download(1, scanChunks(n).count)[0];
 }
 
 }  // namespace clr

@@ -217,6 +217,35 @@ CLR_CALLED void bin_fill_range_run(int4 r, const uint* setupIndex, uint count, _
       bin_fill_run(ty * params->tilesX + tx, setupIndex, count, tileOffset, tileCursor, binEntries);
 }
 
+/* Pass 2's run of consecutive triangles (setup indices, at most one batch)
+ * on one tile range: one tile (bin_fill_run), or several under bbox
+ * traversal (bin_fill_range_run). bin_run_add writes the run out when the
+ * next triangle's range differs; bin_run_end writes what is left. */
+typedef struct BinRun {
+  int4 range;
+  uint length, setupIndex[CLR_LANES];
+} BinRun;
+
+CLR_INLINE void bin_run_end(BinRun* run, __constant FrameParams* params, __global const uint* tileOffset,
+                            __global uint* tileCursor, __global uint* binEntries)
+{
+  const int4 r = run->range;
+  if (run->length == 0) return;
+  if (r.x == r.z && r.y == r.w)
+    bin_fill_run(r.y * params->tilesX + r.x, run->setupIndex, run->length, tileOffset, tileCursor, binEntries);
+  else
+    bin_fill_range_run(r, run->setupIndex, run->length, params, tileOffset, tileCursor, binEntries);
+  run->length = 0;
+}
+
+CLR_INLINE void bin_run_add(BinRun* run, int4 r, uint s, __constant FrameParams* params,
+                            __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
+{
+  if (run->length > 0 && !bin_same_range(r, run->range)) bin_run_end(run, params, tileOffset, tileCursor, binEntries);
+  run->range = r;
+  run->setupIndex[run->length++] = s;
+}
+
 /* Pass 2 for clipped triangles: their records lie in CLR_MAX_SUBTRIS
  * reserved slots from clipList[i] (setup_clip put the first record's index
  * there); one work-item per slot. Each writes its record's source word,

@@ -364,16 +364,16 @@ CLR_INLINE void setup_count_none(__constant FrameParams* params, uint first, __g
 /* Pass 2 for the same lanes: writes the unclipped screen triangles (the
  * `write` lanes) at their places, with their winding in their source
  * words, and each into its tiles' bins; runs of one-tile triangles in one
- * tile take their entries with one atomic add, a two-tile triangle one per
- * tile. (Pass 1's two-tile tally, holding the setup indices until a tile
- * leaves, measured no faster here.) */
+ * tile take their entries with one atomic add, runs on one range of several
+ * tiles one per tile (BinRun, bin.cl), a two-tile triangle one per tile.
+ * (Pass 1's two-tile tally, holding the setup indices until a tile leaves,
+ * measured no faster here.) */
 CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
                                  const SetupLanes* l, __global TriSetup* setup, __global uint* source,
                                  __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
 {
-  uint runTile = 0, runLength = 0, runSetup[CLR_LANES];
-  int4 rangeRun = (int4)(0);
-  uint rangeRunLength = 0, rangeRunSetup[CLR_LANES];
+  BinRun oneTile, range;  // runs of one-tile triangles; of triangles on one range of several tiles
+  oneTile.length = range.length = 0;
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     if (!write[lane]) continue;
     const uint s = first + lane;
@@ -382,34 +382,18 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
     const int4 r = setup_lane_tiles(l, lane);
     if (bin_two_tiles(params, r)) {
       bin_fill_two_tiles(r, s, params, tileOffset, tileCursor, binEntries);
-      continue;
-    }
-    if (bin_hierarchical(params, r)) {
+    } else if (bin_hierarchical(params, r)) {
       TriSetup t;  // for traversal's tile test
       setup_lane(l, lane, &t);
       bin_fill_tiles(&t, r, s, params, tileOffset, tileCursor, binEntries);
-      continue;
+    } else if (r.x == r.z && r.y == r.w) {
+      bin_run_add(&oneTile, r, s, params, tileOffset, tileCursor, binEntries);
+    } else {
+      bin_run_add(&range, r, s, params, tileOffset, tileCursor, binEntries);
     }
-    if (r.x != r.z || r.y != r.w) {  // as in pass 1: runs on one range
-      if (rangeRunLength > 0 && !bin_same_range(r, rangeRun)) {
-        bin_fill_range_run(rangeRun, rangeRunSetup, rangeRunLength, params, tileOffset, tileCursor, binEntries);
-        rangeRunLength = 0;
-      }
-      rangeRun = r;
-      rangeRunSetup[rangeRunLength++] = s;
-      continue;
-    }
-    const uint tile = r.y * params->tilesX + r.x;
-    if (runLength > 0 && tile != runTile) {
-      bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
-      runLength = 0;
-    }
-    runTile = tile;
-    runSetup[runLength++] = s;
   }
-  if (runLength > 0) bin_fill_run(runTile, runSetup, runLength, tileOffset, tileCursor, binEntries);
-  if (rangeRunLength > 0)
-    bin_fill_range_run(rangeRun, rangeRunSetup, rangeRunLength, params, tileOffset, tileCursor, binEntries);
+  bin_run_end(&oneTile, params, tileOffset, tileCursor, binEntries);
+  bin_run_end(&range, params, tileOffset, tileCursor, binEntries);
 }
 
 /* Passes 1 and 2 are one kernel, launched twice with `pass`
