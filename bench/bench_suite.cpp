@@ -192,6 +192,7 @@ struct ClrasterRun {
   std::string device;
   std::vector<double> frameMs;
   std::map<std::string, double> stageMs;  // medians over the timed frames
+  double deviceIdleMs = 0;                // median over the timed frames (FrameStats)
   FrameStats last;
   size_t deviceBytes = 0;
   std::vector<uint32_t> image, ids;
@@ -224,6 +225,9 @@ void finishClraster(const Args& args, Pipeline& pipeline, FrameSettings settings
     for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);
     run.stageMs[entry.first] = median(perFrame);
   }
+  std::vector<double> idle;
+  for (const FrameStats& s : timed) idle.push_back(s.deviceIdleMs);
+  run.deviceIdleMs = median(idle);
   run.last = timed.back();
   run.deviceBytes = pipeline.deviceBytes();
   if (args.ids) {
@@ -307,6 +311,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"resolve_ms", number(r.resolveMs, "%.3f")},
       {"other_stages_ms", number(r.otherMs, "%.3f")},
       {"stage_ms", r.stages},
+      {"device_idle_ms", number(clr.deviceIdleMs, "%.3f")},
       {"device_bytes", std::to_string(clr.deviceBytes)},
       {"min_bytes", std::to_string(r.minBytes)},
       {"mem_ratio", number(mem, "%.3f")},

@@ -209,12 +209,12 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo
   echo "## Per-stage kernel times (clraster, median ms, OpenCL profiling)"
   echo
-  echo "| case | size | triangles | setup triangles | bin entries | stages |"
-  echo "|---|---|---|---|---|---|"
+  echo "| case | size | triangles | setup triangles | bin entries | stages | device idle between kernels |"
+  echo "|---|---|---|---|---|---|---|"
   awk -F, "$columns"'NR > 1 {
     s = $c["stage_ms"]; gsub(/;/, ", ", s); gsub(/=/, " ", s)
-    printf "| %s | %sx%s | %d | %d | %d | %s |\n", $c["name"], $c["width"], $c["height"], $c["triangles"],
-      $c["setup_triangles"], $c["bin_entries"], s
+    printf "| %s | %sx%s | %d | %d | %d | %s | %s |\n", $c["name"], $c["width"], $c["height"], $c["triangles"],
+      $c["setup_triangles"], $c["bin_entries"], s, $c["device_idle_ms"]
   }' "$csv"
   echo
   echo "## Cold start"
@@ -257,6 +257,9 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "- **raster+resolve GB/s** = (12 B per pixel: the visible triangle's 4-B index written by raster and read"
   echo "  by resolve, the 4-B image written; plus 64 B of triangle setup read per bin entry) / (raster + resolve time);"
   echo "  **% peak** is relative to the copy bandwidth (bytes read + written)."
+  echo "- **device idle between kernels**: median over the timed frames of the time from the first kernel's start to"
+  echo "  the last one's end that no kernel ran (profiling events): launches, buffer fills, reads, and the host's wait"
+  echo "  for the totals that size the buffers. The image's read-back after the last kernel is not in it."
   echo "- Other engineers' jobs may share the host's cores; treat single runs as noisy."
 } >"$md"
 

@@ -16,7 +16,9 @@ void Pipeline::bin()
   // this before its own wait).
   if (!binScanned_) {
     enqueueBinScans();
-    cl_.queue.finish();
+    const std::vector<uint32_t> counters = readCounters();
+    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
+    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
   }
   numBinEntries_ = binTotal_;
   numVisSlots_ = uint32_t(slotTotal_);
@@ -50,8 +52,8 @@ void Pipeline::bin()
 void Pipeline::enqueueBinScans()
 {
   // The non-zero counts are scanned before the counts are, in place.
-  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", &slotTotal_);
-  scan(tileCount_, numTiles_, "bin_scan", &binTotal_);
+  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", CLR_COUNTER_SLOT_TOTAL);
+  scan(tileCount_, numTiles_, "bin_scan", CLR_COUNTER_BIN_TOTAL);
 }
 
 }  // namespace clr

@@ -280,14 +280,22 @@ FrameStats Pipeline::render(const FrameSettings& settings, ImageView& view)
 
 FrameStats Pipeline::finishFrame()
 {
-  // The blocking read waits for every earlier command of the in-order queue.
-  const std::vector<uint32_t> counters = counters_.download(CLR_NUM_COUNTERS);
+  // The image's blocking read or map has waited for every earlier command
+  // of the in-order queue. Only setup_clip adds to the counters after
+  // setup's read: a frame that clipped nothing reads them no more.
+  std::vector<uint32_t> counters(CLR_NUM_COUNTERS, 0u);
+  if (numClipped_ > 0) counters = readCounters();
   FrameStats stats;
+  cl_ulong firstStart = UINT64_MAX, lastEnd = 0, busy = 0;
   for (const auto& [stage, event] : events_) {
     const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
     const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
     stats.stageMs[stage] += double(end - start) * 1e-6;
+    firstStart = std::min(firstStart, start);
+    lastEnd = std::max(lastEnd, end);
+    busy += end - start;
   }
+  if (!events_.empty()) stats.deviceIdleMs = double(lastEnd - firstStart - std::min(busy, lastEnd - firstStart)) * 1e-6;
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
   stats.trianglesCulled = uint64_t(numCulledUnclipped_) + counters[CLR_COUNTER_CULLED_TRIS];

@@ -92,6 +92,9 @@ struct ImageView {
 
 struct FrameStats {
   std::map<std::string, double> stageMs;  // from OpenCL profiling events
+  // From the first kernel's start to the last one's end, the time in no
+  // kernel: launches, fills, reads and the host's waits between them.
+  double deviceIdleMs = 0;
   uint64_t trianglesIn = 0;
   uint64_t trianglesClipped = 0;  // input triangles that needed clipping
   uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
@@ -184,17 +187,19 @@ class Pipeline {
   void runStages(const FrameSettings& settings);
   // Unmaps the image an ImageView showed (before any kernel may write it).
   void unmapImage();
-  // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total.
-  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, cl_ulong* total = nullptr);
+  // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total,
+  // or, given totalAt (a CLR_COUNTER_* index, shared.h), copies it among the
+  // frame's counters for a later read and returns 0 without waiting.
+  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, uint32_t totalAt = CLR_SCAN_NO_TOTAL);
   // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
   uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
-                       cl_ulong* total = nullptr);
+                       uint32_t totalAt = CLR_SCAN_NO_TOTAL);
   // The scan of the setup counts (one byte per input triangle), which lists
   // the input triangle behind each setup record into `sources` (shared.h,
-  // setupSource), in two calls: Begin sums the chunks and enqueues the total
-  // to land in *total (valid once the queue has finished); Finish sizes
-  // `sources` to it and lists. Other scans may run between the two.
-  void scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, cl_ulong* total);
+  // setupSource), in two calls: Begin sums the chunks and copies the total
+  // to the counters at totalAt; Finish sizes `sources` to it and lists.
+  // Other scans may run between the two.
+  void scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, uint32_t totalAt);
   void scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
                          DeviceBuffer<uint32_t>& sources, const char* stage);
   // A scan of n counts: src into dst (countNonZero: whether a count adds
@@ -207,17 +212,24 @@ class Pipeline {
     uint32_t nonZero, listing;
   };
   uint64_t scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n, const char* stage,
-                    cl_ulong* total);
+                    uint32_t totalAt);
   // scan_chunks' phases (scan.cl): the chunk sums and their scan into
-  // `partials` (the total enqueued to land in *total when given), then the
+  // `partials` (the total also into the counters at totalAt), then the
   // rescan of every chunk into `out`.
-  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage, cl_ulong* total);
+  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage, uint32_t totalAt);
   void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const cl::Buffer& out,
                  const char* stage);
   // bin()'s two scans of the tile counts (the visibility slots, then the
-  // offsets in place), their totals enqueued to land in binTotal_ and
-  // slotTotal_.
+  // offsets in place), their totals copied to the counters
+  // (CLR_COUNTER_SLOT_TOTAL, CLR_COUNTER_BIN_TOTAL).
   void enqueueBinScans();
+  // The frame's counters (shared.h, CLR_COUNTER_*), read with a wait for
+  // every command enqueued before; counterTotal joins a total's two words.
+  std::vector<uint32_t> readCounters() const { return counters_.download(CLR_NUM_COUNTERS); }
+  static uint64_t counterTotal(const std::vector<uint32_t>& counters, uint32_t at)
+  {
+    return counters[at] | uint64_t(counters[at + 1]) << 32;
+  }
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }

@@ -15,7 +15,8 @@ void Pipeline::setup()
   const uint32_t numTris = params_.numTris;
   const uint32_t batches = (numTris + cl_.lanes - 1) / cl_.lanes;  // CLR_LANES triangles per work-item
   // Step 1: count, and sum the counts, reading the clip-list length and the
-  // total with one wait; if the clip list was too short, grow it and redo.
+  // total with one wait (one read of the counters, where the scans copy
+  // their totals); if the clip list was too short, grow it and redo.
   // When the previous frame clipped nothing, bin()'s tile scans go before the
   // wait too, so that a frame without clipping waits once (the two waits
   // took 63-80 µs each on the 2-core machine); a frame that does clip counts
@@ -38,11 +39,13 @@ void Pipeline::setup()
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches),
                                    cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
     record("setup_count", countEvent);
-    cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_CLIPPED_TRIS * sizeof(uint32_t), sizeof clipped,
-                                &clipped);
-    scanListingBegin(triCount_, numTris, "setup_scan", &total);
+    scanListingBegin(triCount_, numTris, "setup_scan", CLR_COUNTER_SETUP_TOTAL);
     if (scanTiles) enqueueBinScans();
-    cl_.queue.finish();
+    const std::vector<uint32_t> counters = readCounters();
+    clipped = counters[CLR_COUNTER_CLIPPED_TRIS];
+    total = counterTotal(counters, CLR_COUNTER_SETUP_TOTAL);
+    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
+    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
     const bool growList = clipped > clipList_.capacity(), recount = scanTiles && clipped > 0;
     if (!growList && !recount) break;
     if (growList) clipList_.reserve(clipped);

@@ -6,8 +6,11 @@
  * the sum of the first i values and dst[n] the total, where a value is
  * src[i], or 1 for a non-zero src[i] when countNonZero. Sums are
  * accumulated in 64 bits and the 64-bit total is left in
- * partials[numChunks], so the host can detect a total that does not fit in
- * 32 bits and fail loudly instead of wrapping. One kernel, scan_chunks,
+ * partials[numChunks], and also in counters[totalAt], [totalAt + 1] (low
+ * and high words; shared.h, CLR_COUNTER_*) unless totalAt is
+ * CLR_SCAN_NO_TOTAL, so the host can detect a total that does not fit in
+ * 32 bits and fail loudly instead of wrapping, and read the totals of
+ * several scans and setup's counters with one read. One kernel, scan_chunks,
  * launched three times with its phase: CLR_SCAN_REDUCE (a sum per chunk),
  * CLR_SCAN_PARTIALS (one work-group scans the chunk sums) and
  * CLR_SCAN_APPLY (each chunk rescanned from its offset). One kernel means
@@ -27,8 +30,17 @@
  * most 4096 sums in a few microseconds, so the kernel has no barrier: with
  * one, PoCL took twice as long to compile it (measured: 182 against 81 ms
  * of code generation). */
+/* The total's copy among the frame's counters (two uints, low word first). */
+CLR_INLINE void scan_store_total(__global uint* counters, uint totalAt, ulong total)
+{
+  if (totalAt == CLR_SCAN_NO_TOTAL) return;
+  counters[totalAt] = (uint)total;
+  counters[totalAt + 1] = (uint)(total >> 32);
+}
+
 #if CLR_LANES == 1
-CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums)
+CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums,
+                              __global uint* counters, uint totalAt)
 {
   const uint lid = get_local_id(0);
   const uint per = (numChunks + CLR_SCAN_GROUP(1) - 1) / CLR_SCAN_GROUP(1);
@@ -48,6 +60,7 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local 
       running += v;
     }
     partials[numChunks] = running;
+    scan_store_total(counters, totalAt, running);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   // Step 3: each work-item rescans its run, exclusive.
@@ -59,7 +72,7 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local 
   }
 }
 #else
-CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks)
+CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __global uint* counters, uint totalAt)
 {
   if (get_global_id(0) != 0) return;
   ulong running = 0;
@@ -69,6 +82,7 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks)
     running += v;
   }
   partials[numChunks] = running;
+  scan_store_total(counters, totalAt, running);
 }
 #endif
 
@@ -97,16 +111,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
     __global ulong* partials,          // numChunks + 1
     __global uint* sources,            // listSources: the total (setup records); else unused
     __global const uchar* byteCounts,  // listSources: n, read instead of src; else unused
-    uint phase, uint countNonZero, uint listSources)
+    __global uint* counters,           // CLR_NUM_COUNTERS: the partials phase copies the total to totalAt
+    uint totalAt, uint phase, uint countNonZero, uint listSources)
 {
 #if CLR_LANES == 1
   __local ulong groupSums[CLR_SCAN_GROUP(1)];
 #endif
   if (phase == CLR_SCAN_PARTIALS) {  // the same phase for the whole group, so its barriers are safe
 #if CLR_LANES == 1
-    scan_partials(partials, numChunks, groupSums);
+    scan_partials(partials, numChunks, groupSums, counters, totalAt);
 #else
-    scan_partials(partials, numChunks);
+    scan_partials(partials, numChunks, counters, totalAt);
 #endif
     return;
   }

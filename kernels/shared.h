@@ -180,14 +180,20 @@ typedef uint32_t uint;
 #define CLR_SCAN_PARTIALS 2u /* one work-group scans the chunk sums */
 #define CLR_SCAN_APPLY 1u    /* each chunk rescanned from its offset */
 
-/* Indices into the stats counter buffer. CULLED_TRIS counts only the
- * clipped triangles that produce nothing (setup_clip); the host adds the
- * count pass's culls, which it derives from the scan's total
- * (Pipeline::setup). */
+/* Indices into the frame's counter buffer, zeroed as a frame begins.
+ * CULLED_TRIS counts only the clipped triangles that produce nothing
+ * (setup_clip); the host adds the count pass's culls, which it derives from
+ * the scan's total (Pipeline::setup). The three scans before the host's
+ * wait copy their 64-bit totals there (low word, then high), so that one
+ * read returns them with the clip list's length. */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* clipped input triangles that produced nothing */
 #define CLR_COUNTER_DEAD_RECORDS 2 /* padding records written by setup_clip */
-#define CLR_NUM_COUNTERS 3
+#define CLR_COUNTER_SETUP_TOTAL 3  /* 2 words: setup records (the setup counts' scan) */
+#define CLR_COUNTER_SLOT_TOTAL 5   /* 2 words: visibility-buffer tile slots (bin_slots) */
+#define CLR_COUNTER_BIN_TOTAL 7    /* 2 words: bin entries (bin_scan) */
+#define CLR_NUM_COUNTERS 9
+#define CLR_SCAN_NO_TOTAL 0xFFFFFFFFu /* scan_chunks' totalAt: no copy among the counters */
 
 /* Per-frame constants. Written by the host once per frame; read by every
  * kernel. One struct, 368 bytes. */
@@ -439,7 +445,9 @@ typedef struct VisSample {
  *                                 (position of each input triangle in the
  *                                 far-to-near order; one unused element
  *                                 otherwise); read by raster
- *  counters   uint[CLR_NUM_COUNTERS] setup kernels; host reads for stats
+ *  counters   uint[CLR_NUM_COUNTERS] setup kernels and the scans' totals;
+ *                                 host reads them at its wait, and at the
+ *                                 frame's end for stats when it clipped
  *  image      uint[width·height]  resolve writes RGBA8, top row first
  *                                 (lines_draw then blends the lines in)
  *  lineParams LineParams[1]       host; read by the lines kernels

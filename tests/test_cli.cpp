@@ -267,6 +267,7 @@ TEST_CASE("cli: renders a file and reports stats", "[cli]")
   CHECK(r.out.find("\"triangles_culled\":0") != std::string::npos);
   CHECK(r.out.find("\"frame_ms\":") != std::string::npos);
   CHECK(r.out.find("\"stage_ms\":{") != std::string::npos);
+  CHECK(r.out.find("\"device_idle_ms\":") != std::string::npos);
   CHECK(r.out.find("\"device_bytes\":") != std::string::npos);
   CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
   CHECK(leftoverTemps(png) == 0);
