@@ -51,9 +51,7 @@ void Pipeline::bin()
 
 void Pipeline::enqueueBinScans()
 {
-  // The non-zero counts are scanned before the counts are, in place.
-  scanNonZero(tileCount_, tileSlot_, numTiles_, "bin_slots", CLR_COUNTER_SLOT_TOTAL);
-  scan(tileCount_, numTiles_, "bin_scan", CLR_COUNTER_BIN_TOTAL);
+  scanWithNonZero(tileCount_, tileSlot_, numTiles_, "bin_scan", CLR_COUNTER_BIN_TOTAL, CLR_COUNTER_SLOT_TOTAL);
 }
 
 }  // namespace clr

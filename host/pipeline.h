@@ -191,9 +191,11 @@ class Pipeline {
   // or, given totalAt (a CLR_COUNTER_* index, shared.h), copies it among the
   // frame's counters for a later read and returns 0 without waiting.
   uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, uint32_t totalAt = CLR_SCAN_NO_TOTAL);
-  // out[i] = how many of counts[0 .. i) are non-zero; out[n] the total.
-  uint64_t scanNonZero(const DeviceBuffer<uint32_t>& counts, DeviceBuffer<uint32_t>& out, uint32_t n, const char* stage,
-                       uint32_t totalAt = CLR_SCAN_NO_TOTAL);
+  // scan() with totalAt, which in the same launches also writes how many of
+  // data[0 .. i) are non-zero into nonZero[i] (nonZero[n] the count, also
+  // copied to the counters at nonZeroTotalAt).
+  void scanWithNonZero(DeviceBuffer<uint32_t>& data, DeviceBuffer<uint32_t>& nonZero, uint32_t n, const char* stage,
+                       uint32_t totalAt, uint32_t nonZeroTotalAt);
   // The scan of the setup counts (one byte per input triangle), which lists
   // the input triangle behind each setup record into `sources` (shared.h,
   // setupSource), in two calls: Begin sums the chunks and copies the total
@@ -202,26 +204,25 @@ class Pipeline {
   void scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, uint32_t totalAt);
   void scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
                          DeviceBuffer<uint32_t>& sources, const char* stage);
-  // A scan of n counts: src into dst (countNonZero: whether a count adds
-  // itself or 1 when non-zero); a listing reads the byte counts `bytes`
-  // and writes sources to scanApply's `out`.
+  // scan_chunks' arguments (scan.cl): src into dst, with alsoNonZero the
+  // non-zero counts into `second` too; a listing reads the byte counts
+  // `bytes` and writes the sources into `second`; the totals go to the
+  // counters at totalAt and nonZeroTotalAt unless CLR_SCAN_NO_TOTAL.
   struct ScanJob {
     const cl::Buffer& src;
     const cl::Buffer& dst;
+    const cl::Buffer& second;
     const cl::Buffer& bytes;
-    uint32_t nonZero, listing;
+    uint32_t alsoNonZero, listing;
+    uint32_t totalAt, nonZeroTotalAt;
   };
-  uint64_t scanInto(const cl::Buffer& src, const cl::Buffer& dst, bool countNonZero, uint32_t n, const char* stage,
-                    uint32_t totalAt);
-  // scan_chunks' phases (scan.cl): the chunk sums and their scan into
-  // `partials` (the total also into the counters at totalAt), then the
-  // rescan of every chunk into `out`.
-  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage, uint32_t totalAt);
-  void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const cl::Buffer& out,
-                 const char* stage);
-  // bin()'s two scans of the tile counts (the visibility slots, then the
-  // offsets in place), their totals copied to the counters
-  // (CLR_COUNTER_SLOT_TOTAL, CLR_COUNTER_BIN_TOTAL).
+  // scan_chunks' phases: the chunk sums and their scan into `partials`,
+  // then the rescan of every chunk.
+  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
+  void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage);
+  // bin()'s scan of the tile counts: the offsets in place, and the
+  // visibility slots (the non-zero counts) in the same launches, their
+  // totals copied to the counters (CLR_COUNTER_BIN_TOTAL, SLOT_TOTAL).
   void enqueueBinScans();
   // The frame's counters (shared.h, CLR_COUNTER_*), read with a wait for
   // every command enqueued before; counterTotal joins a total's two words.

@@ -1,15 +1,16 @@
 /* scan.cl — exclusive prefix sum of a uint array.
  *
- * Used over per-triangle setup counts, per-tile bin counts and (counting
- * the non-zero tile counts) the visibility buffer's tile slots. src and
- * dst have n + 1 elements and may be the same buffer; on return dst[i] is
- * the sum of the first i values and dst[n] the total, where a value is
- * src[i], or 1 for a non-zero src[i] when countNonZero. Sums are
- * accumulated in 64 bits and the 64-bit total is left in
- * partials[numChunks], and also in counters[totalAt], [totalAt + 1] (low
- * and high words; shared.h, CLR_COUNTER_*) unless totalAt is
- * CLR_SCAN_NO_TOTAL, so the host can detect a total that does not fit in
- * 32 bits and fail loudly instead of wrapping, and read the totals of
+ * Used over per-triangle setup counts and per-tile bin counts. src and dst
+ * have n + 1 elements and may be the same buffer; on return dst[i] is the
+ * sum of the first i values and dst[n] the total. With alsoNonZero the same
+ * pass also scans the count of non-zero values into `second` (n + 1
+ * elements; over the tile counts, the visibility buffer's tile slots), with
+ * its chunk sums after the values' in `partials`. Sums are accumulated in
+ * 64 bits and a 64-bit total is left in partials[numChunks] (the non-zero
+ * count's after it), and also in counters[totalAt], [totalAt + 1] (low and
+ * high words; shared.h, CLR_COUNTER_*) unless totalAt is CLR_SCAN_NO_TOTAL
+ * (likewise nonZeroTotalAt), so the host can detect a total that does not
+ * fit in 32 bits and fail loudly instead of wrapping, and read the totals of
  * several scans and setup's counters with one read. One kernel, scan_chunks,
  * launched three times with its phase: CLR_SCAN_REDUCE (a sum per chunk),
  * CLR_SCAN_PARTIALS (one work-group scans the chunk sums) and
@@ -24,12 +25,6 @@
  */
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
-/* CLR_SCAN_PARTIALS: the exclusive scan of partials[0 .. numChunks), the
- * total into partials[numChunks]. On a GPU one work-group shares it out
- * (with barriers). On a CPU (CLR_LANES > 1) one work-item scans the at
- * most 4096 sums in a few microseconds, so the kernel has no barrier: with
- * one, PoCL took twice as long to compile it (measured: 182 against 81 ms
- * of code generation). */
 /* The total's copy among the frame's counters (two uints, low word first). */
 CLR_INLINE void scan_store_total(__global uint* counters, uint totalAt, ulong total)
 {
@@ -38,6 +33,12 @@ CLR_INLINE void scan_store_total(__global uint* counters, uint totalAt, ulong to
   counters[totalAt + 1] = (uint)(total >> 32);
 }
 
+/* CLR_SCAN_PARTIALS: the exclusive scan of partials[0 .. numChunks), the
+ * total into partials[numChunks]. On a GPU one work-group shares it out
+ * (with barriers). On a CPU (CLR_LANES > 1) one work-item scans the at
+ * most 4096 sums in a few microseconds, so the kernel has no barrier: with
+ * one, PoCL took twice as long to compile it (measured: 182 against 81 ms
+ * of code generation). */
 #if CLR_LANES == 1
 CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums,
                               __global uint* counters, uint totalAt)
@@ -108,20 +109,24 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
 
 __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) void scan_chunks(
     __global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
-    __global ulong* partials,          // numChunks + 1
-    __global uint* sources,            // listSources: the total (setup records); else unused
+    __global ulong* partials,          // numChunks + 1, twice with alsoNonZero (the values', then the non-zero counts')
+    __global uint* second,             // listSources: the sources (setup records); alsoNonZero: n + 1; else unused
     __global const uchar* byteCounts,  // listSources: n, read instead of src; else unused
-    __global uint* counters,           // CLR_NUM_COUNTERS: the partials phase copies the total to totalAt
-    uint totalAt, uint phase, uint countNonZero, uint listSources)
+    __global uint* counters,           // CLR_NUM_COUNTERS: the partials phase copies the totals there
+    uint totalAt, uint nonZeroTotalAt, uint phase, uint alsoNonZero, uint listSources)
 {
 #if CLR_LANES == 1
   __local ulong groupSums[CLR_SCAN_GROUP(1)];
 #endif
+  __global ulong* nonZeroPartials = partials + numChunks + 1;
   if (phase == CLR_SCAN_PARTIALS) {  // the same phase for the whole group, so its barriers are safe
 #if CLR_LANES == 1
     scan_partials(partials, numChunks, groupSums, counters, totalAt);
+    barrier(CLK_LOCAL_MEM_FENCE);  // groupSums is reused
+    if (alsoNonZero) scan_partials(nonZeroPartials, numChunks, groupSums, counters, nonZeroTotalAt);
 #else
     scan_partials(partials, numChunks, counters, totalAt);
+    if (alsoNonZero) scan_partials(nonZeroPartials, numChunks, counters, nonZeroTotalAt);
 #endif
     return;
   }
@@ -130,24 +135,44 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
   const uint begin = g * chunk;
   const uint end = min(begin + chunk, n);
   if (phase == CLR_SCAN_REDUCE) {
-    ulong sum = 0;
-    if (listSources)
+    ulong sum = 0, nonZero = 0;
+    if (listSources) {
       for (uint i = begin; i < end; ++i) sum += byteCounts[i];
-    else
-      for (uint i = begin; i < end; ++i) sum += countNonZero ? (src[i] != 0) : src[i];
+    } else {
+      for (uint i = begin; i < end; ++i) {
+        const uint v = src[i];
+        sum += v;
+        nonZero += v != 0;
+      }
+    }
     partials[g] = sum;
+    if (alsoNonZero) nonZeroPartials[g] = nonZero;
     return;
   }
   ulong running = partials[g];
   if (listSources) {
-    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, sources);
+    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
     return;
   }
-  for (uint i = begin; i < end; ++i) {
-    const uint v = countNonZero ? (src[i] != 0) : src[i];
-    dst[i] = (uint)running;
-    running += v;
+  if (!alsoNonZero) {
+    for (uint i = begin; i < end; ++i) {
+      const uint v = src[i];
+      dst[i] = (uint)running;
+      running += v;
+    }
+  } else {
+    ulong runningNonZero = nonZeroPartials[g];
+    for (uint i = begin; i < end; ++i) {
+      const uint v = src[i];
+      dst[i] = (uint)running;
+      second[i] = (uint)runningNonZero;
+      running += v;
+      runningNonZero += v != 0;
+    }
   }
-  if (g == numChunks - 1) dst[n] = (uint)partials[numChunks];
+  if (g == numChunks - 1) {
+    dst[n] = (uint)partials[numChunks];
+    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+  }
 }
 #endif

@@ -190,7 +190,7 @@ typedef uint32_t uint;
 #define CLR_COUNTER_CULLED_TRIS 1  /* clipped input triangles that produced nothing */
 #define CLR_COUNTER_DEAD_RECORDS 2 /* padding records written by setup_clip */
 #define CLR_COUNTER_SETUP_TOTAL 3  /* 2 words: setup records (the setup counts' scan) */
-#define CLR_COUNTER_SLOT_TOTAL 5   /* 2 words: visibility-buffer tile slots (bin_slots) */
+#define CLR_COUNTER_SLOT_TOTAL 5   /* 2 words: visibility-buffer tile slots (bin_scan's non-zero counts) */
 #define CLR_COUNTER_BIN_TOTAL 7    /* 2 words: bin entries (bin_scan) */
 #define CLR_NUM_COUNTERS 9
 #define CLR_SCAN_NO_TOTAL 0xFFFFFFFFu /* scan_chunks' totalAt: no copy among the counters */
@@ -440,7 +440,7 @@ typedef struct VisSample {
  *                                 lines_draw and aov
  *  binEntries uint[total]         the emit pass and bin_fill_clipped write
  *                                 setup indices; raster reads
- *  scanPartials ulong[chunks + 1] scan internals (at most 4097)
+ *  scanPartials ulong[2 · (chunks + 1)] scan internals (chunks at most 4096)
  *  paintRank  uint[numTris]       host upload with CLR_VISIBILITY_PAINTER
  *                                 (position of each input triangle in the
  *                                 far-to-near order; one unused element
