@@ -86,8 +86,8 @@ void Pipeline::scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n
                                  DeviceBuffer<uint32_t>& sources, const char* stage)
 {
   sources.reserve(total + scanChunks(n).count);  // + a spare entry per chunk (scan.cl)
-  const ScanJob job{counts.get(), counts.get(), sources.get(),     counts.get(),
-                    0u,           1u,           CLR_SCAN_NO_TOTAL, CLR_SCAN_NO_TOTAL};
+  const uint32_t none = CLR_SCAN_NO_TOTAL;       // the total was copied by Begin
+  const ScanJob job{counts.get(), counts.get(), sources.get(), counts.get(), 0u, 1u, none, none};
   scanApply(job, n, listingPartials_, stage);
 }
 
