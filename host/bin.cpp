@@ -16,9 +16,7 @@ void Pipeline::bin()
   // this before its own wait).
   if (!binScanned_) {
     enqueueBinScans();
-    const std::vector<uint32_t> counters = readCounters();
-    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
-    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
+    takeBinTotals(readCounters());
   }
   numBinEntries_ = binTotal_;
   numVisSlots_ = uint32_t(slotTotal_);

@@ -231,6 +231,12 @@ class Pipeline {
   {
     return counters[at] | uint64_t(counters[at + 1]) << 32;
   }
+  // The tile scans' totals (enqueueBinScans) from a read of the counters.
+  void takeBinTotals(const std::vector<uint32_t>& counters)
+  {
+    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
+    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
+  }
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }

@@ -44,8 +44,7 @@ void Pipeline::setup()
     const std::vector<uint32_t> counters = readCounters();
     clipped = counters[CLR_COUNTER_CLIPPED_TRIS];
     total = counterTotal(counters, CLR_COUNTER_SETUP_TOTAL);
-    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
-    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
+    if (scanTiles) takeBinTotals(counters);
     const bool growList = clipped > clipList_.capacity(), recount = scanTiles && clipped > 0;
     if (!growList && !recount) break;
     if (growList) clipList_.reserve(clipped);

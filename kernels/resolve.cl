@@ -234,6 +234,15 @@ CLR_INLINE ColourL colour_make(floatL r, floatL g, floatL b)
   return c;
 }
 
+/* Every lane the colour of an RGBA8 value (R in the low byte, pack_rgba's
+ * layout), such as the background. */
+CLR_INLINE ColourL colour_unpack(uint rgba)
+{
+  ColourL c = {(floatL)((rgba & 0xFFu) / 255.0f), (floatL)(((rgba >> 8) & 0xFFu) / 255.0f),
+               (floatL)(((rgba >> 16) & 0xFFu) / 255.0f)};
+  return c;
+}
+
 CLR_INLINE ColourL colour_select(ColourL a, ColourL b, intL mask)
 {
   ColourL c = {select(a.r, b.r, mask), select(a.g, b.g, mask), select(a.b, b.b, mask)};
@@ -601,9 +610,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint samples = params->samples;
   resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices);
   uintL colour;
-  const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
-                                    (floatL)(((background >> 8) & 0xFFu) / 255.0f),
-                                    (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
+  const ColourL backgroundColour = colour_unpack(background);
   const ShadeInputs inputs = {materials, texDescs, texels};
   if (mode == CLR_SHADE_ID) {
     colour = resolve_id(params, visIndex, visPlane, p, count, source, clipBary);
@@ -821,10 +828,7 @@ CLR_INLINE uintL resolve_lambert_colour(__constant FrameParams* params, __global
   const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
   const ColourL lit =
       colour_make(f->albedo[0] * light + highlight, f->albedo[1] * light + highlight, f->albedo[2] * light + highlight);
-  const ColourL backgroundColour = {(floatL)((background & 0xFFu) / 255.0f),
-                                    (floatL)(((background >> 8) & 0xFFu) / 255.0f),
-                                    (floatL)(((background >> 16) & 0xFFu) / 255.0f)};
-  const ColourL c = colour_select(backgroundColour, lit, covered);
+  const ColourL c = colour_select(colour_unpack(background), lit, covered);
   return pack_rgba(c.r, c.g, c.b);
 }
 
