@@ -45,6 +45,8 @@
 //                   barycentrics), image written, 4; plus the 48 B TriSetup
 //                   read per bin entry) / (raster + resolve time); rr_frac_copy =
 //                   rr_gbs / the peak copy bandwidth (read + write bytes).
+//   mesa          = the Mesa release that llvmpipe's GL_VERSION names: the
+//                   library that ran, where the package list may not say.
 // --max-shade-mad M fails the run (after printing) when shade_mad exceeds M:
 // CTest's check that both renderers draw the same lambert image.
 // Every failure is one line on stderr and exit status 1.
@@ -155,6 +157,18 @@ std::string plainText(const std::string& s)
   return out;
 }
 
+// The Mesa release that GL_VERSION names ("4.5 (Compatibility Profile) Mesa
+// 22.3.6" gives "22.3.6"), empty when it names none. The library loaded is
+// the one measured, which the system's package list need not describe (the
+// GPU machine runs a copied libOSMesa).
+std::string mesaRelease(const std::string& glVersion)
+{
+  const size_t at = glVersion.find("Mesa ");
+  if (at == std::string::npos) return "";
+  const std::string rest = glVersion.substr(at + 5);
+  return plainText(rest.substr(0, rest.find(' ')));
+}
+
 std::string baseName(const std::string& path)
 {
   const size_t slash = path.find_last_of('/');
@@ -249,7 +263,7 @@ FrameTimes frameTimes(const std::vector<double>& ms)
 
 // The numbers of one case, as printed.
 struct Report {
-  std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer;
+  std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer, mesaRelease;
   uint64_t pixels = 0, triangles = 0, vertices = 0;
   FrameTimes clr, llvm, llvmVertex;  // llvmVertex: llvmpipe lit per vertex
   double rasterMs = NAN, resolveMs = NAN, otherMs = 0;
@@ -328,6 +342,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"lp_threads", r.llvmpipeThreads},
       {"device", r.device},
       {"llvmpipe", r.llvmpipeRenderer},
+      {"mesa", r.mesaRelease},
   };
 }
 
@@ -416,6 +431,7 @@ int run(const Args& args)
       all.frameMs.insert(all.frameMs.end(), part.frameMs.begin(), part.frameMs.end());
       all.image = std::move(part.image);
       all.renderer = part.renderer;
+      all.version = part.version;
     }
   }
   finishClraster(args, pipeline, settings, timed, clr);
@@ -433,6 +449,7 @@ int run(const Args& args)
   r.device = plainText(clr.device);
   r.llvmpipeThreads = plainText(std::getenv("LP_NUM_THREADS"));
   r.llvmpipeRenderer = plainText(llvm.renderer);
+  r.mesaRelease = mesaRelease(llvm.version);
   r.pixels = uint64_t(args.width) * args.height;
   r.triangles = mesh.numTris();
   r.vertices = mesh.numVerts();

@@ -209,6 +209,7 @@ LlvmpipeFrames renderLlvmpipeLambert(const Mesh& mesh, uint32_t width, uint32_t 
   // image mapped, likewise without a copy); then one read for the caller.
   LlvmpipeFrames out;
   out.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  out.version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   for (uint32_t f = 0; f < warmupFrames + timedFrames; ++f) {
     const auto start = std::chrono::steady_clock::now();
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -47,6 +47,7 @@ struct LlvmpipeFrames {
   std::vector<double> frameMs;  // the timed frames only
   std::vector<uint32_t> image;  // the last frame
   std::string renderer;         // GL_RENDERER
+  std::string version;          // GL_VERSION, which names the Mesa release ("... Mesa 22.3.6")
 };
 
 enum class LambertShading {

@@ -171,6 +171,10 @@ else
   commit=unknown
 fi
 clr_device=$(awk -F, "$columns"'NR == 2 { print $c["device"] }' "$csv")
+# The Mesa release as the bench's GL_VERSION reported it (the library that ran);
+# the package list's version where it named none.
+mesa=$(awk -F, "$columns"'NR == 2 { print $c["mesa"] }' "$csv")
+[[ -n "$mesa" ]] || mesa="$(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?') (package)"
 clr_driver="$(peak_text platform), driver $(peak_text driver)"
 {
   echo "# clraster vs llvmpipe: benchmark results"
@@ -179,7 +183,7 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
     "$commit."
   echo "CPU: $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) cores." \
     "clraster device: $clr_device ($clr_driver)." \
-    "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $(dpkg-query -W -f='${Version}' libosmesa6 2>/dev/null || echo '?'), LP_NUM_THREADS=$LP_NUM_THREADS; POCL_AFFINITY=$POCL_AFFINITY."
+    "llvmpipe: $(awk -F, "$columns"'NR == 2 { print $c["llvmpipe"] }' "$csv"), Mesa $mesa, LP_NUM_THREADS=$LP_NUM_THREADS; POCL_AFFINITY=$POCL_AFFINITY."
   echo "Frames: $frames timed per case and renderer (10M-triangle cases: 5), in four rounds that take turns between the renderers, each round after $warmup warm-up frames (10M: 1); times are medians with (min–max)."
   echo
   echo "## Device peaks (clraster_peak, best of 50)"
