@@ -427,7 +427,10 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   }
   ClipBatch c;
   setup_load_batch(tri, params, positions, indices, &c);
-  const uintL kind = setup_classify(&c, params);
+  // (Pass 2 does not classify again: its sources are the simple survivors
+  // of pass 1, whose classification the same arithmetic would repeat, and
+  // clipped triangles' records, which it does not write.)
+  const uintL kind = emit ? (uintL)CLR_SETUP_SIMPLE : setup_classify(&c, params);
   // (Pass 1 stops early for a batch that yields no record, before setup_make
   // when every lane is culled here: a batch beside the view, which is much
   // of a scene seen from inside or close up.)
