@@ -151,9 +151,9 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
  * discarded). Tiny triangles that fall between pixel centres are most of a
  * dense mesh seen from afar (on a 1M-triangle sphere at 1080p, 40% of the
  * setup records): culling them here saves their records, bin entries and
- * raster work. Called, not inlined, and its loops not unrolled: inlined
- * and unrolled it added about 40 ms to the setup kernel's compile at a
- * cold start, this way about 25 (the pass ran no slower). */
+ * raster work. Called, not inlined: inlined (with its centres in loops
+ * then) it added about 40 ms to the setup kernel's compile at a cold
+ * start, called about 25. */
 CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX, intL minY, intL maxY, intL x0, intL y0,
                                       intL xEnd, intL yEnd, __constant FrameParams* params)
 {
@@ -164,34 +164,29 @@ CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX,
   const intL large =
       (xEnd - x0 > 1) | (yEnd - y0 > 1) | (maxX - minX >= 4 * CLR_FIXED_ONE) | (maxY - minY >= 4 * CLR_FIXED_ONE);
   if (!CLR_ANY(small)) return large;
-  // Step 1: each edge a→b (edge i runs from vertex i + 1 to i + 2, as in
-  // raster): its deltas and whether a centre on it is inside.
-  uintL dx[3], dy[3];
-  intL onInside[3];
+  // Step 1: which of the up to four centres (x0 + col, y0 + row) lie in
+  // the bounds.
+  intL in00 = (x0 <= xEnd) & (y0 <= yEnd), in10 = in00 & (x0 + 1 <= xEnd);
+  intL in01 = in00 & (y0 + 1 <= yEnd), in11 = in10 & in01;
+  // Step 2: each edge a→b (edge i runs from vertex i + 1 to i + 2, as in
+  // raster) at the first centre, E = dx·(py − ay) − dy·(px − ax), and at
+  // the others by its steps, −dy·ONE a column and dx·ONE a row (the same
+  // integers modulo 2^32, so the same ints); a centre is inside where
+  // E > low, low = −1 when a centre on the edge is inside (the fill rule).
+  const intL px = x0 * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
+  const intL py = y0 * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
   for (int i = 0; i < 3; ++i) {
     const int a = (i + 1) % 3, b = (i + 2) % 3;
-    dx[i] = as_uintL(t->x[b] - t->x[a]);
-    dy[i] = as_uintL(t->y[b] - t->y[a]);
-    onInside[i] = CLR_EDGE_HOLDS_SAMPLES(t->x[a], t->y[a], t->x[b], t->y[b]);
+    const uintL dx = as_uintL(t->x[b] - t->x[a]), dy = as_uintL(t->y[b] - t->y[a]);
+    const intL low = select((intL)0, (intL)(-1), CLR_EDGE_HOLDS_SAMPLES(t->x[a], t->y[a], t->x[b], t->y[b]));
+    const uintL e00 = dx * as_uintL(py - t->y[a]) - dy * as_uintL(px - t->x[a]);
+    const uintL e01 = e00 + dx * CLR_FIXED_ONE, column = dy * CLR_FIXED_ONE;
+    in00 = in00 & (as_intL(e00) > low);
+    in10 = in10 & (as_intL(e00 - column) > low);
+    in01 = in01 & (as_intL(e01) > low);
+    in11 = in11 & (as_intL(e01 - column) > low);
   }
-  // Step 2: the up to four centres.
-  intL covered = 0;
-  CLR_NO_UNROLL
-  for (int row = 0; row < 2; ++row) {
-    CLR_NO_UNROLL
-    for (int col = 0; col < 2; ++col) {
-      const intL px = (x0 + col) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
-      const intL py = (y0 + row) * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
-      intL inside = (x0 + col <= xEnd) & (y0 + row <= yEnd);
-      for (int i = 0; i < 3; ++i) {
-        const int a = (i + 1) % 3;
-        const intL e = as_intL(dx[i] * as_uintL(py - t->y[a]) - dy[i] * as_uintL(px - t->x[a]));
-        inside = inside & ((e > 0) | ((e == 0) & onInside[i]));
-      }
-      covered = covered | inside;
-    }
-  }
-  return large | covered;
+  return large | in00 | in10 | in01 | in11;
 }
 
 /* Builds each lane's screen triangle: viewport transform, snapping, exact
