@@ -248,6 +248,9 @@ class Pipeline {
     (kernel.setArg(index++, args), ...);
   }
   cl::NDRange linear(uint64_t n) const;
+  // FrameParams.clusterMargin for the view of `mvp`: 0 when the scene's
+  // bounds lie inside it, where none of setup's clusters can lie beside it.
+  float clusterMargin(const glm::mat4& mvp) const;
   // A kernel of the extras program (ClContext::extras), created in `kernel`
   // at its first use.
   cl::Kernel& extraKernel(cl::Kernel& kernel, const char* name);
@@ -280,6 +283,10 @@ class Pipeline {
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
+  DeviceBuffer<float> clusterBounds_;  // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
+  // The bounds of the scene's finite vertices (empty: min > max), for
+  // FrameParams.clusterMargin.
+  glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};
   DeviceBuffer<uint32_t> indices_, triMaterial_;
   DeviceBuffer<Material> materials_;
   DeviceBuffer<TextureDesc> texDescs_;

@@ -120,6 +120,43 @@ CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx,
          select(zero, (uintL)512u, beyondFar);
 }
 
+#if CLR_LANES > 1
+/* Whether the cluster with bounds b (CLR_CLUSTER_TRIS, shared.h) lies wholly
+ * outside one plane that setup_classify culls by: behind the near plane,
+ * beyond an edge of the viewport, or beyond the far plane. Then so is every
+ * triangle of the cluster, whose vertices lie in the bounds, and the count
+ * pass skips its batches without loading them. Clip coordinates are affine
+ * in the position, so over the box each lies between its values at the
+ * corners (the 8 corners in lanes 0-7, again in 8-15). A corner counts as
+ * outside only by FrameParams.clusterMargin, 2^-16 M with M the largest sum
+ * of the magnitudes of the terms of a scene vertex's four clip coordinates
+ * (Pipeline::beginFrame): the float rounding of a corner's or a vertex's
+ * transform is below 2^-21 M, so a vertex that classification would keep
+ * is never in a cluster skipped. A NaN bound skips nothing. */
+CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global const float* b)
+{
+  // Step 1: the corners' clip coordinates.
+  const intL lane = CLR_LANE_INDEX;
+  const floatL px = select((floatL)b[0], (floatL)b[3], (lane & 1) != 0);
+  const floatL py = select((floatL)b[1], (floatL)b[4], (lane & 2) != 0);
+  const floatL pz = select((floatL)b[2], (floatL)b[5], (lane & 4) != 0);
+  const floatL x = transform_lanes(params, 0, px, py, pz), y = transform_lanes(params, 1, px, py, pz);
+  const floatL z = transform_lanes(params, 2, px, py, pz), w = transform_lanes(params, 3, px, py, pz);
+  // Step 2: each corner's planes it lies outside of by the margin, as bits
+  // (setup_outcode's planes; NaN sets none); a bit in every lane culls.
+  const float margin = params->clusterMargin, nearSign = clip_near_sign(params->depthMode);
+  const uintL zero = 0;
+  const intL beyondFar = nearSign < 0.0f ? (z < -margin) : (z - w > margin);
+  uintL code = select(zero, (uintL)1u, nearSign * z + w < -margin) | select(zero, (uintL)2u, x + w < -margin) |
+               select(zero, (uintL)4u, x - w > margin) | select(zero, (uintL)8u, y + w < -margin) |
+               select(zero, (uintL)16u, y - w > margin) | select(zero, (uintL)32u, beyondFar);
+  const uint8 a = code.lo & code.hi;
+  const uint4 c = a.lo & a.hi;
+  const uint2 d = c.lo & c.hi;
+  return (d.x & d.y) != 0;
+}
+#endif
+
 /* Classifies each lane's triangle: CLR_SETUP_CULLED (non-finite, or wholly
  * outside one viewport plane or behind the near plane), CLR_SETUP_CLIP, or
  * CLR_SETUP_SIMPLE. */
@@ -403,7 +440,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
-                                          uint item)
+                                          __global const float* clusterBounds, uint item)
 {
   // Step 1: the CLR_LANES triangles: in pass 1 input triangles from
   // `first`; in pass 2 the sources of setup records from `first` (lanes of
@@ -411,6 +448,14 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
   if (first >= (emit ? numSetup : params->numTris)) return;
+#if CLR_LANES > 1
+  // (Pass 1 skips a batch whose cluster lies beside the view, unloaded.)
+  if (!emit && params->clusterMargin > 0.0f &&
+      setup_cluster_outside(params, clusterBounds + 6 * (first / CLR_CLUSTER_TRIS))) {
+    setup_count_none(params, first, triCount);
+    return;
+  }
+#endif
   uint tri[CLR_LANES], from[CLR_LANES];
   if (emit) {
     for (uint lane = 0; lane < CLR_LANES; ++lane)
@@ -479,10 +524,11 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global uint* tileCursor,  // pass 2: tiles, zeroed
     __global uint* binEntries,  // pass 2: tileOffset[tiles]
     __global uint* source,      // pass 2: numSetup (the scan lists them; winding added)
-    uint numSetup, uint pass)
+    uint numSetup, uint pass,
+    __global const float* clusterBounds)  // pass 1, CPU work shape: 6 · ceil(numTris / CLR_CLUSTER_TRIS)
 {
   setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
-                       tileCursor, binEntries, source, numSetup, pass, get_global_id(0));
+                       tileCursor, binEntries, source, numSetup, pass, clusterBounds, get_global_id(0));
 }
 
 /* The first of clipped input triangle `tri`'s reserved records: the

@@ -167,6 +167,14 @@ typedef uint32_t uint;
  * adds a work-item loop for PoCL to compile. */
 #define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
 
+/* Setup's clusters (CPU work shape only): the bounds of the vertices of each
+ * run of CLR_CLUSTER_TRIS consecutive input triangles, as 6 floats (min x,
+ * y, z, max x, y, z; NaN for a run without a finite vertex). Written by the
+ * host when a scene is uploaded (Pipeline::uploadScene), read by the count
+ * pass, which skips a batch whose cluster lies wholly beside the view
+ * (setup_cluster_outside, setup.cl): 24 bytes per 256 triangles. */
+#define CLR_CLUSTER_TRIS 256
+
 /* Work-group size of scan_chunks (scan.cl): 64 on a GPU, one on a CPU,
  * for the same reason (PoCL compiled it in 120 ms with 64, 81 ms with 1). */
 #define CLR_SCAN_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
@@ -240,7 +248,12 @@ typedef struct FrameParams {
    * in its bounds (setup_covers_a_sample, setup.cl); the host sets it for
    * frames of one sample, fixed edges and no wireframe. */
   uint cullSampleFree;
-  uint pad1;
+  /* > 0: the count pass tests setup's clusters against the view with this
+   * margin in clip units (setup_cluster_outside, setup.cl); the host sets
+   * it on a CPU device when the scene's bounds reach beyond the view, 0
+   * otherwise, so that frames of a scene wholly in view skip the test
+   * (Pipeline::beginFrame). */
+  float clusterMargin;
 } FrameParams;
 
 /* One screen-space triangle after clipping, snapping and orientation to

@@ -105,6 +105,32 @@ TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)",
   compare(g);
 }
 
+TEST_CASE("differential: setup skips clusters beside the view and keeps those partly in it", "[differential][setup]")
+{
+  // A field of 9 x 9 patches of 16 x 8 quads: 256 triangles each, one of
+  // setup's clusters (CLR_CLUSTER_TRIS) per patch, wider than the view, so
+  // that the count pass skips the patches wholly beside it, unloaded
+  // (setup_cluster_outside), and must keep those that straddle its edges.
+  static_assert(16 * 8 * 2 == CLR_CLUSTER_TRIS, "one patch per cluster");
+  test::Geometry g;
+  for (int pj = -4; pj <= 4; ++pj)
+    for (int pi = -4; pi <= 4; ++pi) {
+      const glm::vec3 corner(pi * 2.3f - 1.0f, pj * 1.4f - 0.6f, -1.0f - 0.4f * float((pi + pj) & 3));
+      const uint32_t first = g.addVertex(corner);
+      for (int j = 0; j <= 8; ++j)
+        for (int i = 0; i <= 16; ++i)
+          if (i || j) g.addVertex(corner + glm::vec3(0.125f * i, 0.15f * j, 0.05f * float(i % 3)));
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 16; ++i) {
+          const uint32_t v = first + j * 17 + i, r = v + 1, u = v + 17, ur = u + 1;
+          g.indices.insert(g.indices.end(), {v, r, ur, v, ur, u});
+        }
+    }
+  REQUIRE(g.numTris() == 81 * CLR_CLUSTER_TRIS);
+  compare(g);
+  compare(g, true);
+}
+
 TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[differential][raster]")
 {
   // raster evaluates edge functions in 32 bits when a triangle's bounds span
