@@ -248,8 +248,8 @@ class Pipeline {
     (kernel.setArg(index++, args), ...);
   }
   cl::NDRange linear(uint64_t n) const;
-  // FrameParams.clusterMargin for the view of `mvp`: 0 when the scene's
-  // bounds lie inside it, where none of setup's clusters can lie beside it.
+  // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
+  // unless the scene's bounds reach behind the eye or well beyond the view.
   float clusterMargin(const glm::mat4& mvp) const;
   // A kernel of the extras program (ClContext::extras), created in `kernel`
   // at its first use.

@@ -130,7 +130,7 @@ CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx,
  * corners (the 8 corners in lanes 0-7, again in 8-15). A corner counts as
  * outside only by FrameParams.clusterMargin, 2^-16 M with M the largest sum
  * of the magnitudes of the terms of a scene vertex's four clip coordinates
- * (Pipeline::beginFrame): the float rounding of a corner's or a vertex's
+ * (Pipeline::clusterMargin): the float rounding of a corner's or a vertex's
  * transform is below 2^-21 M, so a vertex that classification would keep
  * is never in a cluster skipped. A NaN bound skips nothing. */
 CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global const float* b)

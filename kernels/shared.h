@@ -250,9 +250,9 @@ typedef struct FrameParams {
   uint cullSampleFree;
   /* > 0: the count pass tests setup's clusters against the view with this
    * margin in clip units (setup_cluster_outside, setup.cl); the host sets
-   * it on a CPU device when the scene's bounds reach beyond the view, 0
-   * otherwise, so that frames of a scene wholly in view skip the test
-   * (Pipeline::beginFrame). */
+   * it on a CPU device when the scene's bounds reach well beyond the view, 0
+   * otherwise, so that frames of a scene about the size of the view skip
+   * the test (Pipeline::clusterMargin). */
   float clusterMargin;
 } FrameParams;
 
