@@ -84,6 +84,18 @@ CLR_INLINE floatL clr_rint(floatL x)
   return select((x + magic) - magic, x, fabs(x) >= big);
 }
 
+/* The exact doubled signed area of each lane's triangle (fixed-point
+ * vertices, 64 bits: fixed.h), and 1 / that, the lane-type twins of
+ * clr_inv_area2 (shared.h) with its operations, so the same floats. */
+CLR_INLINE longL clr_area2L(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2)
+{
+  return convert_longL(x1 - x0) * convert_longL(y2 - y0) - convert_longL(x2 - x0) * convert_longL(y1 - y0);
+}
+CLR_INLINE floatL clr_inv_area2L(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2)
+{
+  return 1.0f / convert_floatL(clr_area2L(x0, y0, x1, y1, x2, y2));
+}
+
 /* The lanes of v rearranged: lane i takes lane from[i] (each below
  * CLR_LANES). Where PoCL compiles for AVX-512 (it defines __AVX512F__)
  * that is one vpermd; elsewhere the shuffle() builtin, which PoCL expands

@@ -418,15 +418,6 @@ CLR_INLINE longL edge_function_lanes(intL ax, intL ay, intL bx, intL by, intL px
   return convert_longL(bx - ax) * convert_longL(py - ay) - convert_longL(by - ay) * convert_longL(px - ax);
 }
 
-/* clr_inv_area2 (shared.h) of each lane's triangle, with its operations
- * in lane types, so the same floats: one vector division for a row of many
- * triangles instead of one per triangle. */
-CLR_INLINE floatL vis_inv_area2(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2)
-{
-  const longL area2 = convert_longL(x1 - x0) * convert_longL(y2 - y0) - convert_longL(x2 - x0) * convert_longL(y1 - y0);
-  return 1.0f / convert_floatL(area2);
-}
-
 /* The screen barycentrics b1, b2 that raster kept for the samples
  * (sx + lane·CLR_FIXED_ONE, sy) with fixed edges, of the lanes' triangles
  * with snapped vertices (x_i, y_i) and 1 / (2·area) `scale`: the same integer

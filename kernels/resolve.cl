@@ -768,14 +768,14 @@ CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global 
   }
   if (vertices) {
     // From the vertices gathered with the records, all lanes at once
-    // (vis_inv_area2), not run by run as resolve_recompute_barycentrics
+    // (clr_inv_area2L, lanes.h), not run by run as resolve_recompute_barycentrics
     // does, with a division and seven selects per run: resolve_lambert on
     // the 1M-triangle sphere seen from afar at 1080p 4.7-6.1 -> 4.1-5.0 ms
     // (three sets of four to six alternated runs), level where rows hold
     // fewer triangles (yxa_1 filling the screen, the 100k sphere).
     const intL x0 = CLR_LOAD_LANES(vx[0]), x1 = CLR_LOAD_LANES(vx[1]), x2 = CLR_LOAD_LANES(vx[2]);
     const intL y0 = CLR_LOAD_LANES(vy[0]), y1 = CLR_LOAD_LANES(vy[1]), y2 = CLR_LOAD_LANES(vy[2]);
-    vis_barycentrics(x0, y0, x1, y1, x2, y2, vis_inv_area2(x0, y0, x1, y1, x2, y2), indexLanes != CLR_NONE,
+    vis_barycentrics(x0, y0, x1, y1, x2, y2, clr_inv_area2L(x0, y0, x1, y1, x2, y2), indexLanes != CLR_NONE,
                      resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), b1, b2);
   }
   f->source = CLR_LOAD_LANES(from);

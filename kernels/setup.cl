@@ -248,8 +248,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
     out->invW[v] = invW;
   }
   // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
-  longL area2 = convert_longL(out->x[1] - out->x[0]) * convert_longL(out->y[2] - out->y[0]) -
-                convert_longL(out->x[2] - out->x[0]) * convert_longL(out->y[1] - out->y[0]);
+  const longL area2 = clr_area2L(out->x[0], out->y[0], out->x[1], out->y[1], out->x[2], out->y[2]);
   const intL back = convert_intL(area2 < 0);
   valid = valid & convert_intL(area2 != 0) & CLR_NOT(params->cullBack ? back : (intL)0);
   // Step 3: orient counter-clockwise by swapping vertices 1 and 2.
