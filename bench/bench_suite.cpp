@@ -47,6 +47,10 @@
 //                   rr_gbs / the peak copy bandwidth (read + write bytes).
 //   mesa          = the Mesa release that llvmpipe's GL_VERSION names: the
 //                   library that ran, where the package list may not say.
+//   ratio_round_min, ratio_round_max = the least and greatest of the rounds'
+//                   own ratios (clraster's median frame in a round over
+//                   llvmpipe's in the same round): how far the host's
+//                   spells move the ratio, beside the ratio of all frames.
 // --max-shade-mad M fails the run (after printing) when shade_mad exceeds M:
 // CTest's check that both renderers draw the same lambert image.
 // Every failure is one line on stderr and exit status 1.
@@ -265,7 +269,8 @@ FrameTimes frameTimes(const std::vector<double>& ms)
 struct Report {
   std::string name, scene, device, llvmpipeThreads, llvmpipeRenderer, mesaRelease;
   uint64_t pixels = 0, triangles = 0, vertices = 0;
-  FrameTimes clr, llvm, llvmVertex;  // llvmVertex: llvmpipe lit per vertex
+  FrameTimes clr, llvm, llvmVertex;                 // llvmVertex: llvmpipe lit per vertex
+  double roundRatioMin = NAN, roundRatioMax = NAN;  // the rounds' own ratios (header comment)
   double rasterMs = NAN, resolveMs = NAN, otherMs = 0;
   std::string stages;  // "name=ms;..." for the CSV
   uint64_t minBytes = 0;
@@ -313,6 +318,8 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"llvm_ms_min", number(r.llvm.min, "%.3f")},
       {"llvm_ms_max", number(r.llvm.max, "%.3f")},
       {"ratio", number(r.clr.median / r.llvm.median, "%.3f")},
+      {"ratio_round_min", number(r.roundRatioMin, "%.3f")},
+      {"ratio_round_max", number(r.roundRatioMax, "%.3f")},
       {"llvm_vertex_ms", number(r.llvmVertex.median, "%.3f")},
       {"llvm_vertex_ms_min", number(r.llvmVertex.min, "%.3f")},
       {"llvm_vertex_ms_max", number(r.llvmVertex.max, "%.3f")},
@@ -421,12 +428,17 @@ int run(const Args& args)
   std::vector<FrameStats> timed;
   LlvmpipeFrames llvm, llvmVertex;
   const uint32_t rounds = std::min(args.rounds, args.frames);
+  std::vector<double> roundRatios;  // each round's clraster median over its llvmpipe (per pixel) median
   for (uint32_t round = 0; round < rounds; ++round) {
     const uint32_t frames = args.frames / rounds + (round < args.frames % rounds ? 1 : 0);
+    const size_t clrFirst = clr.frameMs.size();
     timeClrasterRound(pipeline, settings, args.warmup, frames, clr, timed);
     for (LambertShading shading : {LambertShading::perPixel, LambertShading::perVertex}) {
       LlvmpipeFrames part = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(), shading,
                                                   args.warmup, frames);
+      if (shading == LambertShading::perPixel)
+        roundRatios.push_back(median(std::vector<double>(clr.frameMs.begin() + clrFirst, clr.frameMs.end())) /
+                              median(part.frameMs));
       LlvmpipeFrames& all = shading == LambertShading::perPixel ? llvm : llvmVertex;
       all.frameMs.insert(all.frameMs.end(), part.frameMs.begin(), part.frameMs.end());
       all.image = std::move(part.image);
@@ -456,6 +468,8 @@ int run(const Args& args)
   r.clr = frameTimes(clr.frameMs);
   r.llvm = frameTimes(llvm.frameMs);
   r.llvmVertex = frameTimes(llvmVertex.frameMs);
+  r.roundRatioMin = *std::min_element(roundRatios.begin(), roundRatios.end());
+  r.roundRatioMax = *std::max_element(roundRatios.begin(), roundRatios.end());
   for (const auto& [stage, ms] : clr.stageMs) {
     if (stage == "raster")
       r.rasterMs = ms;

@@ -194,15 +194,16 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo
   echo "## Cases"
   echo
-  echo "| case | size | triangles | covered | clraster ms | llvmpipe ms | clraster / llvmpipe | llvmpipe lit per vertex ms (clraster / it) |" \
+  echo "| case | size | triangles | covered | clraster ms | llvmpipe ms | clraster / llvmpipe (rounds) | llvmpipe lit per vertex ms (clraster / it) |" \
     "raster / resolve / other kernels ms | Mtri/s (clraster / llvmpipe) | Mpix/s (clraster / llvmpipe) | device MB (minimum, ratio) |" \
     "ID differing fraction (pixels; not near an edge) | shade MAD (per pixel; per vertex) | edge Geval/s (% peak) | raster+resolve GB/s (% peak) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   awk -F, "$columns"'NR > 1 {
     name = $c["name"]; sub(/^mesh-/, "", name)
-    printf "| %s | %sx%s | %d | %.1f%% | %s (%s–%s) | %s (%s–%s) | %s | %s (%s) |",
+    printf "| %s | %sx%s | %d | %.1f%% | %s (%s–%s) | %s (%s–%s) | %s (%s–%s) | %s (%s) |",
       name, $c["width"], $c["height"], $c["triangles"], 100 * $c["covered_pixels"] / $c["pixels"], $c["clr_ms"], $c["clr_ms_min"], $c["clr_ms_max"],
-      $c["llvm_ms"], $c["llvm_ms_min"], $c["llvm_ms_max"], $c["ratio"], $c["llvm_vertex_ms"], $c["ratio_vertex"]
+      $c["llvm_ms"], $c["llvm_ms_min"], $c["llvm_ms_max"], $c["ratio"], $c["ratio_round_min"], $c["ratio_round_max"],
+      $c["llvm_vertex_ms"], $c["ratio_vertex"]
     printf " %s / %s / %s | %.2f / %.2f | %.1f / %.1f | %.1f (%.1f, %.2fx) | %s (%s px; %s) | %s; %s |",
       $c["raster_ms"], $c["resolve_ms"], $c["other_stages_ms"], $c["clr_mtris_s"], $c["llvm_mtris_s"], $c["clr_mpix_s"],
       $c["llvm_mpix_s"], $c["device_bytes"] / 1e6, $c["min_bytes"] / 1e6, $c["mem_ratio"], $c["differing_fraction"],
@@ -242,6 +243,9 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "  colours interpolated), a cheaper and different image, timed in the same process. The process fixes"
   echo "  glibc's heap trim threshold at 256 MB, which keeps llvmpipe at its faster mode (it otherwise gives its"
   echo "  per-frame memory back to the system and faults it in again: 26 against 18 ms on \`yxa_1\` filling 1080p)."
+  echo "- **clraster / llvmpipe**: the ratio of the two medians over all timed frames; in brackets the least and"
+  echo "  greatest of the four rounds' own ratios (each round's clraster median over llvmpipe's in the same round),"
+  echo "  which shows how far the host's slower and faster spells move the ratio."
   echo "- **far / fill / near**: the whole object framed as by \`clraster render\` (mostly small triangles; an elongated"
   echo "  model covers a few percent of the screen); the same camera moved closer until the model reaches 90% of the way"
   echo "  to the nearest border (rows named \`fill-\`); or the eye at 0.75 bounding radii from the object's centre (mostly"
@@ -256,8 +260,8 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "- **edge Geval/s** = bin entries × 16² samples × 3 edges / raster time: the nominal edge-function evaluations"
   echo "  of the raster kernel. Raster steps each edge function from row to row with one add per lane (32-bit lanes"
   echo "  for triangles within 64 pixels), so **% peak** is relative to the 32-bit lane-operation rate, half the fp32"
-  echo "  FLOP peak. It can exceed 100 %: the kernel skips rows and row segments a triangle's bounds miss, so fewer"
-  echo "  evaluations run than counted."
+  echo "  FLOP peak. It can exceed 100 %: the kernel skips rows and row segments a triangle's bounds miss, and bin"
+  echo "  entries wholly behind the depths their tile keeps, so fewer evaluations run than counted."
   echo "- **raster+resolve GB/s** = (12 B per pixel: the visible triangle's 4-B index written by raster and read"
   echo "  by resolve, the 4-B image written; plus 64 B of triangle setup read per bin entry) / (raster + resolve time);"
   echo "  **% peak** is relative to the copy bandwidth (bytes read + written)."

@@ -50,6 +50,10 @@ if(TARGET clraster_bench)
   add_test(NAME bench_reports_mesa_release COMMAND clraster_bench --size 64x48 --warmup 0 --frames 1 --no-ids)
   set_tests_properties(bench_reports_mesa_release PROPERTIES PASS_REGULAR_EXPRESSION
                                                              "\"mesa\":\"[0-9]+\\.[0-9]+\\.[0-9]+\"")
+  # Each round's own ratio, least and greatest, beside the ratio of all frames.
+  add_test(NAME bench_reports_round_ratios COMMAND clraster_bench --size 64x48 --warmup 0 --frames 2 --rounds 2 --no-ids)
+  set_tests_properties(bench_reports_round_ratios PROPERTIES PASS_REGULAR_EXPRESSION
+                                                             "\"ratio_round_min\":[0-9.]+,\"ratio_round_max\":[0-9.]+,")
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
-                       PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
+                       bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
