@@ -684,11 +684,11 @@ typedef struct LambertLanes {
  * colour) into
  * the lanes of `in`: into every lane, without a select, when `in` is the
  * constant all-lanes mask of the first run. */
-CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
-                                     __global const uint* source, __global const ClipBary* clipBary,
-                                     __global const uint* indices, __global const float* normals,
-                                     __global const uint* triMaterial, __global const Material* materials, uint s,
-                                     intL in, bool vertices, LambertLanes* f)
+CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
+                                  __global const uint* source, __global const ClipBary* clipBary,
+                                  __global const uint* indices, __global const float* normals,
+                                  __global const uint* triMaterial, __global const Material* materials, uint s, intL in,
+                                  bool vertices, LambertLanes* f)
 {
 #define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
   __global const TriSetup* t = &setup[s];
@@ -724,12 +724,12 @@ CLR_INLINE void resolve_lambert_take(__constant FrameParams* params, __global co
  * vertices gathered with them. The base colour is three statements,
  * not a loop over an array of the greys: that compiled to an inner loop
  * per lane and cost resolve 9% on a 10M-triangle sphere. */
-CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
-                                       __global const uint* source, __global const ClipBary* clipBary,
-                                       __global const uint* indices, __global const float* normals,
-                                       __global const uint* triMaterial, __global const Material* materials,
-                                       const uint* index, uintL indexLanes, uint firstX, uint py, bool vertices,
-                                       LambertLanes* f, floatL* b1, floatL* b2)
+CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
+                                    __global const uint* source, __global const ClipBary* clipBary,
+                                    __global const uint* indices, __global const float* normals,
+                                    __global const uint* triMaterial, __global const Material* materials,
+                                    const uint* index, uintL indexLanes, uint firstX, uint py, bool vertices,
+                                    LambertLanes* f, floatL* b1, floatL* b2)
 {
   uint triId[CLR_LANES], from[CLR_LANES], vertex[3][CLR_LANES], material[CLR_LANES];
   float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
@@ -790,8 +790,8 @@ CLR_INLINE void resolve_lambert_gather(__constant FrameParams* params, __global 
  * barycentrics: resolve_shade's lambert path in lane types, the same
  * operations in the same order. Returns the packed colours, the background
  * where not `covered`. */
-CLR_INLINE uintL resolve_lambert_colour(__constant FrameParams* params, __global const ClipBary* clipBary,
-                                        const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
+CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global const ClipBary* clipBary,
+                                     const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
 {
   // Step 1: the 1/w rule,
   const floatL* q = f->invW;
@@ -858,7 +858,7 @@ CLR_INLINE uintL resolve_lambert_colour(__constant FrameParams* params, __global
  * bit-identical pixels (a test holds them to that); it is a separate kernel
  * because the general one's gathers and branches cost twice the time and
  * most of a cold start's compile. */
-CLR_INLINE void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
+CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
 {
   if (py >= params->height || firstX >= params->width) return;
   const uint count = min((uint)CLR_LANES, params->width - firstX);
