@@ -32,8 +32,8 @@
  * no binned triangle are skipped; resolve fills them. With hierarchical
  * traversal the CPU shape accepts a tile that lies inside all three edges
  * without testing its samples (bin.cl rejects the tiles outside one), and
- * with the default depth rule skips a triangle that lies wholly behind
- * every depth its tile keeps (raster_hidden).
+ * under the z-buffer skips a triangle that lies wholly behind every depth
+ * its tile keeps (raster_hidden).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -542,27 +542,34 @@ CLR_DEFINE_RASTER_PIXEL_KERNEL(raster_hierarchical, CLR_EDGES_FIXED)
 CLR_DEFINE_RASTER_PIXEL_KERNEL(raster_float, CLR_EDGES_FLOAT)
 #endif
 #else
-/* The CPU shape's skip of hidden triangles, with the default depth rule
- * (float32 LESS, no barycentric planes) and fixed edges: a bin entry whose
- * every fragment lies behind the farthest depth its tile keeps (tileFar)
- * can take no sample, and raster_tile skips it before its rows. tileFar,
- * raster_tile_far, is refreshed every CLR_FAR_REFRESH entries; it only
- * falls, so a stale one skips less, never wrongly. The margin: a fragment's
- * depth is z = z0 + b1·(z1 − z0) + b2·(z2 − z0) in floats
- * (raster_depth_test) with b1, b2 >= 0 (an inside sample has E1, E2 >= 0,
- * and 1/(2 area) > 0) and b1 + b2 <= (E1 + E2)/(2 area)·(1 + 4u) <= 1 + 4u,
- * u = 2^-24 (four roundings: two conversions, the reciprocal, the product).
- * With M = max |z_i|, the exact value with those b is at least
- * min z_i − 8u·M (z0's weight is at least −4u), and the two differences, two
- * products and two sums round by at most 10u·M more: z >= min z_i − 18u·M.
- * The skip asks min z_i − 2^-18·M > tileFar (64u·M, 3.5 times the bound),
- * so no skipped fragment would have passed the test or tied; 2^-120 covers
- * depths so small that roundings are absolute (subnormal). A test
- * (test_kernels.cpp) finds a triangle rounded in front of its nearest
- * vertex, which the skip without its margin drops. Raster at 1080p on the
- * 2-core machine, medians of alternated pairs: yxa_1 filling the screen
- * 2.55 -> 2.19 ms (ten pairs), the 1M-triangle sphere near 10.3 -> 9.0 ms and
- * far 6.5 -> 6.3 ms (six). */
+/* The CPU shape's skip of hidden triangles, under the z-buffer with fixed
+ * edges, in every depth format: a bin entry whose every fragment's key
+ * lies beyond the farthest key its tile keeps (tileFar) can take no sample,
+ * and raster_tile skips it before its rows. tileFar, raster_tile_far, is
+ * refreshed every CLR_FAR_REFRESH entries; it only falls, so a stale one
+ * skips less, never wrongly. The margin: a fragment's depth is
+ * z = z0 + b1·(z1 − z0) + b2·(z2 − z0) in floats (raster_depth_test) with
+ * b1, b2 >= 0 (an inside sample has E1, E2 >= 0, and 1/(2 area) > 0) and
+ * b1 + b2 <= (E1 + E2)/(2 area)·(1 + 4u) <= 1 + 4u, u = 2^-24 (four
+ * roundings: two conversions, the reciprocal, the product). With
+ * M = max |z_i|, the exact value with those b lies within 8u·M of
+ * [min z_i, max z_i] (z0's weight is at least −4u), and the two
+ * differences, two products and two sums round by at most 10u·M more: z
+ * lies within 18u·M of the vertices' range. The skip widens the range by
+ * 2^-18·M (64u·M, 3.5 times the bound; 2^-120 more for depths so small that
+ * roundings are absolute) and takes the nearest key of the widened range
+ * (every format's key is monotonic in z: raster_depth_key); when that key
+ * is beyond tileFar, no fragment would have passed the test or tied (a
+ * fragment with a NaN depth never passes, but under unorm24, so there a
+ * vertex depth that is not finite skips nothing). A test
+ * (test_kernels.cpp) finds, in each format, a triangle rounded in front of
+ * its nearest vertices, which the skip without its margin drops (float32,
+ * reversed; unorm24's steps hide it). Raster at 1080p on the 2-core
+ * machine, medians of alternated pairs: yxa_1 filling the screen
+ * 2.55 -> 2.19 ms (float32, ten pairs), 3.17 -> 2.88 (reversed, four),
+ * 5.11 -> 4.79 (unorm24, three); the 1M-triangle sphere near
+ * 10.3 -> 9.0 ms and far 6.5 -> 6.3 ms (six), the engine filling the
+ * screen 9.4 -> 6.0 ms (four). */
 #define CLR_FAR_REFRESH 8
 CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE])
 {
@@ -578,11 +585,18 @@ CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][C
   return far;
 #endif
 }
-CLR_INLINE bool raster_hidden(__global const TriSetup* t, float tileFar)
+CLR_INLINE bool raster_hidden(__global const TriSetup* t, float tileFar, uint depthMode)
 {
-  const float zNear = min(t->z[0], min(t->z[1], t->z[2]));
-  const float zMagnitude = max(fabs(t->z[0]), max(fabs(t->z[1]), fabs(t->z[2])));
-  return zNear - (zMagnitude * 0x1p-18f + 0x1p-120f) > tileFar;
+  const float z0 = t->z[0], z1 = t->z[1], z2 = t->z[2];
+  const float margin = max(fabs(z0), max(fabs(z1), fabs(z2))) * 0x1p-18f + 0x1p-120f;
+  // The nearest key of the widened range (raster_depth_key's, scalar).
+  if (depthMode == CLR_DEPTH_REVERSED) return -(max(z0, max(z1, z2)) + margin) > tileFar;
+  const float zLow = min(z0, min(z1, z2)) - margin;
+  if (depthMode != CLR_DEPTH_UNORM24) return zLow > tileFar;
+  // (A NaN vertex depth makes every fragment's key NaN, never taken, but
+  // for unorm24, which clamps it to the nearest key.)
+  if (!(isfinite(z0) && isfinite(z1) && isfinite(z2))) return false;
+  return rint(clamp(zLow, 0.0f, 1.0f) * CLR_DEPTH_UNORM24_MAX) > tileFar;
 }
 
 /* CPU shape: one work-item per tile and sample index, as llvmpipe's
@@ -613,7 +627,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX + CLR_LANE_INDEX * CLR_FIXED_ONE;
     for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row], rule.clearKey, rule.visibility);
   }
-  const bool skipHidden = defaultRule && edgeMode == CLR_EDGES_FIXED;  // raster_hidden
+  const bool skipHidden = !painter && edgeMode == CLR_EDGES_FIXED;  // raster_hidden
   float tileFar = rule.clearKey;
   // Step 2: each binned triangle, on the rows and row segments its bounds span.
   for (uint n = begin; n < end; ++n) {
@@ -625,7 +639,9 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
 #endif
     if (skipHidden) {
       if ((n - begin) % CLR_FAR_REFRESH == CLR_FAR_REFRESH - 1) tileFar = raster_tile_far(best);
-      if (raster_hidden(t, tileFar)) continue;
+      // (the default rule's test with its format a constant)
+      if (defaultRule ? raster_hidden(t, tileFar, CLR_DEPTH_FLOAT32) : raster_hidden(t, tileFar, rule.depthMode))
+        continue;
     }
     const uint rank = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     const int4 bounds = CLR_RECORD_BOUNDS(*t);

@@ -1,5 +1,6 @@
 // test_kernels.cpp — each pipeline stage launched on the OpenCL device with
 // small crafted inputs, checked against exact expectations or the oracle.
+#include "depth.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
@@ -327,51 +328,65 @@ TEST_CASE("raster's skip of hidden triangles keeps a fragment that rounding brin
 {
   // The CPU shape skips a bin entry whose nearest vertex lies behind every
   // depth its tile keeps (raster_tile). The interpolated depth can round
-  // below the nearest vertex's depth (where the barycentrics' float sum
+  // past the nearest vertex's depth (where the barycentrics' float sum
   // exceeds 1), so the skip keeps a margin. Here an occluding square
   // covers tile 0 just in front of the two near vertices of a steep
   // triangle, four times, before it (all in tile 0 and in one setup batch,
   // so binned in order: the skip has seen the tile covered when the
   // triangle comes, the ninth entry); the pixel centres on the edge
   // between those vertices (a horizontal bottom edge, which the fill rule
-  // keeps) are where the sum rounds. The search looks for a triangle that
-  // the oracle shows somewhere in front of the occluder; the device must
-  // show the same pixels. Without the margin the triangle is skipped.
+  // keeps) are where the sum rounds. For each depth format the search looks
+  // for a triangle that the oracle shows somewhere in front of the
+  // occluder; the device must show the same pixels. Without the margin the
+  // triangle is skipped (in float32 and reversed; unorm24's key steps hide
+  // the rounding in the case found).
   const uint32_t W = 32, H = 32;
-  const auto window = [](float z) { return z * 1.0f * 0.5f + 0.5f; };  // clip z with w = 1 (raster oracle)
-  std::mt19937 rng(5);
-  std::uniform_int_distribution<int> rowOf(1, CLR_TILE_SIZE / 2), subpixels(0, (CLR_TILE_SIZE - 1) * CLR_FIXED_ONE);
-  std::uniform_real_distribution<float> low(-0.74f, -0.5f), high(0.6f, 0.95f);
   const float step = 1.0f / CLR_FIXED_ONE;
-  for (int attempt = 0; attempt < 4000; ++attempt) {
-    // Step 1: the triangle: vertices 1 and 2 near, on a row of pixel centres
-    // (2 right of 1), vertex 0 above them, far.
-    const float zLow = low(rng), row = float(rowOf(rng)) + 0.5f;
-    float x1 = float(subpixels(rng)) * step, x2 = float(subpixels(rng)) * step;
-    if (x1 > x2) std::swap(x1, x2);
-    if (x2 - x1 < 2.0f) continue;
-    const glm::vec3 v0 =
-        screen(float(subpixels(rng)) * step, row + 1.0f + float(subpixels(rng) / 2) * step, high(rng), W, H);
-    const glm::vec3 v1 = screen(x1, row, zLow, W, H), v2 = screen(x2, row, zLow, W, H);
-    // Step 2: the occluder's depth: the nearest window depth in front of
-    // theirs that a clip z gives.
-    float zFront = zLow;
-    while (window(zFront) == window(zLow)) zFront = std::nextafter(zFront, -1.0f);
-    Geometry g;
-    const float edge = float(CLR_TILE_SIZE);
-    for (int copy = 0; copy < 4; ++copy) {
-      g.addTriangle(screen(0, 0, zFront, W, H), screen(edge, 0, zFront, W, H), screen(0, edge, zFront, W, H));
-      g.addTriangle(screen(edge, 0, zFront, W, H), screen(edge, edge, zFront, W, H), screen(0, edge, zFront, W, H));
+  for (uint32_t mode : {CLR_DEPTH_FLOAT32, CLR_DEPTH_UNORM24, CLR_DEPTH_REVERSED}) {
+    INFO("depth mode " << clr::depthModeName(mode));
+    // Window depth of clip z with w = 1 (raster oracle), and which way is near.
+    const bool reversed = mode == CLR_DEPTH_REVERSED;
+    const auto window = [&](float z) { return reversed ? z * 1.0f : z * 1.0f * 0.5f + 0.5f; };
+    const float toward = reversed ? 1.0f : -1.0f;
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> rowOf(1, CLR_TILE_SIZE / 2), subpixels(0, (CLR_TILE_SIZE - 1) * CLR_FIXED_ONE);
+    std::uniform_real_distribution<float> nearDepth(-0.74f, -0.5f), farDepth(0.6f, 0.95f);
+    bool found = false;
+    for (int attempt = 0; attempt < 4000 && !found; ++attempt) {
+      // Step 1: the triangle: vertices 1 and 2 near, on a row of pixel
+      // centres (2 right of 1), vertex 0 above them, far.
+      const float zNear = toward * -nearDepth(rng), row = float(rowOf(rng)) + 0.5f;
+      float x1 = float(subpixels(rng)) * step, x2 = float(subpixels(rng)) * step;
+      if (x1 > x2) std::swap(x1, x2);
+      if (x2 - x1 < 2.0f) continue;
+      const float zFar = toward * -farDepth(rng);
+      const glm::vec3 v0 =
+          screen(float(subpixels(rng)) * step, row + 1.0f + float(subpixels(rng) / 2) * step, zFar, W, H);
+      const glm::vec3 v1 = screen(x1, row, zNear, W, H), v2 = screen(x2, row, zNear, W, H);
+      // Step 2: the occluder's depth: the nearest window depth in front of
+      // theirs that a clip z gives.
+      float zFront = zNear;
+      while (window(zFront) == window(zNear)) zFront = std::nextafter(zFront, toward);
+      Geometry g;
+      const float edge = float(CLR_TILE_SIZE);
+      for (int copy = 0; copy < 4; ++copy) {
+        g.addTriangle(screen(0, 0, zFront, W, H), screen(edge, 0, zFront, W, H), screen(0, edge, zFront, W, H));
+        g.addTriangle(screen(edge, 0, zFront, W, H), screen(edge, edge, zFront, W, H), screen(0, edge, zFront, W, H));
+      }
+      g.addTriangle(v0, v1, v2);
+      ref::Options o{W, H, false};
+      o.depthMode = mode;
+      const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), o);
+      if (std::count(expected.triId.begin(), expected.triId.end(), 8u) == 0) continue;
+      // Step 3: a case found; the device must agree.
+      INFO("attempt " << attempt);
+      clr::FrameSettings settings = test::idSettings(W, H);
+      settings.depthMode = mode;
+      CHECK(test::countDifferences(test::renderTriIds(g, settings), expected.triId) == 0);
+      found = true;
     }
-    g.addTriangle(v0, v1, v2);
-    const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {W, H, false});
-    if (std::count(expected.triId.begin(), expected.triId.end(), 8u) == 0) continue;
-    // Step 3: a case found; the device must agree.
-    INFO("attempt " << attempt);
-    CHECK(test::countDifferences(test::renderTriIds(g, test::idSettings(W, H)), expected.triId) == 0);
-    return;
+    if (!found) FAIL("no triangle rounded in front of the occluder: the test no longer tests the margin");
   }
-  FAIL("no triangle rounded in front of the occluder: the test no longer tests the margin");
 }
 
 TEST_CASE("raster walks a tile of more bin entries than the GPU shape's batch", "[raster]")
