@@ -54,6 +54,11 @@ if(TARGET clraster_bench)
   add_test(NAME bench_reports_round_ratios COMMAND clraster_bench --size 64x48 --warmup 0 --frames 2 --rounds 2 --no-ids)
   set_tests_properties(bench_reports_round_ratios PROPERTIES PASS_REGULAR_EXPRESSION
                                                              "\"ratio_round_min\":[0-9.]+,\"ratio_round_max\":[0-9.]+,")
+  # bench/ab.sh, the A/B tool, on one pair of the same build: both builds' medians and the pairs' count.
+  add_test(NAME bench_ab_script COMMAND bash ${CMAKE_SOURCE_DIR}/bench/ab.sh -n 1 ${CMAKE_BINARY_DIR}
+                                        ${CMAKE_BINARY_DIR} --size 64x48 --warmup 0 --frames 1)
+  set_tests_properties(bench_ab_script PROPERTIES PASS_REGULAR_EXPRESSION
+                                                  "A frame [0-9.]+ ms, .*raster [0-9.]+.*\nB frame [0-9.]+ ms, .*\nB frame lower in [01] of 1 pairs")
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
                        bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
