@@ -38,6 +38,14 @@ typedef float floatL;
 #define as_floatL as_float
 #define CLR_STORE_LANES(value, array) ((array)[0] = (value))
 #define CLR_LOAD_LANES(array) ((array)[0])
+CLR_INLINE uint clr_and_lanes(uint v)
+{
+  return v;
+}
+CLR_INLINE float clr_max_lanes(float v)
+{
+  return v;
+}
 #elif CLR_LANES == 16
 typedef long16 longL;
 typedef ushort16 ushortL;
@@ -55,6 +63,22 @@ CLR_INLINE bool clr_any16(int16 mask)
   return (c.x | c.y) != 0;
 }
 #define CLR_ANY(mask) clr_any16(as_int16(mask))
+/* The bits set in every lane, and the largest lane (max()'s rule for NaN):
+ * trees over halves, as clr_any16. */
+CLR_INLINE uint clr_and_lanes(uint16 v)
+{
+  const uint8 a = v.lo & v.hi;
+  const uint4 b = a.lo & a.hi;
+  const uint2 c = b.lo & b.hi;
+  return c.x & c.y;
+}
+CLR_INLINE float clr_max_lanes(float16 v)
+{
+  const float8 a = max(v.lo, v.hi);
+  const float4 b = max(a.lo, a.hi);
+  const float2 c = max(b.lo, b.hi);
+  return max(c.x, c.y);
+}
 #define convert_longL convert_long16
 #define convert_intL convert_int16
 #define convert_uintL convert_uint16

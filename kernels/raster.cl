@@ -576,14 +576,7 @@ CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][C
   floatL far = best[0][0].depth;
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row) far = max(far, best[col][row].depth);
-#if CLR_LANES == 16
-  const float8 a = max(far.lo, far.hi);
-  const float4 b = max(a.lo, a.hi);
-  const float2 c = max(b.lo, b.hi);
-  return max(c.x, c.y);
-#else
-  return far;
-#endif
+  return clr_max_lanes(far);
 }
 CLR_INLINE bool raster_hidden(__global const TriSetup* t, float tileFar, uint depthMode)
 {

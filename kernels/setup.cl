@@ -147,13 +147,10 @@ CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global c
   const float margin = params->clusterMargin, nearSign = clip_near_sign(params->depthMode);
   const uintL zero = 0;
   const intL beyondFar = nearSign < 0.0f ? (z < -margin) : (z - w > margin);
-  uintL code = select(zero, (uintL)1u, nearSign * z + w < -margin) | select(zero, (uintL)2u, x + w < -margin) |
-               select(zero, (uintL)4u, x - w > margin) | select(zero, (uintL)8u, y + w < -margin) |
-               select(zero, (uintL)16u, y - w > margin) | select(zero, (uintL)32u, beyondFar);
-  const uint8 a = code.lo & code.hi;
-  const uint4 c = a.lo & a.hi;
-  const uint2 d = c.lo & c.hi;
-  return (d.x & d.y) != 0;
+  const uintL code = select(zero, (uintL)1u, nearSign * z + w < -margin) | select(zero, (uintL)2u, x + w < -margin) |
+                     select(zero, (uintL)4u, x - w > margin) | select(zero, (uintL)8u, y + w < -margin) |
+                     select(zero, (uintL)16u, y - w > margin) | select(zero, (uintL)32u, beyondFar);
+  return clr_and_lanes(code) != 0;
 }
 #endif
 
