@@ -31,9 +31,10 @@
  * input triangle). Both shapes compute bit-identical results. Tiles with
  * no binned triangle are skipped; resolve fills them. With hierarchical
  * traversal the CPU shape accepts a tile that lies inside all three edges
- * without testing its samples (bin.cl rejects the tiles outside one), and
- * under the z-buffer skips a triangle that lies wholly behind every depth
- * its tile keeps (raster_hidden).
+ * without testing its samples (bin.cl rejects the tiles outside one).
+ * Under the z-buffer a triangle wholly behind the depths kept is skipped:
+ * by a CPU tile behind all it keeps, before the rows; by a GPU sample
+ * behind its own, before the edge tests (raster_nearest_key).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -452,6 +453,50 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
   *b2 = convert_floatL(edge_function_lanes(x0, y0, x1, y1, sx, sy)) * scale;
 }
 
+/* The skip of hidden triangles, under the z-buffer with fixed edges, in
+ * every depth format and both shapes: a bin entry whose every fragment's
+ * key lies beyond a kept key can take none of those samples. The CPU shape
+ * compares with the farthest key its tile keeps (tileFar, raster_tile_far,
+ * refreshed every CLR_FAR_REFRESH entries; it only falls, so a stale one
+ * skips less, never wrongly) and skips the entry before its rows; the GPU
+ * shape's work-item compares with its own sample's kept key and skips the
+ * entry's edge tests (raster_pixel). raster_nearest_key gives the nearest
+ * key a triangle's fragments can have. The margin: a fragment's depth is
+ * z = z0 + b1·(z1 − z0) + b2·(z2 − z0) in floats (raster_depth_test) with
+ * b1, b2 >= 0 (an inside sample has E1, E2 >= 0, and 1/(2 area) > 0) and
+ * b1 + b2 <= (E1 + E2)/(2 area)·(1 + 4u) <= 1 + 4u, u = 2^-24 (four
+ * roundings: two conversions, the reciprocal, the product). With
+ * M = max |z_i|, the exact value with those b lies within 8u·M of
+ * [min z_i, max z_i] (z0's weight is at least −4u), and the two
+ * differences, two products and two sums round by at most 10u·M more: z
+ * lies within 18u·M of the vertices' range. The skip widens the range by
+ * 2^-18·M (64u·M, 3.5 times the bound; 2^-120 more for depths so small that
+ * roundings are absolute) and takes the nearest key of the widened range
+ * (every format's key is monotonic in z: raster_depth_key); when that key
+ * is beyond the kept key, no fragment would have passed the test or tied
+ * (a fragment with a NaN depth never passes, but under unorm24, so there a
+ * vertex depth that is not finite skips nothing: −∞). A test
+ * (test_kernels.cpp) finds, in each format, a triangle rounded in front of
+ * its nearest vertices, which the skip without its margin drops (float32,
+ * reversed; unorm24's steps hide it). CPU shape, raster at 1080p on the
+ * 2-core machine, medians of alternated pairs: yxa_1 filling the screen
+ * 2.55 -> 2.19 ms (float32, ten pairs), 3.17 -> 2.88 (reversed, four),
+ * 5.11 -> 4.79 (unorm24, three); the 1M-triangle sphere near
+ * 10.3 -> 9.0 ms and far 6.5 -> 6.3 ms (six), the engine filling the
+ * screen 9.4 -> 6.0 ms (four). */
+CLR_INLINE float raster_nearest_key(float z0, float z1, float z2, uint depthMode)
+{
+  const float margin = max(fabs(z0), max(fabs(z1), fabs(z2))) * 0x1p-18f + 0x1p-120f;
+  // The nearest key of the widened range (raster_depth_key's, scalar).
+  if (depthMode == CLR_DEPTH_REVERSED) return -(max(z0, max(z1, z2)) + margin);
+  const float zLow = min(z0, min(z1, z2)) - margin;
+  if (depthMode != CLR_DEPTH_UNORM24) return zLow;
+  // (A NaN vertex depth makes every fragment's key NaN, never taken, but
+  // for unorm24, which clamps it to the nearest key.)
+  if (!(isfinite(z0) && isfinite(z1) && isfinite(z2))) return -INFINITY;
+  return rint(clamp(zLow, 0.0f, 1.0f) * CLR_DEPTH_UNORM24_MAX);
+}
+
 /* The raster kernels' parameters, the same for every variant below:
  *   params, setup, tileOffset (tiles + 1), binEntries,
  *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
@@ -488,7 +533,7 @@ CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, in
  * triangles span its tiles, is unchanged. */
 #define CLR_RASTER_BATCH (CLR_TILE_SIZE * CLR_TILE_SIZE)
 CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local TriSetup* records, __local int4* bounds,
-                             __local uint* indices, __local uint* ranks)
+                             __local float* nearestKeys, __local uint* indices, __local uint* ranks)
 {
   const uint px = get_global_id(0), py = get_global_id(1), k = get_global_id(2);
   const uint tile = get_group_id(1) * params->tilesX + get_group_id(0);
@@ -499,6 +544,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
   if (begin == end) return;  // the whole group: resolve fills empty tiles without reading the visibility buffer
   const DepthRule rule = raster_depth_rule(params);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
+  const bool skipHidden = !painter && edgeMode == CLR_EDGES_FIXED;  // raster_nearest_key
   RowBest best;
   row_best_init(&best, rule.clearKey, rule.visibility);
   for (uint first = begin; first < end; first += CLR_RASTER_BATCH) {
@@ -510,15 +556,18 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
       const TriSetup t = setup[s];
       records[item] = t;
       bounds[item] = CLR_RECORD_BOUNDS(t);
+      nearestKeys[item] = skipHidden ? raster_nearest_key(t.z[0], t.z[1], t.z[2], rule.depthMode) : -INFINITY;
       indices[item] = s;
       ranks[item] = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     // Step 2: this sample against each, in bin order; a sample outside a
-    // triangle's bounds is outside the triangle, and skips its edge tests.
+    // triangle's bounds is outside the triangle, and one whose kept key is
+    // nearer than any of the triangle's fragments keeps it: either skips
+    // the edge tests.
     for (uint n = 0; n < count; ++n) {
       const int4 b = bounds[n];
-      if (sx < b.x || sy < b.y || sx > b.z || sy > b.w) continue;
+      if (sx < b.x || sy < b.y || sx > b.z || sy > b.w || nearestKeys[n] > best.depth) continue;
       raster_row(&records[n], indices[n], sx, sy, &best, &rule, ranks[n], edgeMode);
     }
   }
@@ -526,14 +575,16 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
 }
 
 /* Each kernel declares the batch's local memory (OpenCL 1.2 allows it only
- * at kernel scope): 256 records of 48 bytes, their bounds and two words each, 18 KB. */
+ * at kernel scope): 256 records of 48 bytes, their bounds, nearest keys
+ * and two words each, 19 KB. */
 #define CLR_DEFINE_RASTER_PIXEL_KERNEL(name, edgeMode)                                                         \
   __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void name(CLR_RASTER_PARAMS) \
   {                                                                                                            \
     __local TriSetup records[CLR_RASTER_BATCH];                                                                \
     __local int4 bounds[CLR_RASTER_BATCH];                                                                     \
+    __local float nearestKeys[CLR_RASTER_BATCH];                                                               \
     __local uint indices[CLR_RASTER_BATCH], ranks[CLR_RASTER_BATCH];                                           \
-    raster_pixel(CLR_RASTER_ARGS, edgeMode, records, bounds, indices, ranks);                                  \
+    raster_pixel(CLR_RASTER_ARGS, edgeMode, records, bounds, nearestKeys, indices, ranks);                     \
   }
 #if !CLR_EXTRAS
 CLR_DEFINE_RASTER_PIXEL_KERNEL(raster, CLR_EDGES_FIXED)
@@ -542,34 +593,6 @@ CLR_DEFINE_RASTER_PIXEL_KERNEL(raster_hierarchical, CLR_EDGES_FIXED)
 CLR_DEFINE_RASTER_PIXEL_KERNEL(raster_float, CLR_EDGES_FLOAT)
 #endif
 #else
-/* The CPU shape's skip of hidden triangles, under the z-buffer with fixed
- * edges, in every depth format: a bin entry whose every fragment's key
- * lies beyond the farthest key its tile keeps (tileFar) can take no sample,
- * and raster_tile skips it before its rows. tileFar, raster_tile_far, is
- * refreshed every CLR_FAR_REFRESH entries; it only falls, so a stale one
- * skips less, never wrongly. The margin: a fragment's depth is
- * z = z0 + b1·(z1 − z0) + b2·(z2 − z0) in floats (raster_depth_test) with
- * b1, b2 >= 0 (an inside sample has E1, E2 >= 0, and 1/(2 area) > 0) and
- * b1 + b2 <= (E1 + E2)/(2 area)·(1 + 4u) <= 1 + 4u, u = 2^-24 (four
- * roundings: two conversions, the reciprocal, the product). With
- * M = max |z_i|, the exact value with those b lies within 8u·M of
- * [min z_i, max z_i] (z0's weight is at least −4u), and the two
- * differences, two products and two sums round by at most 10u·M more: z
- * lies within 18u·M of the vertices' range. The skip widens the range by
- * 2^-18·M (64u·M, 3.5 times the bound; 2^-120 more for depths so small that
- * roundings are absolute) and takes the nearest key of the widened range
- * (every format's key is monotonic in z: raster_depth_key); when that key
- * is beyond tileFar, no fragment would have passed the test or tied (a
- * fragment with a NaN depth never passes, but under unorm24, so there a
- * vertex depth that is not finite skips nothing). A test
- * (test_kernels.cpp) finds, in each format, a triangle rounded in front of
- * its nearest vertices, which the skip without its margin drops (float32,
- * reversed; unorm24's steps hide it). Raster at 1080p on the 2-core
- * machine, medians of alternated pairs: yxa_1 filling the screen
- * 2.55 -> 2.19 ms (float32, ten pairs), 3.17 -> 2.88 (reversed, four),
- * 5.11 -> 4.79 (unorm24, three); the 1M-triangle sphere near
- * 10.3 -> 9.0 ms and far 6.5 -> 6.3 ms (six), the engine filling the
- * screen 9.4 -> 6.0 ms (four). */
 #define CLR_FAR_REFRESH 8
 CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE])
 {
@@ -578,20 +601,6 @@ CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][C
     for (int row = 0; row < CLR_TILE_SIZE; ++row) far = max(far, best[col][row].depth);
   return clr_max_lanes(far);
 }
-CLR_INLINE bool raster_hidden(__global const TriSetup* t, float tileFar, uint depthMode)
-{
-  const float z0 = t->z[0], z1 = t->z[1], z2 = t->z[2];
-  const float margin = max(fabs(z0), max(fabs(z1), fabs(z2))) * 0x1p-18f + 0x1p-120f;
-  // The nearest key of the widened range (raster_depth_key's, scalar).
-  if (depthMode == CLR_DEPTH_REVERSED) return -(max(z0, max(z1, z2)) + margin) > tileFar;
-  const float zLow = min(z0, min(z1, z2)) - margin;
-  if (depthMode != CLR_DEPTH_UNORM24) return zLow > tileFar;
-  // (A NaN vertex depth makes every fragment's key NaN, never taken, but
-  // for unorm24, which clamps it to the nearest key.)
-  if (!(isfinite(z0) && isfinite(z1) && isfinite(z2))) return false;
-  return rint(clamp(zLow, 0.0f, 1.0f) * CLR_DEPTH_UNORM24_MAX) > tileFar;
-}
-
 /* CPU shape: one work-item per tile and sample index, as llvmpipe's
  * per-tile threads. Each triangle is tested only on the rows its bounds
  * span, a 16-pixel vector row at a time; the tile's nearest fragments stay
@@ -620,7 +629,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     sx[col] = firstX * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetX + CLR_LANE_INDEX * CLR_FIXED_ONE;
     for (int row = 0; row < CLR_TILE_SIZE; ++row) row_best_init(&best[col][row], rule.clearKey, rule.visibility);
   }
-  const bool skipHidden = !painter && edgeMode == CLR_EDGES_FIXED;  // raster_hidden
+  const bool skipHidden = !painter && edgeMode == CLR_EDGES_FIXED;  // raster_nearest_key
   float tileFar = rule.clearKey;
   // Step 2: each binned triangle, on the rows and row segments its bounds span.
   for (uint n = begin; n < end; ++n) {
@@ -633,8 +642,9 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     if (skipHidden) {
       if ((n - begin) % CLR_FAR_REFRESH == CLR_FAR_REFRESH - 1) tileFar = raster_tile_far(best);
       // (the default rule's test with its format a constant)
-      if (defaultRule ? raster_hidden(t, tileFar, CLR_DEPTH_FLOAT32) : raster_hidden(t, tileFar, rule.depthMode))
-        continue;
+      const float nearest = defaultRule ? raster_nearest_key(t->z[0], t->z[1], t->z[2], CLR_DEPTH_FLOAT32)
+                                        : raster_nearest_key(t->z[0], t->z[1], t->z[2], rule.depthMode);
+      if (nearest > tileFar) continue;
     }
     const uint rank = painter ? paintRank[clr_source_triangle(source[s], clipBary)] : 0u;
     const int4 bounds = CLR_RECORD_BOUNDS(*t);

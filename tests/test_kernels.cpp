@@ -326,10 +326,11 @@ TEST_CASE("z-test keeps the nearest fragment, ties go to the earlier triangle", 
 
 TEST_CASE("raster's skip of hidden triangles keeps a fragment that rounding brings in front", "[raster]")
 {
-  // The CPU shape skips a bin entry whose nearest vertex lies behind every
-  // depth its tile keeps (raster_tile). The interpolated depth can round
-  // past the nearest vertex's depth (where the barycentrics' float sum
-  // exceeds 1), so the skip keeps a margin. Here an occluding square
+  // Raster skips a bin entry whose nearest vertex lies behind the depths
+  // kept: every depth of its tile in the CPU shape (raster_tile), the
+  // sample's own in the GPU shape (raster_pixel). The interpolated depth
+  // can round past the nearest vertex's depth (where the barycentrics'
+  // float sum exceeds 1), so the skip keeps a margin. Here an occluding square
   // covers tile 0 just in front of the two near vertices of a steep
   // triangle, four times, before it (all in tile 0 and in one setup batch,
   // so binned in order: the skip has seen the tile covered when the
