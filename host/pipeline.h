@@ -25,6 +25,17 @@
 
 namespace clr {
 
+// How scan_chunks (scan.cl) splits n counts: at most 4096 chunks of at
+// least 64 counts each, and the work-items of its reduce and apply phases:
+// a work-group of CLR_SCAN_GROUP(1) per chunk in the GPU shape (lanes 1),
+// one work-item per chunk in the CPU shape. (Pipeline's scans; a kernel
+// test launches the phases the same way.)
+struct ScanChunks {
+  uint32_t size, count;
+};
+ScanChunks scanChunks(uint32_t n);
+cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
+
 // A setup record as tests and tools read it back (Pipeline::readSetup):
 // the record's geometry with what its source word and ClipBary slot hold
 // (shared.h), decoded.

@@ -13,20 +13,16 @@
 
 namespace clr {
 
-namespace {
-
-// At most 4096 chunks of at least 64 counts each.
-struct ScanChunks {
-  uint32_t size, count;
-};
-
 ScanChunks scanChunks(uint32_t n)
 {
   const uint32_t size = std::max<uint32_t>(64, (n + 4095) / 4096);
   return {size, std::max<uint32_t>(1, (n + size - 1) / size)};
 }
 
-}  // namespace
+cl::NDRange scanChunkItems(int lanes, uint32_t chunks)
+{
+  return cl::NDRange(size_t(chunks) * CLR_SCAN_GROUP(lanes));
+}
 
 void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage)
 {
@@ -37,7 +33,8 @@ void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& 
   cl::Event reduceEvent, partialsEvent;
   setArgs(scanReduceKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
           counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_REDUCE, job.alsoNonZero, job.listing);
-  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, linear(c.count), group, nullptr, &reduceEvent);
+  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count), group, nullptr,
+                                 &reduceEvent);
   setArgs(scanPartialsKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
           counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_PARTIALS, job.alsoNonZero, job.listing);
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, group, group, nullptr, &partialsEvent);
@@ -51,7 +48,7 @@ void Pipeline::scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_u
   cl::Event applyEvent;
   setArgs(scanApplyKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
           counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_APPLY, job.alsoNonZero, job.listing);
-  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, linear(c.count),
+  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count),
                                  cl::NDRange(CLR_SCAN_GROUP(cl_.lanes)), nullptr, &applyEvent);
   record(stage, applyEvent);
 }

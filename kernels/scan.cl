@@ -96,6 +96,82 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __global
  * store goes to the chunk's spare entry past the records instead of behind a
  * branch (survivors and culled triangles alternate unpredictably on a dense
  * mesh seen from afar). */
+#if CLR_LANES == 1
+/* GPU shape of the reduce and apply phases: one work-group per chunk, its
+ * CLR_SCAN_GROUP(1) work-items reading consecutive values (one coalesced
+ * load per step), a step's values scanned in local memory
+ * (scan_group_inclusive, Hillis and Steele's scan). When each work-item
+ * walked a chunk of its own, as in the CPU shape, the 4096 work-items'
+ * loads lay far apart and were too few to hide their latency: the setup
+ * counts' scans of 10M triangles took 0.64 ms on an H100. Each value
+ * enters the scan as (v << 8) | (v != 0), so that one scan gives both the
+ * sum (64 uints sum below 2^38) and the count of non-zero values (at most
+ * 64). Both phases walk the chunk the same way, with the same barriers:
+ * PoCL mishandled a version whose reduce phase had its own loop and
+ * barriers under a branch (its totals came out as garbage). */
+CLR_INLINE ulong scan_group_inclusive(ulong packed, __local ulong* steps)
+{
+  const uint lid = get_local_id(0);
+  barrier(CLK_LOCAL_MEM_FENCE);  // the previous step's readers are done
+  steps[lid] = packed;
+  for (uint offset = 1; offset < CLR_SCAN_GROUP(1); offset <<= 1) {
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const ulong before = lid >= offset ? steps[lid - offset] : 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    steps[lid] += before;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return steps[lid];
+}
+
+CLR_INLINE uint scan_value(__global const uint* src, __global const uchar* byteCounts, uint listSources, uint i,
+                           uint end)
+{
+  if (i >= end) return 0;
+  return listSources ? byteCounts[i] : src[i];
+}
+
+CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
+                                 __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
+                                 __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources,
+                                 __local ulong* steps)
+{
+  const uint g = get_group_id(0), lid = get_local_id(0);
+  const uint begin = g * chunk, end = min(begin + chunk, n);
+  const bool apply = phase == CLR_SCAN_APPLY;
+  // The chunk a step of CLR_SCAN_GROUP(1) values at a time: the reduce
+  // phase sums the steps, the apply phase also writes each value's offset.
+  ulong running = apply ? partials[g] : 0, runningNonZero = apply && alsoNonZero ? nonZeroPartials[g] : 0;
+  for (uint first = begin; first < end; first += CLR_SCAN_GROUP(1)) {
+    const uint i = first + lid, v = scan_value(src, byteCounts, listSources, i, end);
+    const ulong packed = ((ulong)v << 8) | (ulong)(v != 0);
+    const ulong inclusive = scan_group_inclusive(packed, steps), exclusive = inclusive - packed;
+    const ulong stepTotal = steps[CLR_SCAN_GROUP(1) - 1];
+    if (apply && i < end) {
+      if (listSources) {
+        // (A culled triangle stores nothing: the CPU shape's spare entry
+        // would be a store by many work-items at once here.)
+        const ulong record = running + (exclusive >> 8);
+        if (v == 1) second[record] = i;
+        for (uint k = 0; v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) second[record + k] = CLR_SOURCE_CLIPPED | i;
+      } else {
+        dst[i] = (uint)(running + (exclusive >> 8));
+        if (alsoNonZero) second[i] = (uint)(runningNonZero + (exclusive & 0xFF));
+      }
+    }
+    running += stepTotal >> 8;
+    runningNonZero += stepTotal & 0xFF;
+  }
+  if (lid != 0) return;
+  if (!apply) {
+    partials[g] = running;
+    if (alsoNonZero) nonZeroPartials[g] = runningNonZero;
+  } else if (g == numChunks - 1 && !listSources) {
+    dst[n] = (uint)partials[numChunks];
+    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+  }
+}
+#else
 CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint end, ulong running, ulong spare,
                                   __global uint* sources)
 {
@@ -106,6 +182,7 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
     running += v;
   }
 }
+#endif
 
 __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) void scan_chunks(
     __global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
@@ -128,51 +205,56 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
     scan_partials(partials, numChunks, counters, totalAt);
     if (alsoNonZero) scan_partials(nonZeroPartials, numChunks, counters, nonZeroTotalAt);
 #endif
-    return;
-  }
-  const uint g = get_global_id(0);
-  if (g >= numChunks) return;
-  const uint begin = g * chunk;
-  const uint end = min(begin + chunk, n);
-  if (phase == CLR_SCAN_REDUCE) {
-    ulong sum = 0, nonZero = 0;
+  } else {
+#if CLR_LANES == 1
+    scan_chunk_group(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
+                     listSources, groupSums);
+#else
+    const uint g = get_global_id(0);
+    if (g >= numChunks) return;
+    const uint begin = g * chunk;
+    const uint end = min(begin + chunk, n);
+    if (phase == CLR_SCAN_REDUCE) {
+      ulong sum = 0, nonZero = 0;
+      if (listSources) {
+        for (uint i = begin; i < end; ++i) sum += byteCounts[i];
+      } else {
+        for (uint i = begin; i < end; ++i) {
+          const uint v = src[i];
+          sum += v;
+          nonZero += v != 0;
+        }
+      }
+      partials[g] = sum;
+      if (alsoNonZero) nonZeroPartials[g] = nonZero;
+      return;
+    }
+    ulong running = partials[g];
     if (listSources) {
-      for (uint i = begin; i < end; ++i) sum += byteCounts[i];
-    } else {
+      scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
+      return;
+    }
+    if (!alsoNonZero) {
       for (uint i = begin; i < end; ++i) {
         const uint v = src[i];
-        sum += v;
-        nonZero += v != 0;
+        dst[i] = (uint)running;
+        running += v;
+      }
+    } else {
+      ulong runningNonZero = nonZeroPartials[g];
+      for (uint i = begin; i < end; ++i) {
+        const uint v = src[i];
+        dst[i] = (uint)running;
+        second[i] = (uint)runningNonZero;
+        running += v;
+        runningNonZero += v != 0;
       }
     }
-    partials[g] = sum;
-    if (alsoNonZero) nonZeroPartials[g] = nonZero;
-    return;
-  }
-  ulong running = partials[g];
-  if (listSources) {
-    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
-    return;
-  }
-  if (!alsoNonZero) {
-    for (uint i = begin; i < end; ++i) {
-      const uint v = src[i];
-      dst[i] = (uint)running;
-      running += v;
+    if (g == numChunks - 1) {
+      dst[n] = (uint)partials[numChunks];
+      if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
     }
-  } else {
-    ulong runningNonZero = nonZeroPartials[g];
-    for (uint i = begin; i < end; ++i) {
-      const uint v = src[i];
-      dst[i] = (uint)running;
-      second[i] = (uint)runningNonZero;
-      running += v;
-      runningNonZero += v != 0;
-    }
-  }
-  if (g == numChunks - 1) {
-    dst[n] = (uint)partials[numChunks];
-    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+#endif
   }
 }
 #endif
