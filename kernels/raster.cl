@@ -601,6 +601,7 @@ CLR_INLINE float raster_tile_far(const RowBest best[CLR_TILE_SIZE / CLR_LANES][C
     for (int row = 0; row < CLR_TILE_SIZE; ++row) far = max(far, best[col][row].depth);
   return clr_max_lanes(far);
 }
+
 /* CPU shape: one work-item per tile and sample index, as llvmpipe's
  * per-tile threads. Each triangle is tested only on the rows its bounds
  * span, a 16-pixel vector row at a time; the tile's nearest fragments stay

@@ -87,15 +87,6 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __global
 }
 #endif
 
-/* CLR_SCAN_APPLY over the setup counts of input triangles [begin, end),
- * whose first record is `running`: lists the input triangle behind each
- * record. An unclipped survivor (1) owns its record; a clipped triangle's
- * CLR_MAX_SUBTRIS reserved records get CLR_SOURCE_CLIPPED | its index, so
- * the listing stays sorted by input triangle and setup_clip finds them by
- * binary search (clip_first_record); a culled one (0) owns none, and its
- * store goes to the chunk's spare entry past the records instead of behind a
- * branch (survivors and culled triangles alternate unpredictably on a dense
- * mesh seen from afar). */
 #if CLR_LANES == 1
 /* GPU shape of the reduce and apply phases: one work-group per chunk, its
  * CLR_SCAN_GROUP(1) work-items reading consecutive values (one coalesced
@@ -172,6 +163,15 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
   }
 }
 #else
+/* CLR_SCAN_APPLY over the setup counts of input triangles [begin, end),
+ * whose first record is `running`: lists the input triangle behind each
+ * record. An unclipped survivor (1) owns its record; a clipped triangle's
+ * CLR_MAX_SUBTRIS reserved records get CLR_SOURCE_CLIPPED | its index, so
+ * the listing stays sorted by input triangle and setup_clip finds them by
+ * binary search (clip_first_record); a culled one (0) owns none, and its
+ * store goes to the chunk's spare entry past the records instead of behind a
+ * branch (survivors and culled triangles alternate unpredictably on a dense
+ * mesh seen from afar). */
 CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint end, ulong running, ulong spare,
                                   __global uint* sources)
 {
