@@ -1,6 +1,7 @@
 // test_resolve.cpp — the resolve kernel's perspective-correct interpolation
 // (the 1/w rule) against the analytic value on a tilted plane, unclipped and
-// clipped by the near plane; the image's orientation, and the mapped ImageView.
+// clipped by the near plane; the image's orientation, the mapped ImageView, and
+// the background over tiles without triangles, edge tiles included.
 #include "image_io.h"
 #include "test_support.h"
 
@@ -188,5 +189,49 @@ TEST_CASE("an ImageView shows render()'s pixels until the next frame begins", "[
     size_t background = 0;
     for (uint32_t p : copied) background += p == copied[0];
     CHECK((background > 0 && background < copied.size()));  // premise: the picture is not uniform
+  }
+}
+
+TEST_CASE("resolve paints every pixel no triangle covers with the background in partial edge tiles too", "[resolve]")
+{
+  // A 37x35 viewport: 3x3 tiles, the right column 5 pixels wide and the top
+  // row 3 high. A first frame covers the whole image; the second draws one
+  // small triangle in the middle tile, so eight tiles have no bin entries and
+  // resolve paints them (its empty-tile path in the CPU shape) over the first
+  // frame's pixels. Every pixel the oracle leaves uncovered must be the
+  // mode's background, every covered one not.
+  const uint32_t W = 37, H = 35;
+  test::Geometry cover, small;
+  cover.addTriangle(test::screen(-1, -1, 0.5f, W, H), test::screen(2 * W + 1, -1, 0.5f, W, H),
+                    test::screen(-1, 2 * H + 1, 0.5f, W, H));
+  small.addTriangle(test::screen(17, 17, 0, W, H), test::screen(30, 19, 0, W, H), test::screen(20, 29, 0, W, H));
+  const ref::Result reference = ref::rasterize(small.positions, small.indices, glm::mat4(1.0f), {W, H, false});
+  // Lambert (resolve_lambert), a lit mode and an unlit one (the general resolve).
+  for (const auto& [mode, background] : {std::pair<uint32_t, uint32_t>{CLR_SHADE_LAMBERT, 0xFF261F1Au},
+                                         {CLR_SHADE_GOURAUD, 0xFF261F1Au},
+                                         {CLR_SHADE_NORMAL, 0xFF000000u}}) {
+    INFO("shade mode " << mode);
+    clr::Pipeline pipeline(test::context());
+    clr::FrameSettings settings = test::idSettings(W, H);
+    settings.shadeMode = mode;
+    std::vector<uint32_t> rgba;
+    pipeline.uploadScene(cover.mesh());
+    pipeline.render(settings, rgba);
+    size_t firstBackground = 0;
+    for (uint32_t p : rgba) firstBackground += p == background;
+    REQUIRE(firstBackground == 0);  // premise: the first frame leaves no background pixel
+    pipeline.uploadScene(small.mesh());
+    pipeline.render(settings, rgba);
+    REQUIRE(rgba.size() == size_t(W) * H);
+    size_t wrong = 0, covered = 0;
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const bool isCovered = reference.triId[size_t(y) * W + x] != ref::kNone;
+        const uint32_t pixel = rgba[size_t(H - 1 - y) * W + x];  // the image's top row first
+        covered += isCovered;
+        wrong += isCovered == (pixel == background);
+      }
+    CHECK(covered > 20);  // premise: the triangle covers pixels, in one tile
+    CHECK(wrong == 0);
   }
 }
