@@ -1,24 +1,31 @@
 #!/usr/bin/env bash
-# ab.sh — two builds of clraster on one benchmark case, in alternated pairs.
+# ab.sh — two builds of clraster on one benchmark case, frame turns alternated.
 #
 #   bash bench/ab.sh [-n PAIRS] DIR_A DIR_B [clraster_bench arguments]
 #
 # DIR_A and DIR_B each hold a built clraster_bench (a build folder, or a copy
 # of one); the arguments name the case as clraster_bench takes them (default:
-# the built-in scene at 1920x1080), and --no-ids --rounds 1 are added. Runs
-# PAIRS pairs (default 8) in ABBA order (A B, B A, A B, ...), so that a
-# slower spell of the shared host falls on both builds alike, and prints per
-# build the median over its runs of the frame (clr_ms) and of each kernel
-# stage, then in how many pairs B's frame was lower. On the 2-core
-# development machine two runs of one build differ by 5-10% in a stage's
-# median and more in slow spells, so a change of a few per cent needs eight
-# or ten pairs, and an A/A run (the same folder twice) shows the spread.
-# Each build runs from a private copy, with its own PoCL kernel cache, and
-# PoCL's workers pinned (POCL_AFFINITY=1, as bench/run.sh).
+# the built-in scene at 1920x1080), and --no-ids --serve are added. Both
+# builds load the case once, in two processes side by side, then take turns
+# (clraster_bench --serve): PAIRS pairs of turns (default 40) in ABBA order
+# (A B, B A, A B, ...), each turn --warmup untimed frames (default 1) and
+# --frames timed ones (default 3) while the other process waits. Turns of a
+# few frames put both builds in the same spell of the shared host, which
+# moves a stage's median by 5-10% from one minute to the next on the 2-core
+# development machine; whole runs alternated (this script before) needed
+# eight or ten pairs for a change of a few per cent. Prints per build the
+# median over its turns of the frame and of each kernel stage, then in how
+# many pairs B's frame, and each stage, was lower. An A/A run (the same
+# folder twice) shows the spread: on that machine medians within 4% and B
+# lower in 40-50% of the pairs. Frames follow the other build's frame rather
+# than their own, so the caches hold less of their data than in
+# clraster_bench's own runs: compare the two builds here, not these times
+# with the suite's. Each build runs from a private copy, with its own PoCL
+# kernel cache, and PoCL's workers pinned (POCL_AFFINITY=1, as bench/run.sh).
 set -euo pipefail
 
 fail() { echo "bench/ab.sh: $*" >&2; exit 1; }
-pairs=8
+pairs=40
 if [[ "${1:-}" == "-n" ]]; then
   [[ "${2:-}" =~ ^[1-9][0-9]*$ ]] || fail "-n needs a positive number of pairs"
   pairs=$2
@@ -39,25 +46,38 @@ cp "$dir_a/clraster_bench" "$work/A/"
 cp "$dir_b/clraster_bench" "$work/B/"
 export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 
-# Step 2: the pairs, each run one line "build clr_ms stage=ms ...".
-run() {  # BUILD ARGS...: one run of the case, its line appended to results
-  local build=$1 json frame stages
-  shift
-  json=$(POCL_CACHE_DIR="$work/$build/cache" "$work/$build/clraster_bench" "$@" --no-ids --rounds 1 2>"$work/err") ||
-    { cat "$work/err" >&2; fail "build $build: clraster_bench failed"; }
-  json=$(tail -n 1 <<<"$json")
-  frame=$(sed -n 's/.*"clr_ms":\([0-9.]*\).*/\1/p' <<<"$json")
-  stages=$(sed -n 's/.*"stage_ms":{\([^}]*\)}.*/\1/p' <<<"$json" | tr -d '"' | tr ',:' ' =')
-  [[ -n "$frame" ]] || fail "build $build: no clr_ms in the bench's output"
-  echo "$build $frame $stages" >>"$work/results"
+# Step 2: both servers, each loading the case and its kernels.
+for build in A B; do
+  mkfifo "$work/$build.in" "$work/$build.out"
+  POCL_CACHE_DIR="$work/$build/cache" "$work/$build/clraster_bench" --warmup 1 --frames 3 "$@" --no-ids --serve \
+    <"$work/$build.in" >"$work/$build.out" 2>"$work/$build.err" &
+done
+exec {to_a}>"$work/A.in" {from_a}<"$work/A.out" {to_b}>"$work/B.in" {from_b}<"$work/B.out"
+trap '' PIPE  # a server that stopped fails its write, reported below
+line=
+ask() {  # BUILD REQUEST: sends REQUEST (none: only reads) and reads the server's reply into line
+  local to=$to_a from=$from_a
+  [[ $1 == B ]] && to=$to_b from=$from_b
+  if [[ -n $2 ]]; then echo "$2" >&"$to" 2>/dev/null || { cat "$work/$1.err" >&2; fail "build $1: clraster_bench --serve stopped"; }; fi
+  IFS= read -r -u "$from" line || { cat "$work/$1.err" >&2; fail "build $1: clraster_bench --serve stopped"; }
 }
-for ((i = 0; i < pairs; ++i)); do
-  if ((i % 2 == 0)); then first=A second=B; else first=B second=A; fi
-  run "$first" "$@"
-  run "$second" "$@"
+for build in A B; do
+  ask "$build" ""
+  [[ $line == ready ]] || fail "build $build: clraster_bench --serve said '$line', not ready"
 done
 
-# Step 3: medians per build, and the pairs B won.
+# Step 3: the pairs of turns, each turn one line "build frame=ms stage=ms ...".
+turn() {  # BUILD
+  ask "$1" turn
+  echo "$1 $line" >>"$work/results"
+}
+for ((i = 0; i < pairs; ++i)); do
+  if ((i % 2 == 0)); then turn A; turn B; else turn B; turn A; fi
+done
+exec {to_a}>&- {to_b}>&-
+wait
+
+# Step 4: medians per build, and the pairs in which B was lower.
 awk -v pairs="$pairs" '
   function median(list, n,    v, i, j, t) {
     split(list, v, " ")
@@ -65,19 +85,21 @@ awk -v pairs="$pairs" '
     return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2
   }
   {
-    b = $1; ++runs[b]; frames[b] = frames[b] " " $2; last[b] = $2
-    for (f = 3; f <= NF; ++f) { split($f, kv, "="); names[kv[1]] = 1; stage[b, kv[1]] = stage[b, kv[1]] " " kv[2] }
-    if (runs["A"] == runs["B"]) won += last["B"] < last["A"]
+    b = $1; ++turns[b]
+    for (f = 2; f <= NF; ++f) { split($f, kv, "="); names[kv[1]] = 1; values[b, kv[1]] = values[b, kv[1]] " " kv[2]; last[b, kv[1]] = kv[2] }
+    if (turns["A"] == turns["B"]) for (s in names) lower[s] += last["B", s] + 0 < last["A", s] + 0
   }
   END {
     n = 0
-    for (s in names) sorted[++n] = s
+    for (s in names) if (s != "frame") sorted[++n] = s
     for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (sorted[j] < sorted[i]) { t = sorted[i]; sorted[i] = sorted[j]; sorted[j] = t }
     for (b = 0; b < 2; ++b) {
       build = b ? "B" : "A"
-      line = sprintf("%s frame %.3f ms", build, median(frames[build], runs[build]))
-      for (i = 1; i <= n; ++i) line = line sprintf(", %s %.3f", sorted[i], median(stage[build, sorted[i]], runs[build]))
+      line = sprintf("%s frame %.3f ms", build, median(values[build, "frame"], turns[build]))
+      for (i = 1; i <= n; ++i) line = line sprintf(", %s %.3f", sorted[i], median(values[build, sorted[i]], turns[build]))
       print line
     }
-    printf "B frame lower in %d of %d pairs\n", won, pairs
+    line = sprintf("B lower: frame %d", lower["frame"])
+    for (i = 1; i <= n; ++i) line = line sprintf(", %s %d", sorted[i], lower[sorted[i]])
+    printf "%s of %d pairs\n", line, pairs
   }' "$work/results"

@@ -6,6 +6,7 @@
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
+//   clraster_bench [the case's arguments] --serve
 //
 // The case: SCENE (a file assimp reads; the built-in scene when absent), or
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
@@ -53,6 +54,12 @@
 //                   spells move the ratio, beside the ratio of all frames.
 // --max-shade-mad M fails the run (after printing) when shade_mad exceeds M:
 // CTest's check that both renderers draw the same lambert image.
+// --serve times clraster alone, in turns that another process drives
+// (bench/ab.sh, which alternates two builds frame by frame): after the
+// scene and the kernels are loaded it prints "ready", then for each line
+// "turn" on stdin renders K untimed and N timed frames and prints one line
+// "frame=MS STAGE=MS ...", the medians over the turn's timed frames; it
+// ends at the end of stdin.
 // Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
 #include "procedural.h"
@@ -70,6 +77,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <map>
 #include <optional>
 #include <string>
@@ -95,6 +103,7 @@ struct Args {
   std::string imagePrefix;
   std::optional<double> peakLaneGops, peakCopyGbs;
   std::optional<double> maxShadeMad;  // fail when the per-pixel images differ more (a CTest check)
+  bool serve = false;                 // turns driven on stdin (header comment)
 };
 
 double parsePositive(const std::string& flag, const std::string& text)
@@ -143,6 +152,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.peakCopyGbs = parsePositive(a, flagValue(args, i));
     } else if (a == "--max-shade-mad") {
       r.maxShadeMad = parsePositive(a, flagValue(args, i));
+    } else if (a == "--serve") {
+      r.serve = true;
     } else {
       takeScenePath(a, r.scenePath);
     }
@@ -393,6 +404,34 @@ void appendCsv(const std::string& path, const std::vector<std::pair<std::string,
   if (std::fclose(file) != 0) throw Error("--csv: cannot write '" + path + "'");
 }
 
+// --serve: clraster's frames in turns, one "turn" line on stdin each, one
+// line of medians on stdout each (header comment).
+int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
+{
+  ClContext cl(args.device);
+  Pipeline pipeline(cl);
+  pipeline.uploadScene(mesh);
+  const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
+  ImageView view;
+  pipeline.render(settings, view);  // the first frame: kernel code generation
+  std::printf("ready\n");
+  std::fflush(stdout);
+  for (std::string line; std::getline(std::cin, line);) {
+    if (line != "turn") throw Error("--serve: '" + line + "' on stdin is not 'turn'");
+    ClrasterRun turn;
+    std::vector<FrameStats> timed;
+    timeClrasterRound(pipeline, settings, args.warmup, args.frames, turn, timed);
+    std::map<std::string, std::vector<double>> stages;
+    for (const FrameStats& stats : timed)
+      for (const auto& [name, ms] : stats.stageMs) stages[name].push_back(ms);
+    std::printf("frame=%.4f", median(turn.frameMs));
+    for (const auto& [name, ms] : stages) std::printf(" %s=%.4f", name.c_str(), median(ms));
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 int run(const Args& args)
 {
   // Step 0: llvmpipe timed at its faster mode (llvmpipe_render.h).
@@ -413,6 +452,7 @@ int run(const Args& args)
   if (mesh.numTris() == 0) throw Error("the scene has no triangles");
   if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
   const Camera camera = benchCamera(scene, args.view, args.width, args.height);
+  if (args.serve) return serveTurns(args, mesh, camera);
 
   // Step 2: the three renderers in turn (never concurrently), round after
   // round, each round with its own warm-up: a slower spell of the shared

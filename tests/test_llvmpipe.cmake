@@ -54,11 +54,17 @@ if(TARGET clraster_bench)
   add_test(NAME bench_reports_round_ratios COMMAND clraster_bench --size 64x48 --warmup 0 --frames 2 --rounds 2 --no-ids)
   set_tests_properties(bench_reports_round_ratios PROPERTIES PASS_REGULAR_EXPRESSION
                                                              "\"ratio_round_min\":[0-9.]+,\"ratio_round_max\":[0-9.]+,")
-  # bench/ab.sh, the A/B tool, on one pair of the same build: both builds' medians and the pairs' count.
-  add_test(NAME bench_ab_script COMMAND bash ${CMAKE_SOURCE_DIR}/bench/ab.sh -n 1 ${CMAKE_BINARY_DIR}
+  # bench/ab.sh, the A/B tool, on two pairs of turns of the same build: both builds' medians and the pairs'
+  # counts; and a case the servers cannot load, which must end the script with the server's error, not hang it.
+  add_test(NAME bench_ab_script COMMAND bash ${CMAKE_SOURCE_DIR}/bench/ab.sh -n 2 ${CMAKE_BINARY_DIR}
                                         ${CMAKE_BINARY_DIR} --size 64x48 --warmup 0 --frames 1)
   set_tests_properties(bench_ab_script PROPERTIES PASS_REGULAR_EXPRESSION
-                                                  "A frame [0-9.]+ ms, .*raster [0-9.]+.*\nB frame [0-9.]+ ms, .*\nB frame lower in [01] of 1 pairs")
+                                                  "A frame [0-9.]+ ms, .*raster [0-9.]+.*\nB frame [0-9.]+ ms, .*\nB lower: frame [012], .*raster [012].* of 2 pairs")
+  add_test(NAME bench_ab_script_server_fails
+           COMMAND bash -c "bash \"$0\" -n 2 \"$1\" \"$1\" \"$1/no-such-scene.obj\" 2>&1 || echo \"exit status $?\""
+                   ${CMAKE_SOURCE_DIR}/bench/ab.sh ${CMAKE_BINARY_DIR})
+  set_tests_properties(bench_ab_script_server_fails PROPERTIES TIMEOUT 60 PASS_REGULAR_EXPRESSION
+                                                               "no-such-scene.obj: cannot open.*\n.*--serve stopped\nexit status 1")
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
                        bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
