@@ -12,12 +12,12 @@
 # --frames timed ones (default 3) while the other process waits. Turns of a
 # few frames put both builds in the same spell of the shared host, which
 # moves a stage's median by 5-10% from one minute to the next on the 2-core
-# development machine; whole runs alternated (this script before) needed
+# development machine; whole runs alternated (this script before 5aab98c) needed
 # eight or ten pairs for a change of a few per cent. Prints per build the
 # median over its turns of the frame and of each kernel stage, then in how
 # many pairs B's frame, and each stage, was lower. An A/A run (the same
 # folder twice) shows the spread: on that machine medians within 4% and B
-# lower in 40-50% of the pairs. Frames follow the other build's frame rather
+# lower in 40-60% of the pairs. Frames follow the other build's frame rather
 # than their own, so the caches hold less of their data than in
 # clraster_bench's own runs: compare the two builds here, not these times
 # with the suite's. Each build runs from a private copy, with its own PoCL
