@@ -59,7 +59,8 @@
 // scene and the kernels are loaded it prints "ready", then for each line
 // "turn" on stdin renders K untimed and N timed frames and prints one line
 // "frame=MS STAGE=MS ...", the medians over the turn's timed frames; it
-// ends at the end of stdin.
+// ends at the end of stdin. It draws no ID frame (any triangle count) and
+// refuses --csv, --images and --max-shade-mad, which it would not honour.
 // Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
 #include "procedural.h"
@@ -159,6 +160,9 @@ Args parseArgs(const std::vector<std::string>& args)
     }
   }
   if (r.sphereTriangles && !r.scenePath.empty()) throw Error("--sphere and a SCENE exclude each other");
+  // --serve times clraster alone and writes only its turns' lines.
+  if (r.serve && (!r.csvPath.empty() || !r.imagePrefix.empty() || r.maxShadeMad))
+    throw Error("--serve writes only its turns' lines: --csv, --images and --max-shade-mad do not apply");
   return r;
 }
 
@@ -450,9 +454,9 @@ int run(const Args& args)
   const BenchScene scene = buildScene(args);
   const Mesh& mesh = scene.mesh;
   if (mesh.numTris() == 0) throw Error("the scene has no triangles");
-  if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
   const Camera camera = benchCamera(scene, args.view, args.width, args.height);
-  if (args.serve) return serveTurns(args, mesh, camera);
+  if (args.serve) return serveTurns(args, mesh, camera);  // no ID frames: any triangle count
+  if (args.ids && mesh.numTris() >= kIdMask) throw Error("ids encode only 24 bits: use --no-ids for this scene");
 
   // Step 2: the three renderers in turn (never concurrently), round after
   // round, each round with its own warm-up: a slower spell of the shared

@@ -65,6 +65,11 @@ if(TARGET clraster_bench)
                    ${CMAKE_SOURCE_DIR}/bench/ab.sh ${CMAKE_BINARY_DIR})
   set_tests_properties(bench_ab_script_server_fails PROPERTIES TIMEOUT 60 PASS_REGULAR_EXPRESSION
                                                                "no-such-scene.obj: cannot open.*\n.*--serve stopped\nexit status 1")
+  # --serve with an output it does not write: a clear error before any rendering.
+  add_test(NAME bench_serve_rejects_outputs COMMAND bash -c "\"$0\" --serve --csv \"$1\" 2>&1 || echo \"exit status $?\""
+                                                    $<TARGET_FILE:clraster_bench> ${CMAKE_BINARY_DIR}/serve.csv)
+  set_tests_properties(bench_serve_rejects_outputs PROPERTIES PASS_REGULAR_EXPRESSION
+                                                              "--serve writes only its turns' lines.*\nexit status 1")
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
                        bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
