@@ -539,24 +539,32 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
 /* Scattered setup records are resolve's cache misses when the scene's
  * records outgrow the caches (more than 2^17 triangles: 8 MB) and a tile
  * holds many small triangles (more than 128 binned). While row p (row
- * rowInTile of its tile) is gathered, this fetches the setup records the
- * tile's row after next shows, and the vertex indices of the next row's
- * triangles (whose records the row before fetched), once per run of lanes
- * with one triangle. Below those sizes the records stay cached and
+ * rowInTile of its tile) is gathered, this fetches, once per run of lanes
+ * with one triangle, the setup records and source words of the tile's third
+ * row ahead, the vertex indices of the second row ahead (whose source words
+ * the row before fetched) and the vertex normals of the next row (whose
+ * indices it fetched). Below those sizes the records stay cached and
  * prefetching costs more than it saves (measured in resolve_lambert: +0.3 ms
  * on a 116k-triangle mesh at 1080p; with the bound at 32 binned instead of
- * 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile). In the
- * general kernel it took phong on the 252k-triangle Suzanne at 1080p from
- * 6.4–7.2 to 4.9–5.4 ms. Called, not inlined, so that the common path
- * compiles as it does without it; resolve_prefetch_rows below checks the
- * sizes. */
+ * 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile; with the
+ * bound at 2^15 triangles, the 121k-triangle engine filling 1080p 2.66 ->
+ * 3.13 ms, lower in 0 of 30 pairs of bench/ab.sh's turns). In the general
+ * kernel it took phong on the 252k-triangle Suzanne at 1080p from 6.4–7.2 to
+ * 4.9–5.4 ms. The normals' stage (records and source words two rows ahead,
+ * indices one, before it), in resolve_lambert at 1080p, turns of bench/ab.sh:
+ * Suzanne far 3.82 -> 3.29 ms (lower in 28 of 30 pairs), the 1M-triangle
+ * sphere far 3.93 -> 3.82 ms (17 of 20), the 10M one 8.23 -> 8.00 ms (10 of
+ * 12), the close 1M sphere level. Called, not inlined, so that the common
+ * path compiles as it does without it; resolve_prefetch_rows below checks
+ * the sizes. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* source,
-                                 __global const ClipBary* clipBary, __global const uint* indices)
+                                 __global const ClipBary* clipBary, __global const uint* indices,
+                                 __global const float* normals)
 {
   uint previous = CLR_NONE;
-  for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
-    const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
+  for (uint lane = 0; lane < CLR_LANES && rowInTile + 3 < CLR_TILE_SIZE; ++lane) {
+    const uint next = vis_index_at(params, visIndex, p + 3 * CLR_TILE_SIZE + lane);
     if (next != CLR_NONE && next != previous) {
       __builtin_prefetch(&setup[next]);
       __builtin_prefetch(&source[next]);
@@ -564,10 +572,21 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
     previous = next;
   }
   previous = CLR_NONE;
-  for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
-    const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
+  for (uint lane = 0; lane < CLR_LANES && rowInTile + 2 < CLR_TILE_SIZE; ++lane) {
+    const uint next = vis_index_at(params, visIndex, p + 2 * CLR_TILE_SIZE + lane);
     if (next != CLR_NONE && next != previous)
       __builtin_prefetch(&indices[3 * clr_source_triangle(source[next], clipBary)]);
+    previous = next;
+  }
+  previous = CLR_NONE;
+  // (The normals buffer is a placeholder in modes that do not read it.)
+  const bool normalsBound = CLR_NEEDS_NORMALS(params->shadeMode);
+  for (uint lane = 0; lane < CLR_LANES && normalsBound && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
+    const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
+    if (next != CLR_NONE && next != previous) {
+      const uint tri = clr_source_triangle(source[next], clipBary);
+      for (int v = 0; v < 3; ++v) __builtin_prefetch(&normals[3 * indices[3 * tri + v]]);
+    }
     previous = next;
   }
 }
@@ -579,11 +598,11 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
 CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, __global const uint* tileOffset, uint tile,
                                       __global const uint* visIndex, uint p, uint py, __global const TriSetup* setup,
                                       __global const uint* source, __global const ClipBary* clipBary,
-                                      __global const uint* indices)
+                                      __global const uint* indices, __global const float* normals)
 {
 #ifdef CLR_PREFETCH
   if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
-    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices);
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices, normals);
 #endif
 }
 
@@ -615,7 +634,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // The row's entries in the tile's block of each sample plane (shared.h).
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices);
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices, normals);
   uintL colour;
   const ColourL backgroundColour = colour_unpack(background);
   const ShadeInputs inputs = {materials, texDescs, texels};
@@ -879,7 +898,7 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices);
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices, normals);
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
