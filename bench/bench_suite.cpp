@@ -496,8 +496,8 @@ int run(const Args& args)
   Report r;
   if (args.ids)
     r.ids = compareIds(clr.ids, renderLlvmpipeIds(mesh, args.width, args.height, mvp).image, args.width, args.height);
-  r.shadeDifference = meanShadeDifference(clr.image, llvm.image, 0xFF261F1Au);
-  r.shadeDifferenceVertex = meanShadeDifference(clr.image, llvmVertex.image, 0xFF261F1Au);
+  r.shadeDifference = meanShadeDifference(clr.image, llvm.image, CLR_BACKGROUND_LIT);
+  r.shadeDifferenceVertex = meanShadeDifference(clr.image, llvmVertex.image, CLR_BACKGROUND_LIT);
 
   // Step 4: derived numbers (definitions in the header comment).
   r.name = caseName(args);

@@ -111,7 +111,7 @@ struct FrameStats {
   uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
   uint64_t setupTriangles = 0;    // screen triangles after clipping
   uint64_t binEntries = 0;
-  bool leanResolve = false;  // resolve ran its lean lambert kernel (resolve.cl)
+  bool leanResolve = false;  // resolve ran its lean lambert kernel (resolve_lambert.cl)
 };
 
 class Pipeline {

@@ -1,4 +1,4 @@
-// resolve.cpp — host side of kernels/resolve.cl: perspective-correct
+// resolve.cpp — host side of kernels/resolve.cl and resolve_lambert.cl: perspective-correct
 // attribute resolve and shading of the visibility buffer into RGBA8, with
 // the lean resolve_lambert kernel for the common case and resolve for the rest.
 #include "pipeline.h"
@@ -9,7 +9,7 @@ void Pipeline::resolve()
 {
   image_.reserve(uint64_t(params_.width) * params_.height, true);
   cl::Event event;
-  // Step 1: the lean lambert kernel when the frame is its case (resolve.cl).
+  // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
   const bool lean = settings_.leanResolve && params_.shadeMode == CLR_SHADE_LAMBERT && params_.samples == 1 &&
                     params_.interpMode == CLR_INTERP_PERSPECTIVE && !params_.pointLightOn &&
                     !(params_.sceneFlags & (CLR_SCENE_TEXTURES | CLR_SCENE_COLORS));

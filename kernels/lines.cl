@@ -365,7 +365,7 @@ __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
       if (px >= params->width || py >= params->height) continue;
       const float c = t.cover[row][col];
       if (c <= 0.0f && !only) continue;
-      __global uint* out = &image[(params->height - 1 - py) * params->width + px];
+      __global uint* out = clr_image_pixel(params, image, px, py);
       *out = line_blend(only ? lp->background : *out, lp->colour, c);
     }
 }

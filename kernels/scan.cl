@@ -182,6 +182,58 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
     running += v;
   }
 }
+
+/* CPU shape of the reduce and apply phases: work-item g walks chunk g
+ * alone (one work-item per chunk). */
+CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
+                                __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
+                                __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources)
+{
+  const uint g = get_global_id(0);
+  if (g >= numChunks) return;
+  const uint begin = g * chunk;
+  const uint end = min(begin + chunk, n);
+  if (phase == CLR_SCAN_REDUCE) {
+    ulong sum = 0, nonZero = 0;
+    if (listSources) {
+      for (uint i = begin; i < end; ++i) sum += byteCounts[i];
+    } else {
+      for (uint i = begin; i < end; ++i) {
+        const uint v = src[i];
+        sum += v;
+        nonZero += v != 0;
+      }
+    }
+    partials[g] = sum;
+    if (alsoNonZero) nonZeroPartials[g] = nonZero;
+    return;
+  }
+  ulong running = partials[g];
+  if (listSources) {
+    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
+    return;
+  }
+  if (!alsoNonZero) {
+    for (uint i = begin; i < end; ++i) {
+      const uint v = src[i];
+      dst[i] = (uint)running;
+      running += v;
+    }
+  } else {
+    ulong runningNonZero = nonZeroPartials[g];
+    for (uint i = begin; i < end; ++i) {
+      const uint v = src[i];
+      dst[i] = (uint)running;
+      second[i] = (uint)runningNonZero;
+      running += v;
+      runningNonZero += v != 0;
+    }
+  }
+  if (g == numChunks - 1) {
+    dst[n] = (uint)partials[numChunks];
+    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+  }
+}
 #endif
 
 __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) void scan_chunks(
@@ -210,50 +262,8 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
     scan_chunk_group(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
                      listSources, groupSums);
 #else
-    const uint g = get_global_id(0);
-    if (g >= numChunks) return;
-    const uint begin = g * chunk;
-    const uint end = min(begin + chunk, n);
-    if (phase == CLR_SCAN_REDUCE) {
-      ulong sum = 0, nonZero = 0;
-      if (listSources) {
-        for (uint i = begin; i < end; ++i) sum += byteCounts[i];
-      } else {
-        for (uint i = begin; i < end; ++i) {
-          const uint v = src[i];
-          sum += v;
-          nonZero += v != 0;
-        }
-      }
-      partials[g] = sum;
-      if (alsoNonZero) nonZeroPartials[g] = nonZero;
-      return;
-    }
-    ulong running = partials[g];
-    if (listSources) {
-      scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
-      return;
-    }
-    if (!alsoNonZero) {
-      for (uint i = begin; i < end; ++i) {
-        const uint v = src[i];
-        dst[i] = (uint)running;
-        running += v;
-      }
-    } else {
-      ulong runningNonZero = nonZeroPartials[g];
-      for (uint i = begin; i < end; ++i) {
-        const uint v = src[i];
-        dst[i] = (uint)running;
-        second[i] = (uint)runningNonZero;
-        running += v;
-        runningNonZero += v != 0;
-      }
-    }
-    if (g == numChunks - 1) {
-      dst[n] = (uint)partials[numChunks];
-      if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
-    }
+    scan_chunk_item(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
+                    listSources);
 #endif
   }
 }

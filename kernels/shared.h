@@ -108,6 +108,11 @@ typedef uint32_t uint;
 #define CLR_SHADE_GOURAUD 8u  /* Blinn-Phong per vertex, the light interpolated */
 #define CLR_SHADE_PHONG 9u    /* Blinn-Phong per pixel (interpolated normal and position) */
 #define CLR_SHADE_TEXTURE 10u /* the unlit base colour: factor × texture × vertex colour */
+/* The colour of a pixel no triangle covers, RGBA8 (R in the low byte):
+ * dark blue-grey in the modes that light or colour (resolve_background,
+ * resolve.cl), black otherwise. */
+#define CLR_BACKGROUND_LIT 0xFF261F1Au
+#define CLR_BACKGROUND_UNLIT 0xFF000000u
 #define CLR_NUM_SHADE_MODES 11u
 
 /* What a shading mode reads of the input vertices (besides positions for
@@ -270,6 +275,16 @@ typedef struct FrameParams {
    * the test (Pipeline::clusterMargin). */
   float clusterMargin;
 } FrameParams;
+
+/* The image pixel (x, y) of screen space (y up; pixel (0, 0) at the bottom
+ * left): the RGBA8 image is stored top row first, width pixels a row.
+ * Written by resolve and lines_draw. */
+#ifdef __OPENCL_VERSION__
+CLR_INLINE __global uint* clr_image_pixel(__constant FrameParams* params, __global uint* image, uint x, uint y)
+{
+  return &image[(params->height - 1 - y) * params->width + x];
+}
+#endif
 
 /* One screen-space triangle after clipping, snapping and orientation to
  * counter-clockwise (y up): its geometry only, 48 bytes. Its input

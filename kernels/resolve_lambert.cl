@@ -1,0 +1,277 @@
+/* resolve_lambert.cl — stage 6's lean kernel: resolve_lambert, the
+ * default frame's resolve (lambert shading, one sample, perspective-correct
+ * interpolation, no point light, textures or vertex colours; host
+ * resolve.cpp picks it), with the general kernel's pixels bit for bit (a
+ * test holds them so). It builds the lanes' values directly in vector
+ * types: the rows of a tile's few triangles run by run, selected into the
+ * lanes, rows of many triangles lane by lane. Its shared pieces (the row
+ * store, the prefetch, the background, the kernel shape) are resolve.cl's,
+ * which the program puts before this file.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+#if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
+
+/* What resolve_lambert reads of the lanes' fragments. */
+#define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
+typedef struct LambertLanes {
+  uintL source;  // the source words (shared.h)
+  floatL invW[3];
+  floatL normal[3][3];  // [input vertex][component]
+  floatL albedo[3];
+  intL x[3], y[3];  // the setup vertices, read only when the barycentrics are recomputed
+  floatL scale;     // clr_inv_area2, likewise
+} LambertLanes;
+
+/* Reads what resolve_lambert needs of setup record s (its record and source
+ * word, then its vertex indices and material, then their normals and base
+ * colour) into
+ * the lanes of `in`: into every lane, without a select, when `in` is the
+ * constant all-lanes mask of the first run. */
+CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
+                                  __global const uint* source, __global const ClipBary* clipBary,
+                                  __global const uint* indices, __global const float* normals,
+                                  __global const uint* triMaterial, __global const Material* materials, uint s, intL in,
+                                  bool vertices, LambertLanes* f)
+{
+#define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
+  __global const TriSetup* t = &setup[s];
+  const uint from = source[s], triId = clr_source_triangle(from, clipBary);
+  CLR_TAKE(f->source, (uintL)from);
+  for (int i = 0; i < 3; ++i) CLR_TAKE(f->invW[i], (floatL)t->invW[i]);
+  if (vertices) {
+    for (int i = 0; i < 3; ++i) {
+      CLR_TAKE(f->x[i], (intL)t->x[i]);
+      CLR_TAKE(f->y[i], (intL)t->y[i]);
+    }
+    CLR_TAKE(f->scale, (floatL)CLR_RECORD_INV_AREA2(*t));
+  }
+  const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
+  const Material m = materials[materialsOn ? triMaterial[triId] : 0];
+  const float grey[3] = {CLR_GREY_R, CLR_GREY_G, CLR_GREY_B};
+  for (int j = 0; j < 3; ++j) {
+    const float3 n = vload3(indices[3 * triId + j], normals);
+    CLR_TAKE(f->normal[j][0], (floatL)n.x);
+    CLR_TAKE(f->normal[j][1], (floatL)n.y);
+    CLR_TAKE(f->normal[j][2], (floatL)n.z);
+    CLR_TAKE(f->albedo[j], (floatL)(materialsOn ? m.baseColor[j] : grey[j]));
+  }
+#undef CLR_TAKE
+}
+
+/* resolve_lambert_take for every lane at once, for rows of many runs:
+ * gathers in stages, each a branch-free loop over the lanes whose loads
+ * do not depend on each other (so the CPU overlaps their cache misses):
+ * the setup records, then vertex indices and materials, then normals and
+ * base colours. Uncovered lanes read record 0 (a tile with a bin has one).
+ * With `vertices` it also recomputes the barycentrics, from the records'
+ * vertices gathered with them. The base colour is three statements,
+ * not a loop over an array of the greys: that compiled to an inner loop
+ * per lane and cost resolve 9% on a 10M-triangle sphere. */
+CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
+                                    __global const uint* source, __global const ClipBary* clipBary,
+                                    __global const uint* indices, __global const float* normals,
+                                    __global const uint* triMaterial, __global const Material* materials,
+                                    const uint* index, uintL indexLanes, uint firstX, uint py, bool vertices,
+                                    LambertLanes* f, floatL* b1, floatL* b2)
+{
+  uint triId[CLR_LANES], from[CLR_LANES], vertex[3][CLR_LANES], material[CLR_LANES];
+  float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
+  int vx[3][CLR_LANES], vy[3][CLR_LANES];
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    const uint s = index[lane] != CLR_NONE ? index[lane] : 0;
+    __global const TriSetup* t = &setup[s];
+    from[lane] = source[s];
+    triId[lane] = clr_source_triangle(from[lane], clipBary);
+    for (int i = 0; i < 3; ++i) invW[i][lane] = t->invW[i];
+    if (vertices)
+      for (int i = 0; i < 3; ++i) {
+        vx[i][lane] = t->x[i];
+        vy[i][lane] = t->y[i];
+      }
+  }
+  const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * triId[lane] + j];
+    material[lane] = materialsOn ? triMaterial[triId[lane]] : 0;
+  }
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    for (int j = 0; j < 3; ++j) {
+      const float3 n = vload3(vertex[j][lane], normals);
+      normal[j][0][lane] = n.x;
+      normal[j][1][lane] = n.y;
+      normal[j][2][lane] = n.z;
+    }
+    const Material m = materials[material[lane]];
+    albedo[0][lane] = materialsOn ? m.baseColor[0] : CLR_GREY_R;
+    albedo[1][lane] = materialsOn ? m.baseColor[1] : CLR_GREY_G;
+    albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
+  }
+  if (vertices) {
+    // From the vertices gathered with the records, all lanes at once
+    // (clr_inv_area2L, lanes.h), not run by run as resolve_recompute_barycentrics
+    // does, with a division and seven selects per run: resolve_lambert on
+    // the 1M-triangle sphere seen from afar at 1080p 4.7-6.1 -> 4.1-5.0 ms
+    // (three sets of four to six alternated runs), level where rows hold
+    // fewer triangles (yxa_1 filling the screen, the 100k sphere).
+    const intL x0 = CLR_LOAD_LANES(vx[0]), x1 = CLR_LOAD_LANES(vx[1]), x2 = CLR_LOAD_LANES(vx[2]);
+    const intL y0 = CLR_LOAD_LANES(vy[0]), y1 = CLR_LOAD_LANES(vy[1]), y2 = CLR_LOAD_LANES(vy[2]);
+    vis_barycentrics(x0, y0, x1, y1, x2, y2, clr_inv_area2L(x0, y0, x1, y1, x2, y2), indexLanes != CLR_NONE,
+                     resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), b1, b2);
+  }
+  f->source = CLR_LOAD_LANES(from);
+  for (int i = 0; i < 3; ++i) {
+    f->invW[i] = CLR_LOAD_LANES(invW[i]);
+    f->albedo[i] = CLR_LOAD_LANES(albedo[i]);
+    for (int k = 0; k < 3; ++k) f->normal[i][k] = CLR_LOAD_LANES(normal[i][k]);
+  }
+}
+
+/* Step 2 of resolve_lambert_row, from the lanes' values `f` and screen
+ * barycentrics: resolve_shade's lambert path in lane types, the same
+ * operations in the same order. Returns the packed colours, the background
+ * where not `covered`. */
+CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global const ClipBary* clipBary,
+                                     const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
+{
+  // Step 1: the 1/w rule,
+  const floatL* q = f->invW;
+  const uintL sourceL = f->source;
+  const floatL b[3] = {1.0f - b1 - b2, b1, b2};
+  floatL lambda[3];
+  const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
+  for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
+  // Step 2: the weights mu_j of the input vertices: lambda itself, with
+  // vertices 1 and 2 swapped for a back face, or through ClipBary for a
+  // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
+  // or swap matrix there, which gives the same floats.) A back face's
+  // normal flips: an unclipped one's source word says so (it is also the
+  // swap), a clipped one's ClipBary slot.
+  const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
+  const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
+  intL backL = swappedL;
+  floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
+  if (CLR_ANY(clippedL)) {
+    int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
+    uint from[CLR_LANES];
+    CLR_STORE_LANES(clippedL, clippedLane);
+    CLR_STORE_LANES(sourceL, from);
+    float l[3][CLR_LANES], m[3][CLR_LANES];
+    for (int i = 0; i < 3; ++i) {
+      CLR_STORE_LANES(lambda[i], l[i]);
+      CLR_STORE_LANES(mu[i], m[i]);
+    }
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      clippedBack[lane] = 0;
+      if (!clippedLane[lane]) continue;
+      __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
+      for (int j = 0; j < 3; ++j) {
+        m[j][lane] = 0.0f;
+        for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
+      }
+      clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
+    }
+    for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
+    backL = backL | CLR_LOAD_LANES(clippedBack);
+  }
+  floatL n[3];
+  for (int k = 0; k < 3; ++k) {
+    n[k] = 0.0f;
+    for (int j = 0; j < 3; ++j) n[k] += mu[j] * f->normal[j][k];
+  }
+  resolve_unit_normal(n, select((floatL)1.0f, (floatL)-1.0f, backL));
+  floatL diffuse, specular;
+  const floatL p0[3] = {0.0f, 0.0f, 0.0f};
+  shade_lights(params, n, p0, false, &diffuse, &specular);
+  const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
+  const ColourL lit =
+      colour_make(f->albedo[0] * light + highlight, f->albedo[1] * light + highlight, f->albedo[2] * light + highlight);
+  const ColourL c = colour_select(colour_unpack(background), lit, covered);
+  return pack_rgba(c.r, c.g, c.b);
+}
+
+/* The common case, lean: lambert at one sample per pixel with the 1/w rule,
+ * the directional light only, and no textures or vertex colours (materials
+ * give each triangle a flat base colour). The host launches this kernel
+ * instead of resolve when a frame is such a case (Pipeline::resolve). It
+ * gathers only the per-lane values lambert reads and computes them with the
+ * same operations in the same order as resolve_shade, so both kernels give
+ * bit-identical pixels (a test holds them to that); it is a separate kernel
+ * because the general one's gathers and branches cost twice the time and
+ * most of a cold start's compile. */
+CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
+{
+  if (py >= params->height || firstX >= params->width) return;
+  const uint count = min((uint)CLR_LANES, params->width - firstX);
+  __global uint* out = clr_image_pixel(params, image, firstX, py);
+  const uint background = resolve_background(CLR_SHADE_LAMBERT);
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
+  if (tileOffset[tile] == tileOffset[tile + 1]) {
+    store_row((uintL)background, count, out);
+    return;
+  }
+  const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
+  uint index[CLR_LANES];
+  const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
+  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices, normals);
+  const intL covered = indexLanes != CLR_NONE;
+  uintL colour = (uintL)background;
+  if (CLR_ANY(covered)) {
+    // Step 1: the values of the row's triangles and the screen barycentrics
+    // (as raster computed them, unless the frame has the planes). A row of
+    // at most CLR_RESOLVE_MAX_RUNS runs of lanes on one triangle (a covered
+    // run starts at each bit of `starts`; a uniform row is one run) reads
+    // them one run at a time (resolve_lambert_take): the first covered
+    // run's in every lane, then each later run's selected into the lanes
+    // that show its triangle. A row of more runs (tiny triangles) gathers
+    // lane by lane in stages (resolve_lambert_gather), which overlaps more
+    // cache misses: run by run, resolve of a 10M-triangle sphere took 9.6
+    // ms instead of 6.0. Uncovered lanes hold some triangle's values and
+    // are replaced by the background at the end.
+    floatL b1, b2;
+    // Without the barycentric planes, the records' vertices recompute them.
+    const bool vertices = !resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
+    if (!CLR_ANY(indexLanes != index[0])) {  // a vector compare, not a branch per lane
+      // A uniform row (most rows of large triangles) has its own copy of
+      // the steps, with its own LambertLanes: taken whole, it stays in
+      // registers, where the runs' copy goes through memory.
+      LambertLanes one;
+      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[0],
+                           (intL)(-1), vertices, &one);
+      if (vertices)
+        vis_barycentrics(one.x[0], one.y[0], one.x[1], one.y[1], one.x[2], one.y[2], one.scale, covered,
+                         resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
+      store_row(resolve_lambert_colour(params, clipBary, &one, b1, b2, covered, background), count, out);
+      return;
+    }
+    uint starts = 0;  // bit lane: a covered run starts there
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
+    LambertLanes f;
+    if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
+      resolve_lambert_gather(params, setup, source, clipBary, indices, normals, triMaterial, materials, index,
+                             indexLanes, firstX, py, vertices, &f, &b1, &b2);
+    } else {
+      uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
+      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
+                           (intL)(-1), vertices, &f);
+      CLR_NO_UNROLL
+      for (starts &= starts - 1; starts; starts &= starts - 1) {
+        lane = 31 - clz(starts & (0u - starts));
+        resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
+                             indexLanes == index[lane], vertices, &f);
+      }
+      if (vertices)
+        vis_barycentrics(f.x[0], f.y[0], f.x[1], f.y[1], f.x[2], f.y[2], f.scale, covered,
+                         resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
+    }
+    colour = resolve_lambert_colour(params, clipBary, &f, b1, b2, covered, background);
+  }
+  // Step 3: store the row.
+  store_row(colour, count, out);
+}
+
+CLR_RESOLVE_KERNEL(resolve_lambert, resolve_lambert_row)
+#endif
