@@ -148,7 +148,7 @@ ClContext::ClContext(const std::string& selector, int lanesOverride) : info(sele
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   const std::string platform = cl::Platform(info.device.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_NAME>();
-  const bool prefetch = platform.find("Portable Computing Language") != std::string::npos;
+  prefetch = platform.find("Portable Computing Language") != std::string::npos;
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);

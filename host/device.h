@@ -37,7 +37,8 @@ int defaultLanes(const cl::Device& device);
 struct ClContext {
   explicit ClContext(const std::string& selector, int lanes = 0);
   DeviceInfo info;
-  int lanes = 1;  // CLR_LANES the program was built with
+  int lanes = 1;          // CLR_LANES the program was built with
+  bool prefetch = false;  // the program was built with CLR_PREFETCH (kernelBuildOptions)
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;     // the frame program (CLR_EXTRAS 0, shared.h)

@@ -191,6 +191,7 @@ void Pipeline::uploadScene(const Mesh& mesh)
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
   // Step 2: what every mode reads, now; the rest when a frame reads it.
+  ++sceneUploads_;
   positions_.uploadPadded(mesh.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
   indices_.upload(mesh.indices);
   const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(mesh) : std::vector<float>(6, NAN);
@@ -374,6 +375,8 @@ FrameStats Pipeline::finishFrame()
   stats.setupTriangles = numSetup_ - counters[CLR_COUNTER_DEAD_RECORDS];
   stats.binEntries = numBinEntries_;
   stats.leanResolve = leanResolve_;
+  stats.resolvePrefetch = resolvePrefetch_;
+  if (timedPrefetch_) prefetchChooser_.report(stats.stageMs["resolve"]);
   return stats;
 }
 

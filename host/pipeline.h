@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +36,48 @@ struct ScanChunks {
 };
 ScanChunks scanChunks(uint32_t n);
 cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
+
+// Whether resolve may gain by fetching the setup records, vertex indices
+// and normals of later rows ahead (resolve_prefetch, resolve.cl): a frame
+// of small triangles (at most two bin entries each on average) that gives
+// resolve more than 2 MB to gather, beyond a core's second-level cache.
+// Whether it does gain depends on the mesh's memory order as much as on
+// its size (resolve.cpp), so PrefetchChooser measures it.
+bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t numBinEntries);
+
+// Chooses, by timing, whether resolve prefetches the frames of one case
+// (a scene at one viewport and resolve kernel) that resolveMayPrefetch
+// admits. A case's first frame prefetches and is not timed (it also pays
+// the first touch of its buffers); the next four take turns, on, off, off,
+// on; after them the setting with the faster of its two resolve times holds
+// until the case changes. The choice never changes a pixel, only the time.
+class PrefetchChooser {
+ public:
+  // What makes a case: the scene (Pipeline's count of uploads), the
+  // viewport, the shading mode, the samples and the resolve kernel.
+  struct Case {
+    uint64_t scene = 0;
+    uint32_t width = 0, height = 0, shadeMode = 0, samples = 0;
+    bool lean = false;
+    bool operator==(const Case& o) const
+    {
+      return scene == o.scene && width == o.width && height == o.height && shadeMode == o.shadeMode &&
+             samples == o.samples && lean == o.lean;
+    }
+  };
+  // Whether the next frame of case c prefetches.
+  bool next(const Case& c);
+  // The resolve time of the frame next() answered for.
+  void report(double resolveMs);
+
+ private:
+  static constexpr int kTrials = 4;
+  bool started_ = false;
+  Case case_;
+  int frames_ = 0;                             // frames reported for this case
+  double onMs_ = INFINITY, offMs_ = INFINITY;  // the fastest resolve of each setting
+  bool current_ = false;                       // the last next() answer
+};
 
 // A setup record as tests and tools read it back (Pipeline::readSetup):
 // the record's geometry with what its source word and ClipBary slot hold
@@ -111,7 +154,8 @@ struct FrameStats {
   uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
   uint64_t setupTriangles = 0;    // screen triangles after clipping
   uint64_t binEntries = 0;
-  bool leanResolve = false;  // resolve ran its lean lambert kernel (resolve_lambert.cl)
+  bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
+  bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
 };
 
 class Pipeline {
@@ -278,7 +322,11 @@ class Pipeline {
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
-  bool leanResolve_ = false;         // this frame's resolve kernel was resolve_lambert
+  bool leanResolve_ = false;      // this frame's resolve kernel was resolve_lambert
+  bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
+  bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
+  PrefetchChooser prefetchChooser_;
+  uint64_t sceneUploads_ = 0;        // counts uploadScene calls: part of PrefetchChooser's case
   uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
   uint64_t numBinEntries_ = 0;

@@ -3,7 +3,41 @@
 // the lean resolve_lambert kernel for the common case and resolve for the rest.
 #include "pipeline.h"
 
+#include <algorithm>
+
 namespace clr {
+
+bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t numBinEntries)
+{
+  // What resolve gathers per covered run of pixels: the setup record and its
+  // source word, the input triangle's vertex indices and, where the mode
+  // reads them, its vertex normals. Below 2 MB they stay cached; a larger
+  // triangle (more tiles) repeats in the rows of its tiles and stays cached
+  // too: prefetching for the engine filling 1080p (6.6 MB, 4.8 bin entries
+  // a triangle) took its resolve 3.16 -> 4.02 ms (bench/ab.sh's turns).
+  const uint64_t normalBytes = CLR_NEEDS_NORMALS(params.shadeMode) ? 12 * uint64_t(params.numVerts) : 0;
+  const uint64_t gathered = uint64_t(numSetup) * (sizeof(TriSetup) + 4) + 12 * uint64_t(params.numTris) + normalBytes;
+  return gathered > (2u << 20) && numBinEntries <= 2 * uint64_t(numSetup);
+}
+
+bool PrefetchChooser::next(const Case& c)
+{
+  if (!started_ || !(c == case_)) *this = PrefetchChooser{};
+  started_ = true;
+  case_ = c;
+  // The first frame on (untimed), then turns on, off, off, on; then the faster.
+  const int turn = frames_ - 1;
+  current_ = turn < 0 ? true : turn < kTrials ? (turn == 0 || turn == kTrials - 1) : onMs_ <= offMs_;
+  return current_;
+}
+
+void PrefetchChooser::report(double resolveMs)
+{
+  if (!started_ || frames_ > kTrials) return;
+  if (frames_++ == 0) return;  // the case's first frame also pays its buffers' first touch
+  double& fastest = current_ ? onMs_ : offMs_;
+  fastest = std::min(fastest, resolveMs);
+}
 
 void Pipeline::resolve()
 {
@@ -14,12 +48,22 @@ void Pipeline::resolve()
                     params_.interpMode == CLR_INTERP_PERSPECTIVE && !params_.pointLightOn &&
                     !(params_.sceneFlags & (CLR_SCENE_TEXTURES | CLR_SCENE_COLORS));
   leanResolve_ = lean;
+  // Step 2: whether it fetches rows ahead (CPU shape, PoCL), measured per
+  // case because the gain depends on the mesh's order. In alternated turns
+  // (bench/ab.sh, resolve at 1080p) prefetching took yxa_1 far 1.59 -> 1.09
+  // ms and a 400k-triangle sphere far 4.28 -> 3.80 ms, but 100k- and
+  // 200k-triangle spheres far 3.05 -> 3.36 and 3.49 -> 3.98 ms, whose
+  // triangles lie in memory in the order of their rows.
+  timedPrefetch_ = cl_.prefetch && cl_.lanes > 1 && resolveMayPrefetch(params_, numSetup_, numBinEntries_);
+  const PrefetchChooser::Case frameCase{sceneUploads_,     params_.width,   params_.height,
+                                        params_.shadeMode, params_.samples, lean};
+  resolvePrefetch_ = timedPrefetch_ && prefetchChooser_.next(frameCase);
   cl::Kernel& kernel = lean ? resolveLambertKernel_ : resolveKernel_;
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
-          visPlane());
-  // Step 2: the work shape of resolve.cl's kernels: with rows of lanes as
+          visPlane(), cl_uint(resolvePrefetch_));
+  // Step 3: the work shape of resolve.cl's kernels: with rows of lanes as
   // wide as a tile, one work-item per tile; else one per row of lanes, a
   // tile per work-group.
   const size_t row = size_t(cl_.lanes);

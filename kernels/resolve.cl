@@ -522,41 +522,43 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
  *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
  *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
  *   texels (every level of every texture), each a 1-element dummy when the
- *   mode does not read it; image (width · height); tileSlot (tiles + 1) and
- *   visPlane (see shared.h). */
+ *   mode does not read it; image (width · height); tileSlot (tiles + 1),
+ *   visPlane (see shared.h) and prefetchRows (resolve_prefetch below). */
 #define CLR_RESOLVE_PARAMS                                                                                        \
   __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,                   \
       __global const uint *tileOffset, __global const TriSetup *setup, __global const uint *source,               \
       __global const ClipBary *clipBary, __global const uint *indices, __global const float *positions,           \
       __global const float *normals, __global const float *uvs, __global const float *colours,                    \
       __global const uint *triMaterial, __global const Material *materials, __global const TextureDesc *texDescs, \
-      __global const uint *texels, __global uint *image, __global const uint *tileSlot, uint visPlane
+      __global const uint *texels, __global uint *image, __global const uint *tileSlot, uint visPlane,            \
+      uint prefetchRows
 #define CLR_RESOLVE_ARGS                                                                                     \
   params, visIndex, visAttr, tileOffset, setup, source, clipBary, indices, positions, normals, uvs, colours, \
-      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane
+      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows
 
 #ifdef CLR_PREFETCH
-/* Scattered setup records are resolve's cache misses when the scene's
- * records outgrow the caches (more than 2^17 triangles: 8 MB) and a tile
- * holds many small triangles (more than 128 binned). While row p (row
- * rowInTile of its tile) is gathered, this fetches, once per run of lanes
- * with one triangle, the setup records and source words of the tile's third
- * row ahead, the vertex indices of the second row ahead (whose source words
- * the row before fetched) and the vertex normals of the next row (whose
- * indices it fetched). Below those sizes the records stay cached and
- * prefetching costs more than it saves (measured in resolve_lambert: +0.3 ms
- * on a 116k-triangle mesh at 1080p; with the bound at 32 binned instead of
- * 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile; with the
- * bound at 2^15 triangles, the 121k-triangle engine filling 1080p 2.66 ->
- * 3.13 ms, lower in 0 of 30 pairs of bench/ab.sh's turns). In the general
- * kernel it took phong on the 252k-triangle Suzanne at 1080p from 6.4–7.2 to
- * 4.9–5.4 ms. The normals' stage (records and source words two rows ahead,
- * indices one, before it), in resolve_lambert at 1080p, turns of bench/ab.sh:
- * Suzanne far 3.82 -> 3.29 ms (lower in 28 of 30 pairs), the 1M-triangle
- * sphere far 3.93 -> 3.82 ms (17 of 20), the 10M one 8.23 -> 8.00 ms (10 of
- * 12), the close 1M sphere level. Called, not inlined, so that the common
- * path compiles as it does without it; resolve_prefetch_rows below checks
- * the sizes. */
+/* Scattered setup records are resolve's cache misses when the frame's
+ * records outgrow the caches and a tile holds many small triangles (more
+ * than 128 binned). The host asks for this (prefetchRows) where a frame of
+ * small triangles gathers more than 2 MB and prefetching measures faster
+ * in the case's first frames (resolveMayPrefetch, PrefetchChooser:
+ * resolve.cpp): it pays or not with the mesh's order in memory, not only
+ * its size. While row p (row rowInTile of its tile) is gathered, this
+ * fetches, once per run of lanes with one triangle, the setup records and
+ * source words of the tile's third row ahead, the vertex indices of the
+ * second row ahead (whose source words the row before fetched) and the
+ * vertex normals of the next row (whose indices it fetched). In a tile of
+ * fewer entries the records stay cached and prefetching costs more than it
+ * saves (measured in resolve_lambert: with the bound at 32 binned instead
+ * of 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile). In
+ * the general kernel it took phong on the 252k-triangle Suzanne at 1080p
+ * from 6.4–7.2 to 4.9–5.4 ms. The normals' stage (records and source words
+ * two rows ahead, indices one, before it), in resolve_lambert at 1080p,
+ * turns of bench/ab.sh: Suzanne far 3.82 -> 3.29 ms (lower in 28 of 30
+ * pairs), the 1M-triangle sphere far 3.93 -> 3.82 ms (17 of 20), the 10M
+ * one 8.23 -> 8.00 ms (10 of 12), the close 1M sphere level. Called, not
+ * inlined, so that the common path compiles as it does without it;
+ * resolve_prefetch_rows below checks prefetchRows and the tile's size. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* source,
                                  __global const ClipBary* clipBary, __global const uint* indices,
@@ -592,16 +594,18 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
 }
 #endif
 
-/* resolve_prefetch for row p (image row py) of tile `tile`, when the scene
- * and the tile are large enough (above); nothing without CLR_PREFETCH.
- * Both resolve kernels call it. */
-CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, __global const uint* tileOffset, uint tile,
-                                      __global const uint* visIndex, uint p, uint py, __global const TriSetup* setup,
-                                      __global const uint* source, __global const ClipBary* clipBary,
-                                      __global const uint* indices, __global const float* normals)
+/* resolve_prefetch for row p (image row py) of tile `tile`, when the frame
+ * asks for it (prefetchRows, Pipeline::resolve) and the tile holds more
+ * than 128 entries (above); nothing without CLR_PREFETCH. Both resolve
+ * kernels call it. */
+CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefetchRows,
+                                      __global const uint* tileOffset, uint tile, __global const uint* visIndex, uint p,
+                                      uint py, __global const TriSetup* setup, __global const uint* source,
+                                      __global const ClipBary* clipBary, __global const uint* indices,
+                                      __global const float* normals)
 {
 #ifdef CLR_PREFETCH
-  if (params->numTris > (1u << 17) && tileOffset[tile + 1] - tileOffset[tile] > 128)
+  if (prefetchRows && tileOffset[tile + 1] - tileOffset[tile] > 128)
     resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices, normals);
 #endif
 }
@@ -634,7 +638,8 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   // The row's entries in the tile's block of each sample plane (shared.h).
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices, normals);
+  resolve_prefetch_rows(params, prefetchRows, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices,
+                        normals);
   uintL colour;
   const ColourL backgroundColour = colour_unpack(background);
   const ShadeInputs inputs = {materials, texDescs, texels};

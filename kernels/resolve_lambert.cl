@@ -215,7 +215,8 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
-  resolve_prefetch_rows(params, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices, normals);
+  resolve_prefetch_rows(params, prefetchRows, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices,
+                        normals);
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {

@@ -1,7 +1,9 @@
 // test_resolve.cpp — the resolve kernel's perspective-correct interpolation
 // (the 1/w rule) against the analytic value on a tilted plane, unclipped and
-// clipped by the near plane; the image's orientation, the mapped ImageView, and
-// the background over tiles without triangles, edge tiles included.
+// clipped by the near plane; the image's orientation, the mapped ImageView,
+// the background over tiles without triangles, edge tiles included; and the
+// choice of resolve's prefetch: its rule, its timed turns, and frames with
+// and without it giving the same pixels.
 #include "image_io.h"
 #include "test_support.h"
 
@@ -234,4 +236,86 @@ TEST_CASE("resolve paints every pixel no triangle covers with the background in 
     CHECK(covered > 20);  // premise: the triangle covers pixels, in one tile
     CHECK(wrong == 0);
   }
+}
+
+TEST_CASE("the prefetch chooser times both settings in turns and keeps the faster", "[resolve]")
+{
+  // A case's first frame prefetches untimed; then on, off, off, on.
+  clr::PrefetchChooser chooser;
+  const auto play = [&](uint64_t scene, std::vector<double> ms) {
+    std::vector<bool> answers;
+    for (double t : ms) {
+      answers.push_back(chooser.next({scene, 1920, 1080, CLR_SHADE_LAMBERT, 1, true}));
+      chooser.report(t);
+    }
+    return answers;
+  };
+  // Off faster (3 against 5): the first frame's 100 ms, which pays the
+  // buffers' first touch, does not count.
+  CHECK(play(1, {100, 5, 3, 3, 5}) == std::vector<bool>{true, true, false, false, true});
+  CHECK(play(1, {9, 9}) == std::vector<bool>{false, false});
+  // A new case times again; on faster, and one slow "on" frame (the
+  // machine's hiccup) does not outweigh its other one: each setting's fastest counts.
+  CHECK(play(2, {1, 4, 5, 5, 20}) == std::vector<bool>{true, true, false, false, true});
+  CHECK(play(2, {1}) == std::vector<bool>{true});
+  // Back to case 1: its earlier choice is gone, it is timed anew.
+  CHECK(play(1, {1, 2, 1, 1, 2, 0}) == std::vector<bool>{true, true, false, false, true, false});
+  // Any other part of the case starts the turns again too.
+  CHECK(chooser.next({1, 1920, 1080, CLR_SHADE_LAMBERT, 1, true}) == false);
+  chooser.report(1);
+  CHECK(chooser.next({1, 1920, 1080, CLR_SHADE_PHONG, 1, false}) == true);
+  chooser.report(1);
+  CHECK(chooser.next({1, 1920, 1080, CLR_SHADE_PHONG, 1, false}) == true);
+}
+
+TEST_CASE("resolve may prefetch only for small triangles beyond 2 MB of gathers", "[resolve]")
+{
+  // Gathered: 52 bytes per setup triangle (record and source word), 12 per
+  // input triangle (indices), 12 per vertex where the mode reads normals.
+  FrameParams params{};
+  params.shadeMode = CLR_SHADE_LAMBERT;
+  params.numTris = 40000;   // 480,000 bytes of indices
+  params.numVerts = 20000;  // 240,000 bytes of normals
+  const uint32_t limit = 2u << 20;
+  const uint32_t setupAtLimit = (limit - 480000 - 240000) / 52;  // 26,480: 2,096,960 bytes of 2,097,152
+  CHECK_FALSE(clr::resolveMayPrefetch(params, setupAtLimit, setupAtLimit));
+  CHECK(clr::resolveMayPrefetch(params, setupAtLimit + 4, setupAtLimit + 4));
+  // Two bin entries a triangle at most.
+  CHECK(clr::resolveMayPrefetch(params, setupAtLimit + 4, 2 * uint64_t(setupAtLimit + 4)));
+  CHECK_FALSE(clr::resolveMayPrefetch(params, setupAtLimit + 4, 2 * uint64_t(setupAtLimit + 4) + 1));
+  // A mode without normals gathers 240,000 bytes less.
+  params.shadeMode = CLR_SHADE_ID;
+  CHECK_FALSE(clr::resolveMayPrefetch(params, setupAtLimit + 4, setupAtLimit + 4));
+}
+
+TEST_CASE("frames with and without resolve's prefetch give the same pixels", "[resolve][prefetch]")
+{
+  // A bumpy grid of 125,000 triangles of about a pixel each in a 384x384
+  // viewport (about 220 bin entries a tile, 8 MB of gathers): a case the
+  // chooser times, so its first frames run with and without the prefetch.
+  const uint32_t W = 384, H = 384;
+  const int N = 250;
+  test::Geometry grid;
+  const auto at = [&](int i, int j) {
+    const float x = -1.0f + 2.0f * i / N, y = -1.0f + 2.0f * j / N;
+    return glm::vec3(x, y, 0.3f * std::sin(9.0f * x) * std::cos(7.0f * y));
+  };
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i) {
+      grid.addTriangle(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      grid.addTriangle(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(grid.mesh());
+  clr::FrameSettings settings = test::idSettings(W, H);
+  settings.shadeMode = CLR_SHADE_LAMBERT;
+  std::vector<uint32_t> first, rgba;
+  std::set<bool> prefetched;
+  for (int frame = 0; frame < 6; ++frame) {
+    const clr::FrameStats stats = pipeline.render(settings, frame ? rgba : first);
+    prefetched.insert(stats.resolvePrefetch);
+    if (frame) CHECK(test::countDifferences(first, rgba) == 0);
+  }
+  // Premise: where the device's build prefetches (PoCL, 16 lanes), both settings ran.
+  if (test::context().prefetch && test::context().lanes > 1) CHECK(prefetched == std::set<bool>{false, true});
 }
