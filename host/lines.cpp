@@ -64,7 +64,7 @@ void Pipeline::drawLineSegments(uint32_t n)
   lp.reach = s.lineMethod == CLR_LINE_BRESENHAM ? 0.75f : 0.5f * s.lineWidth + 0.7072f;
   lp.depthBias = kDepthBias;
   lp.colour = lp.mode == CLR_WIREFRAME_ONLY ? kOnlyColour : kOverlayColour;
-  lp.background = s.shadeMode == CLR_SHADE_LAMBERT ? CLR_BACKGROUND_LIT : CLR_BACKGROUND_UNLIT;
+  lp.background = CLR_BACKGROUND(s.shadeMode);  // resolve's, so the mode looks the same without its triangles
   lp.numSegments = n;
   lineParams_.upload({lp});
 

@@ -610,12 +610,10 @@ CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefe
 #endif
 }
 
-/* The colour of a pixel no triangle covers (CLR_BACKGROUND_*, shared.h):
- * lit where the mode lights or colours, black otherwise. */
+/* The colour of a pixel no triangle covers (CLR_BACKGROUND, shared.h). */
 CLR_INLINE uint resolve_background(uint shadeMode)
 {
-  const bool lit = CLR_USES_ALBEDO(shadeMode) || shadeMode == CLR_SHADE_COLOR;
-  return lit ? CLR_BACKGROUND_LIT : CLR_BACKGROUND_UNLIT;
+  return CLR_BACKGROUND(shadeMode);
 }
 
 /* The row of CLR_LANES pixels from (firstX, py). (A variant specialised

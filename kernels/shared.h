@@ -108,11 +108,6 @@ typedef uint32_t uint;
 #define CLR_SHADE_GOURAUD 8u  /* Blinn-Phong per vertex, the light interpolated */
 #define CLR_SHADE_PHONG 9u    /* Blinn-Phong per pixel (interpolated normal and position) */
 #define CLR_SHADE_TEXTURE 10u /* the unlit base colour: factor × texture × vertex colour */
-/* The colour of a pixel no triangle covers, RGBA8 (R in the low byte):
- * dark blue-grey in the modes that light or colour (resolve_background,
- * resolve.cl), black otherwise. */
-#define CLR_BACKGROUND_LIT 0xFF261F1Au
-#define CLR_BACKGROUND_UNLIT 0xFF000000u
 #define CLR_NUM_SHADE_MODES 11u
 
 /* What a shading mode reads of the input vertices (besides positions for
@@ -128,6 +123,14 @@ typedef uint32_t uint;
    (mode) == CLR_SHADE_PHONG)
 #define CLR_NEEDS_UVS(mode) ((mode) == CLR_SHADE_UV || (mode) == CLR_SHADE_CHECKER)
 #define CLR_NEEDS_COLORS(mode) ((mode) == CLR_SHADE_COLOR || CLR_USES_ALBEDO(mode))
+/* The colour of a pixel no triangle covers, RGBA8 (R in the low byte):
+ * dark blue-grey in the modes that light or colour, black otherwise; resolve
+ * paints it under the triangles and wireframe-only frames under their lines
+ * (lines.cpp), so a mode's background is the same with and without them. */
+#define CLR_BACKGROUND_LIT 0xFF261F1Au
+#define CLR_BACKGROUND_UNLIT 0xFF000000u
+#define CLR_BACKGROUND(mode) \
+  ((CLR_USES_ALBEDO(mode) || (mode) == CLR_SHADE_COLOR) ? CLR_BACKGROUND_LIT : CLR_BACKGROUND_UNLIT)
 /* World positions in resolve: face normals, view vectors, the point light. */
 #define CLR_NEEDS_POSITIONS(mode, pointLightOn)                                            \
   ((mode) == CLR_SHADE_FLAT || (mode) == CLR_SHADE_GOURAUD || (mode) == CLR_SHADE_PHONG || \

@@ -287,6 +287,43 @@ TEST_CASE("wireframe only draws edges over the background", "[lines]")
       CHECK(rgba[size_t(H - 1 - y) * W + x] == (edges.count({int(x), int(y)}) ? 0xFFFFFFFFu : 0xFF000000u));
 }
 
+TEST_CASE("wireframe only paints the background resolve paints in every shading mode", "[lines]")
+{
+  // The same triangle filled and as a wireframe alone: the pixels it leaves
+  // uncovered (a 4-pixel margin from the oracle's coverage, clear of the
+  // lines) are one colour, the same in both frames.
+  const uint32_t W = 64, H = 48;
+  test::Geometry g;
+  g.addTriangle(test::screen(20, 14, 0, W, H), test::screen(44, 16, 0, W, H), test::screen(30, 34, 0, W, H));
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  std::set<uint32_t> backgrounds;
+  for (uint32_t mode = 0; mode < CLR_NUM_SHADE_MODES; ++mode) {
+    INFO("shade mode " << mode);
+    clr::FrameSettings s = test::idSettings(W, H);
+    s.shadeMode = mode;
+    std::vector<uint32_t> filled, only;
+    pipeline.render(s, filled);
+    s.wireframe = CLR_WIREFRAME_ONLY;
+    pipeline.render(s, only);
+    const uint32_t background = filled[0];  // the top-left pixel, far from the triangle
+    backgrounds.insert(background);
+    size_t compared = 0, differing = 0;
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const bool far = x < 16 || x >= 48 || y < 10 || y >= 38;
+        if (!far) continue;
+        const size_t i = size_t(H - 1 - y) * W + x;
+        ++compared;
+        differing += filled[i] != background || only[i] != background;
+      }
+    CHECK(compared > 1500);
+    CHECK(differing == 0);
+  }
+  // Premise: the modes cover both backgrounds.
+  CHECK(backgrounds == std::set<uint32_t>{CLR_BACKGROUND_LIT, CLR_BACKGROUND_UNLIT});
+}
+
 TEST_CASE("wireframe of a near-clipped triangle draws its input edges, not the fan's diagonals", "[lines]")
 {
   // A ground triangle with one vertex behind the eye: the near plane cuts it
