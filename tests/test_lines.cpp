@@ -289,9 +289,9 @@ TEST_CASE("wireframe only draws edges over the background", "[lines]")
 
 TEST_CASE("wireframe only paints the background resolve paints in every shading mode", "[lines]")
 {
-  // The same triangle filled and as a wireframe alone: the pixels it leaves
-  // uncovered (a 4-pixel margin from the oracle's coverage, clear of the
-  // lines) are one colour, the same in both frames.
+  // The same triangle filled and as a wireframe alone: the pixels more than
+  // 4 pixels outside its bounds (x 20-44, y 14-34), clear of it and of its
+  // lines, are one colour, the same in both frames.
   const uint32_t W = 64, H = 48;
   test::Geometry g;
   g.addTriangle(test::screen(20, 14, 0, W, H), test::screen(44, 16, 0, W, H), test::screen(30, 34, 0, W, H));
