@@ -52,8 +52,9 @@ void Pipeline::resolve()
   // case because the gain depends on the mesh's order. In alternated turns
   // (bench/ab.sh, resolve at 1080p) prefetching took yxa_1 far 1.59 -> 1.09
   // ms and a 400k-triangle sphere far 4.28 -> 3.80 ms, but 100k- and
-  // 200k-triangle spheres far 3.05 -> 3.36 and 3.49 -> 3.98 ms, whose
-  // triangles lie in memory in the order of their rows.
+  // 200k-triangle spheres far 3.05 -> 3.36 and 3.49 -> 3.98 ms (likely
+  // because their triangles lie in memory in the order of their grids' rows,
+  // which the caches already serve).
   timedPrefetch_ = cl_.prefetch && cl_.lanes > 1 && resolveMayPrefetch(params_, numSetup_, numBinEntries_);
   const PrefetchChooser::Case frameCase{sceneUploads_,     params_.width,   params_.height,
                                         params_.shadeMode, params_.samples, lean};
