@@ -248,16 +248,25 @@ void timeClrasterRound(Pipeline& pipeline, const FrameSettings& settings, uint32
   run.image.assign(view.pixels, view.pixels + size_t(view.width) * view.height);
 }
 
+// Each kernel stage's median over the timed frames (a stage the first frame
+// ran and a later one did not counts 0 there).
+std::map<std::string, double> stageMedians(const std::vector<FrameStats>& timed)
+{
+  std::map<std::string, double> medians;
+  for (const auto& entry : timed.front().stageMs) {
+    std::vector<double> perFrame;
+    for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);
+    medians[entry.first] = median(perFrame);
+  }
+  return medians;
+}
+
 // After the rounds: the stages' medians, the memory, and the ID frame for
 // the coverage comparison.
 void finishClraster(const Args& args, Pipeline& pipeline, FrameSettings settings, const std::vector<FrameStats>& timed,
                     ClrasterRun& run)
 {
-  for (const auto& entry : timed.front().stageMs) {
-    std::vector<double> perFrame;
-    for (const FrameStats& s : timed) perFrame.push_back(s.stageMs.count(entry.first) ? s.stageMs.at(entry.first) : 0);
-    run.stageMs[entry.first] = median(perFrame);
-  }
+  run.stageMs = stageMedians(timed);
   std::vector<double> idle;
   for (const FrameStats& s : timed) idle.push_back(s.deviceIdleMs);
   run.deviceIdleMs = median(idle);
@@ -425,11 +434,8 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
     ClrasterRun turn;
     std::vector<FrameStats> timed;
     timeClrasterRound(pipeline, settings, args.warmup, args.frames, turn, timed);
-    std::map<std::string, std::vector<double>> stages;
-    for (const FrameStats& stats : timed)
-      for (const auto& [name, ms] : stats.stageMs) stages[name].push_back(ms);
     std::printf("frame=%.4f", median(turn.frameMs));
-    for (const auto& [name, ms] : stages) std::printf(" %s=%.4f", name.c_str(), median(ms));
+    for (const auto& [name, ms] : stageMedians(timed)) std::printf(" %s=%.4f", name.c_str(), ms);
     std::printf("\n");
     std::fflush(stdout);
   }

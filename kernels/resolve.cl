@@ -610,12 +610,6 @@ CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefe
 #endif
 }
 
-/* The colour of a pixel no triangle covers (CLR_BACKGROUND, shared.h). */
-CLR_INLINE uint resolve_background(uint shadeMode)
-{
-  return CLR_BACKGROUND(shadeMode);
-}
-
 /* The row of CLR_LANES pixels from (firstX, py). (A variant specialised
  * to one sample, with the sample count a compile-time 1, computed wrong
  * pixels under Oclgrind's 16-lane interpretation while PoCL was right; one
@@ -626,7 +620,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint count = min((uint)CLR_LANES, params->width - firstX);
   __global uint* out = clr_image_pixel(params, image, firstX, py);
   const uint mode = params->shadeMode;
-  const uint background = resolve_background(mode);
+  const uint background = CLR_BACKGROUND(mode);
   // Step 1: a tile without triangles is background; raster left it unwritten.
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
@@ -723,7 +717,7 @@ CLR_INLINE bool resolve_empty_tile(__constant FrameParams* params, __global cons
   const uint tile = tileY * params->tilesX + tileX;
   if (tileOffset[tile] != tileOffset[tile + 1]) return false;
   const uint firstX = tileX * CLR_TILE_SIZE, count = min((uint)CLR_LANES, params->width - firstX);
-  const uintL background = (uintL)resolve_background(params->shadeMode);
+  const uintL background = (uintL)CLR_BACKGROUND(params->shadeMode);
   const uint rows = min((uint)CLR_TILE_SIZE, params->height - tileY * CLR_TILE_SIZE);
   for (uint row = 0; row < rows; ++row)
     store_row(background, count, clr_image_pixel(params, image, firstX, tileY * CLR_TILE_SIZE + row));

@@ -206,7 +206,7 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   if (py >= params->height || firstX >= params->width) return;
   const uint count = min((uint)CLR_LANES, params->width - firstX);
   __global uint* out = clr_image_pixel(params, image, firstX, py);
-  const uint background = resolve_background(CLR_SHADE_LAMBERT);
+  const uint background = CLR_BACKGROUND(CLR_SHADE_LAMBERT);
   const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + firstX / CLR_TILE_SIZE;
   if (tileOffset[tile] == tileOffset[tile + 1]) {
     store_row((uintL)background, count, out);
