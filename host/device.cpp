@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <sstream>
 
@@ -139,7 +140,8 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
-ClContext::ClContext(const std::string& selector, int lanesOverride) : info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead)
+    : info(selectDevice(selector))
 {
   // Step 1: the work shape: the caller's, else CLRASTER_LANES, else the device's default.
   const char* fromEnv = std::getenv("CLRASTER_LANES");
@@ -152,7 +154,13 @@ ClContext::ClContext(const std::string& selector, int lanesOverride) : info(sele
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);
+  // (A helper compiling kernels ahead starts before the build, which it
+  // repeats beside this one, and learns how long this one took.)
+  compileAhead.start(ahead, info, lanes);
+  const auto buildStart = std::chrono::steady_clock::now();
   program = buildProgram(context, info.device, buildOptions_);
+  compileAhead.programBuilt(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count());
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "cl.h"
+#include "compile_ahead.h"
 
 #include <string>
 #include <vector>
@@ -34,8 +35,10 @@ DeviceInfo selectDevice(const std::string& selector);
 int defaultLanes(const cl::Device& device);
 
 // The OpenCL context every stage shares. lanes 0 picks the device's default.
+// A non-empty `ahead` starts a helper process that compiles those kernels
+// while this context builds and compiles the first ones (compile_ahead.h).
 struct ClContext {
-  explicit ClContext(const std::string& selector, int lanes = 0);
+  explicit ClContext(const std::string& selector, int lanes = 0, const CompileAheadRequest& ahead = {});
   DeviceInfo info;
   int lanes = 1;          // CLR_LANES the program was built with
   bool prefetch = false;  // the program was built with CLR_PREFETCH (kernelBuildOptions)
@@ -48,6 +51,7 @@ struct ClContext {
   const cl::Program& extras();
   size_t maxAllocBytes = 0;  // the device's, or CLRASTER_MAX_ALLOC_BYTES when lower
   size_t globalMemBytes = 0;
+  CompileAhead compileAhead;  // the helper of `ahead`, awaited before raster's first launch
   const std::string& buildOptions() const { return buildOptions_; }
 
  private:

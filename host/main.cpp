@@ -1,5 +1,7 @@
 // main.cpp — the clraster command line: `render` (one camera, or a views
-// file of many, views.h) and `devices`.
+// file of many, views.h) and `devices`; and `__compile-ahead`, the helper
+// process a render starts to compile kernels beside it (compile_ahead.h),
+// which is not for users.
 //
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
@@ -103,6 +105,17 @@ Mesh loadMesh(const RenderArgs& args)
   return mesh;
 }
 
+// The frame-program kernels a helper compiles ahead (compile_ahead.h) for
+// these arguments' frames: the scan, and the resolve kernel the frame will
+// likely take (Pipeline::resolve decides; a wrong guess costs only the head
+// start). The render compiles setup and raster itself meanwhile.
+CompileAheadRequest compileAheadFor(const RenderArgs& args)
+{
+  const bool lean = args.shadeMode == CLR_SHADE_LAMBERT && (args.aa.empty() || args.aa == "none") &&
+                    args.interpMode == CLR_INTERP_PERSPECTIVE && !args.pointLightOn;
+  return {"/proc/self/exe", {"scan_chunks", lean ? "resolve_lambert" : "resolve"}};
+}
+
 // Half the bounding box diagonal: the point light's default range.
 float sceneRadius(const Mesh& mesh)
 {
@@ -129,7 +142,7 @@ int renderViewsCommand(const RenderArgs& args)
   }
 
   // Step 2: device, program, scene upload, once.
-  ClContext cl(args.device);
+  ClContext cl(args.device, 0, compileAheadFor(args));
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
 
@@ -197,7 +210,7 @@ int renderCommand(const std::vector<std::string>& argList)
   const Camera camera = frameCamera(args.camera, meshBounds(mesh));
 
   // Step 2: device, program, scene upload (not part of the frame time).
-  ClContext cl(args.device);
+  ClContext cl(args.device, 0, compileAheadFor(args));
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
   const DepthChoice depth = chooseDepth(args, camera);
@@ -249,6 +262,7 @@ int main(int argc, char** argv)
     }
     if (args[0] == "devices") return listDevicesCommand();
     if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
+    if (args[0] == "__compile-ahead") compileAheadCommand({args.begin() + 1, args.end()});
     throw Error("unknown command '" + args[0] + "' (render, devices)");
   });
 }

@@ -37,6 +37,18 @@ struct ScanChunks {
 ScanChunks scanChunks(uint32_t n);
 cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
 
+// The work shapes of raster and resolve over tilesX × tilesY tiles, as
+// Pipeline launches them (and compileKernelsAhead, compile_ahead.h, whose
+// launches must match them for PoCL to reuse their code): raster one
+// work-item per pixel sample in the GPU shape (lanes 1), per tile and sample
+// index in the CPU shape; resolve one work-item per row of lanes, a tile per
+// work-group, or per tile when a row of lanes spans the tile.
+struct WorkShape {
+  cl::NDRange global, local;
+};
+WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples);
+WorkShape resolveShape(int lanes, uint32_t tilesX, uint32_t tilesY);
+
 // Whether resolve may gain by fetching the setup records, vertex indices
 // and normals of later rows ahead (resolve_prefetch, resolve.cl): a frame
 // of small triangles (at most two bin entries each on average) that gives

@@ -75,15 +75,20 @@ void Pipeline::raster()
   cl::Event event;
   setArgs(kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
           binEntries_.get(), visIndex_.get(), visAttr_.get(), paintRank_.get(), tileSlot_.get(), visPlane());
+  cl_.compileAhead.await("raster");  // when a helper compiles it (compile_ahead.h)
+  const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
+  record("raster", event);
+}
+
+WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples)
+{
   // One work-item per pixel sample (GPU shape) or per tile and sample index
   // (CPU shape, see raster.cl).
-  const bool perPixel = cl_.lanes == 1;
-  const cl::NDRange global =
-      perPixel ? cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE, params_.samples)
-               : cl::NDRange(params_.tilesX, params_.tilesY, params_.samples);
-  const cl::NDRange local = perPixel ? cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE, 1) : cl::NDRange(1, 1, 1);
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
-  record("raster", event);
+  if (lanes == 1)
+    return {cl::NDRange(tilesX * CLR_TILE_SIZE, tilesY * CLR_TILE_SIZE, samples),
+            cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE, 1)};
+  return {cl::NDRange(tilesX, tilesY, samples), cl::NDRange(1, 1, 1)};
 }
 
 }  // namespace clr

@@ -64,18 +64,20 @@ void Pipeline::resolve()
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
           visPlane(), cl_uint(resolvePrefetch_));
-  // Step 3: the work shape of resolve.cl's kernels: with rows of lanes as
-  // wide as a tile, one work-item per tile; else one per row of lanes, a
-  // tile per work-group.
-  const size_t row = size_t(cl_.lanes);
-  if (row == CLR_TILE_SIZE)
-    cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY),
-                                   cl::NDRange(1, 1), nullptr, &event);
-  else
-    cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                   cl::NDRange(params_.tilesX * CLR_TILE_SIZE / row, params_.tilesY * CLR_TILE_SIZE),
-                                   cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE), nullptr, &event);
+  cl_.compileAhead.await(lean ? "resolve_lambert" : "resolve");  // when a helper compiles it (compile_ahead.h)
+  const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("resolve", event);
+}
+
+WorkShape resolveShape(int lanes, uint32_t tilesX, uint32_t tilesY)
+{
+  // With rows of lanes as wide as a tile, one work-item per tile; else one
+  // per row of lanes, a tile per work-group.
+  const uint32_t row = uint32_t(lanes);
+  if (row == CLR_TILE_SIZE) return {cl::NDRange(tilesX, tilesY), cl::NDRange(1, 1)};
+  return {cl::NDRange(tilesX * CLR_TILE_SIZE / row, tilesY * CLR_TILE_SIZE),
+          cl::NDRange(CLR_TILE_SIZE / row, CLR_TILE_SIZE)};
 }
 
 }  // namespace clr
