@@ -81,7 +81,9 @@ void CompileAhead::programBuilt(double buildMs)
 
 void CompileAhead::await(const std::string& kernel)
 {
-  if (state_ == State::running && asked_.count(kernel) && !ready_.count(kernel)) readUntil(kernel);
+  if (state_ != State::running || !asked_.count(kernel)) return;
+  awaited_.insert(kernel);
+  if (!ready_.count(kernel)) readUntil(kernel);
 }
 
 void CompileAhead::readUntil(const std::string& kernel)

@@ -67,8 +67,10 @@ class CompileAhead {
   // waits until the helper has run it or has ended; at once otherwise.
   void await(const std::string& kernel);
   State state() const { return state_; }
-  // The kernels the helper has run so far.
+  // The kernels the helper has run so far, and those the parent awaited
+  // before its first launch of them.
   const std::set<std::string>& ready() const { return ready_; }
+  const std::set<std::string>& awaited() const { return awaited_; }
 
  private:
   // Reads the helper's lines until `kernel` is among them or the helper ends.
@@ -80,7 +82,7 @@ class CompileAhead {
   pid_t pid_ = -1;
   int pipe_ = -1;        // read end of the helper's standard output
   std::string pending_;  // a partial line read
-  std::set<std::string> asked_, ready_;
+  std::set<std::string> asked_, ready_, awaited_;
   double waitedMs_ = 0;         // over all awaits, at most waitLimitMs_
   double waitLimitMs_ = 20000;  // until programBuilt
   double warmBuildMs_ = 0;      // the request's

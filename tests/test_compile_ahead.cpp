@@ -74,7 +74,8 @@ TEST_CASE("a context's helper compiles the kernels it was asked for and the pixe
   }
   REQUIRE(cl.compileAhead.state() == clr::CompileAhead::State::running);
   CHECK(defaultFrame(cl) == expected);
-  // The frame waited for both kernels, and the helper ran both.
+  // The frame awaited each kernel before its first launch, and the helper ran both.
+  CHECK(cl.compileAhead.awaited() == std::set<std::string>{"scan_chunks", "resolve_lambert"});
   CHECK(cl.compileAhead.ready() == std::set<std::string>{"scan_chunks", "resolve_lambert"});
   const clr::CompileAhead::State state = cl.compileAhead.state();
   CHECK((state == clr::CompileAhead::State::running || state == clr::CompileAhead::State::succeeded));
