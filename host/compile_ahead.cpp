@@ -24,21 +24,30 @@ extern char** environ;
 
 namespace clr {
 
-bool CompileAhead::worthwhile(const DeviceInfo& device, int lanes)
+bool CompileAhead::allowed()
 {
   const char* off = std::getenv("CLRASTER_COMPILE_AHEAD");
   const char* cache = std::getenv("POCL_KERNEL_CACHE");
-  return !(off && std::strcmp(off, "0") == 0) && !(cache && std::strcmp(cache, "0") == 0) && device.type == "CPU" &&
-         device.platformName.find("Portable Computing Language") != std::string::npos && lanes == CLR_TILE_SIZE &&
+  return !(off && std::strcmp(off, "0") == 0) && !(cache && std::strcmp(cache, "0") == 0) &&
          std::thread::hardware_concurrency() >= 2;
 }
 
-void CompileAhead::start(const CompileAheadRequest& request, const DeviceInfo& device, int lanes)
+bool CompileAhead::worthwhile(const DeviceInfo& device, int lanes)
 {
-  if (request.kernels.empty() || request.executable.empty() || !worthwhile(device, lanes)) return;
-  // Step 1: the command line; the helper selects the device by its index.
-  std::vector<std::string> args = {request.executable,           "__compile-ahead", "--device",
-                                   std::to_string(device.index), "--lanes",         std::to_string(lanes)};
+  return allowed() && device.type == "CPU" &&
+         device.platformName.find("Portable Computing Language") != std::string::npos && lanes == CLR_TILE_SIZE;
+}
+
+CompileAhead::CompileAhead(const CompileAheadRequest& request, const std::string& selector, int lanesOverride)
+{
+  if (request.kernels.empty() || request.executable.empty() || !allowed()) return;
+  // Step 1: the command line. The helper selects the device as the parent
+  // does, from the same selector and environment, so it starts at once,
+  // while the parent still loads the OpenCL platforms (a spawn after the
+  // parent's device selection started the helper's build 0.15-0.2 s behind
+  // the parent's on the development machine).
+  std::vector<std::string> args = {request.executable, "__compile-ahead", "--device",
+                                   selector,           "--lanes",         std::to_string(lanesOverride)};
   args.insert(args.end(), request.kernels.begin(), request.kernels.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -67,6 +76,13 @@ void CompileAhead::start(const CompileAheadRequest& request, const DeviceInfo& d
   asked_.insert(request.kernels.begin(), request.kernels.end());
   warmBuildMs_ = request.warmBuildMs;
   state_ = State::running;
+}
+
+void CompileAhead::deviceChosen(const DeviceInfo& device, int lanes)
+{
+  if (state_ != State::running || worthwhile(device, lanes)) return;
+  reap(true);
+  state_ = State::off;
 }
 
 void CompileAhead::programBuilt(double buildMs)
@@ -143,6 +159,14 @@ CompileAhead::~CompileAhead()
   if (state_ == State::running) reap(true);
 }
 
+// The kernels compileKernelsAhead knows the arguments of; another is an error.
+static void checkKernelNames(const std::vector<std::string>& kernels)
+{
+  for (const std::string& name : kernels)
+    if (name != "scan_chunks" && name != "raster" && name != "resolve" && name != "resolve_lambert")
+      throw Error("__compile-ahead: '" + name + "' is not scan_chunks, raster, resolve or resolve_lambert");
+}
+
 void compileKernelsAhead(ClContext& cl, const std::vector<std::string>& kernels, void (*ran)(const std::string& name))
 {
   // Step 1: an empty frame of one tile: its parameters, and zeroed buffers
@@ -162,9 +186,8 @@ void compileKernelsAhead(ClContext& cl, const std::vector<std::string>& kernels,
   const cl_uint visPlane = CLR_TILE_SIZE * CLR_TILE_SIZE;
   // Step 2: each kernel, with the arguments and in the work shape of its
   // launches in Pipeline::scanSums, Pipeline::raster and Pipeline::resolve.
+  checkKernelNames(kernels);
   for (const std::string& name : kernels) {
-    if (name != "scan_chunks" && name != "raster" && name != "resolve" && name != "resolve_lambert")
-      throw Error("__compile-ahead: '" + name + "' is not scan_chunks, raster, resolve or resolve_lambert");
     cl::Kernel kernel(cl.program, name.c_str());
     cl::NDRange global, local;
     cl_uint arg = 0;
@@ -200,11 +223,18 @@ void compileKernelsAhead(ClContext& cl, const std::vector<std::string>& kernels,
 
 void compileAheadCommand(const std::vector<std::string>& args)
 {
-  // args: --device INDEX --lanes N KERNEL..., as CompileAhead::start writes them.
+  // args: --device SELECTOR --lanes N KERNEL..., as CompileAhead writes them.
   if (args.size() < 5 || args[0] != "--device" || args[2] != "--lanes")
-    throw Error("usage: clraster __compile-ahead --device INDEX --lanes N KERNEL...");
-  ClContext cl(args[1], std::atoi(args[3].c_str()));
-  compileKernelsAhead(cl, {args.begin() + 4, args.end()}, [](const std::string& name) {
+    throw Error("usage: clraster __compile-ahead --device SELECTOR --lanes N KERNEL...");
+  // Step 1: the parent's device and work shape; no build where no help.
+  const std::vector<std::string> kernels(args.begin() + 4, args.end());
+  checkKernelNames(kernels);
+  const int lanesOverride = std::atoi(args[3].c_str());
+  const DeviceInfo device = selectDevice(args[1]);
+  if (!CompileAhead::worthwhile(device, contextLanes(device.device, lanesOverride))) std::_Exit(3);
+  // Step 2: build and launch, naming each kernel as it has run.
+  ClContext cl(args[1], lanesOverride);
+  compileKernelsAhead(cl, kernels, [](const std::string& name) {
     std::printf("%s\n", name.c_str());
     std::fflush(stdout);
   });

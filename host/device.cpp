@@ -140,13 +140,21 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
-ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead)
-    : info(selectDevice(selector))
+int contextLanes(const cl::Device& device, int lanesOverride)
 {
-  // Step 1: the work shape: the caller's, else CLRASTER_LANES, else the device's default.
   const char* fromEnv = std::getenv("CLRASTER_LANES");
-  lanes = lanesOverride ? lanesOverride : fromEnv ? std::atoi(fromEnv) : defaultLanes(info.device);
+  const int lanes = lanesOverride ? lanesOverride : fromEnv ? std::atoi(fromEnv) : defaultLanes(device);
   if (lanes != 1 && lanes != 16) throw Error("CLRASTER_LANES must be 1 or 16");
+  return lanes;
+}
+
+ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead)
+    : compileAhead(ahead, selector, lanesOverride), info(selectDevice(selector))
+{
+  // Step 1: the work shape; a helper started for the selector (compileAhead,
+  // before the device was known) stays only where it helps.
+  lanes = contextLanes(info.device, lanesOverride);
+  compileAhead.deviceChosen(info, lanes);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   const std::string platform = cl::Platform(info.device.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_NAME>();
@@ -154,9 +162,8 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, const Compi
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);
-  // (A helper compiling kernels ahead starts before the build, which it
-  // repeats beside this one, and learns how long this one took.)
-  compileAhead.start(ahead, info, lanes);
+  // (A helper compiling kernels ahead repeats the build beside this one, and
+  // learns how long this one took.)
   const auto buildStart = std::chrono::steady_clock::now();
   program = buildProgram(context, info.device, buildOptions_);
   compileAhead.programBuilt(

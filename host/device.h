@@ -34,11 +34,18 @@ DeviceInfo selectDevice(const std::string& selector);
 // row) on CPUs, where PoCL vectorises explicit vector types; 1 elsewhere.
 int defaultLanes(const cl::Device& device);
 
+// The work shape a context takes: lanesOverride unless 0, else
+// CLRASTER_LANES, else defaultLanes; anything but 1 or 16 is an error.
+int contextLanes(const cl::Device& device, int lanesOverride);
+
 // The OpenCL context every stage shares. lanes 0 picks the device's default.
 // A non-empty `ahead` starts a helper process that compiles those kernels
 // while this context builds and compiles the first ones (compile_ahead.h).
 struct ClContext {
   explicit ClContext(const std::string& selector, int lanes = 0, const CompileAheadRequest& ahead = {});
+  // The helper of `ahead`, started before anything else (so first here),
+  // awaited before the first launch of each kernel it compiles.
+  CompileAhead compileAhead;
   DeviceInfo info;
   int lanes = 1;          // CLR_LANES the program was built with
   bool prefetch = false;  // the program was built with CLR_PREFETCH (kernelBuildOptions)
@@ -51,7 +58,6 @@ struct ClContext {
   const cl::Program& extras();
   size_t maxAllocBytes = 0;  // the device's, or CLRASTER_MAX_ALLOC_BYTES when lower
   size_t globalMemBytes = 0;
-  CompileAhead compileAhead;  // the helper of `ahead`, awaited before raster's first launch
   const std::string& buildOptions() const { return buildOptions_; }
 
  private:
