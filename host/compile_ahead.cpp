@@ -97,9 +97,11 @@ void CompileAhead::programBuilt(double buildMs)
 
 void CompileAhead::await(const std::string& kernel)
 {
-  if (state_ != State::running || !asked_.count(kernel)) return;
+  // (A helper that has named every kernel may be reaped already: its kernels
+  // are ready, and still count as awaited.)
+  if (!asked_.count(kernel)) return;
   awaited_.insert(kernel);
-  if (!ready_.count(kernel)) readUntil(kernel);
+  if (state_ == State::running && !ready_.count(kernel)) readUntil(kernel);
 }
 
 void CompileAhead::readUntil(const std::string& kernel)

@@ -73,8 +73,8 @@ class CompileAhead {
   // waits until the helper has run it or has ended; at once otherwise.
   void await(const std::string& kernel);
   State state() const { return state_; }
-  // The kernels the helper has run so far, and those the parent awaited
-  // before its first launch of them.
+  // The kernels the helper has run so far, and those of its kernels the
+  // parent awaited before its first launch of them.
   const std::set<std::string>& ready() const { return ready_; }
   const std::set<std::string>& awaited() const { return awaited_; }
 
