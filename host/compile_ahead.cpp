@@ -34,8 +34,7 @@ bool CompileAhead::allowed()
 
 bool CompileAhead::worthwhile(const DeviceInfo& device, int lanes)
 {
-  return allowed() && device.type == "CPU" &&
-         device.platformName.find("Portable Computing Language") != std::string::npos && lanes == CLR_TILE_SIZE;
+  return allowed() && device.type == "CPU" && isPocl(device) && lanes == CLR_TILE_SIZE;
 }
 
 CompileAhead::CompileAhead(const CompileAheadRequest& request, const std::string& selector, int lanesOverride)

@@ -140,6 +140,11 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
+bool isPocl(const DeviceInfo& device)
+{
+  return device.platformName.find("Portable Computing Language") != std::string::npos;
+}
+
 int contextLanes(const cl::Device& device, int lanesOverride)
 {
   const char* fromEnv = std::getenv("CLRASTER_LANES");
@@ -157,8 +162,7 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, const Compi
   compileAhead.deviceChosen(info, lanes);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
-  const std::string platform = cl::Platform(info.device.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_NAME>();
-  prefetch = platform.find("Portable Computing Language") != std::string::npos;
+  prefetch = isPocl(info);
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);

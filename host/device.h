@@ -30,6 +30,11 @@ std::vector<DeviceInfo> listDevices();
 // platform name (case-insensitive).
 DeviceInfo selectDevice(const std::string& selector);
 
+// Whether the device is PoCL's (its platform's name): the compiler takes
+// __builtin_prefetch (kernelBuildOptions), and a helper process can compile
+// kernels into its cache (compile_ahead.h).
+bool isPocl(const DeviceInfo& device);
+
 // Pixels per work-item of the raster kernel for a device: 16 (one vector
 // row) on CPUs, where PoCL vectorises explicit vector types; 1 elsewhere.
 int defaultLanes(const cl::Device& device);

@@ -107,12 +107,13 @@ Mesh loadMesh(const RenderArgs& args)
 
 // The frame-program kernels a helper compiles ahead (compile_ahead.h) for
 // these arguments' frames: the scan, and the resolve kernel the frame will
-// likely take (Pipeline::resolve decides; a wrong guess costs only the head
-// start). The render compiles setup and raster itself meanwhile.
+// likely take (Pipeline::resolve decides, by resolveIsLean and the scene's
+// attributes, unknown here; a wrong guess costs only the head start). The
+// render compiles setup and raster itself meanwhile.
 CompileAheadRequest compileAheadFor(const RenderArgs& args)
 {
-  const bool lean = args.shadeMode == CLR_SHADE_LAMBERT && (args.aa.empty() || args.aa == "none") &&
-                    args.interpMode == CLR_INTERP_PERSPECTIVE && !args.pointLightOn;
+  const uint32_t samples = args.aa.empty() || args.aa == "none" ? 1 : 0;  // 0: several, or --aa auto's choice
+  const bool lean = resolveIsLean(args.shadeMode, samples, args.interpMode, args.pointLightOn, 0);
   return {"/proc/self/exe", {"scan_chunks", lean ? "resolve_lambert" : "resolve"}};
 }
 

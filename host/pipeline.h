@@ -49,6 +49,12 @@ struct WorkShape {
 WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples);
 WorkShape resolveShape(int lanes, uint32_t tilesX, uint32_t tilesY);
 
+// Whether a frame takes resolve's lean lambert kernel (resolve_lambert.cl)
+// rather than the general one: lambert, one sample, perspective
+// interpolation, no point light, and no textures or vertex colours bound
+// (sceneFlags, FrameParams).
+bool resolveIsLean(uint32_t shadeMode, uint32_t samples, uint32_t interpMode, bool pointLightOn, uint32_t sceneFlags);
+
 // Whether resolve may gain by fetching the setup records, vertex indices
 // and normals of later rows ahead (resolve_prefetch, resolve.cl): a frame
 // of small triangles (at most two bin entries each on average) that gives

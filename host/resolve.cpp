@@ -7,6 +7,12 @@
 
 namespace clr {
 
+bool resolveIsLean(uint32_t shadeMode, uint32_t samples, uint32_t interpMode, bool pointLightOn, uint32_t sceneFlags)
+{
+  return shadeMode == CLR_SHADE_LAMBERT && samples == 1 && interpMode == CLR_INTERP_PERSPECTIVE && !pointLightOn &&
+         !(sceneFlags & (CLR_SCENE_TEXTURES | CLR_SCENE_COLORS));
+}
+
 bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t numBinEntries)
 {
   // What resolve gathers per covered run of pixels: the setup record and its
@@ -44,9 +50,8 @@ void Pipeline::resolve()
   image_.reserve(uint64_t(params_.width) * params_.height, true);
   cl::Event event;
   // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
-  const bool lean = settings_.leanResolve && params_.shadeMode == CLR_SHADE_LAMBERT && params_.samples == 1 &&
-                    params_.interpMode == CLR_INTERP_PERSPECTIVE && !params_.pointLightOn &&
-                    !(params_.sceneFlags & (CLR_SCENE_TEXTURES | CLR_SCENE_COLORS));
+  const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
+                                                           params_.pointLightOn, params_.sceneFlags);
   leanResolve_ = lean;
   // Step 2: whether it fetches rows ahead (CPU shape, PoCL), measured per
   // case because the gain depends on the mesh's order. In alternated turns
