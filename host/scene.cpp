@@ -275,6 +275,12 @@ struct ScopedImportLog {
 
 Mesh loadScene(const std::string& path)
 {
+  checkSceneFile(path);
+  return importScene(path);
+}
+
+void checkSceneFile(const std::string& path)
+{
   uint64_t fileSize = 0;
   // Step 1: the file must be a readable, non-empty regular file (checked
   // before opening it: opening a FIFO would block).
@@ -288,8 +294,13 @@ Mesh loadScene(const std::string& path)
     if (probe.tellg() <= 0) throw Error(path + ": file is empty or unreadable");
     fileSize = uint64_t(probe.tellg());
   }
+  // Step 2: the guards against hostile files.
   checkModelFile(path, fileSize);
-  // Step 2: import without reordering post-processing.
+}
+
+Mesh importScene(const std::string& path)
+{
+  // Step 1: import without reordering post-processing.
   Assimp::Importer importer;
   importer.SetIOHandler(new RegularFileIOSystem);  // the importer owns it
   ScopedImportLog importLog;
@@ -302,12 +313,12 @@ Mesh loadScene(const std::string& path)
   if (!importLog.log.firstIndexProblem.empty()) throw Error(path + ": " + oneLine(importLog.log.firstIndexProblem));
   if (!scene) throw Error(path + ": cannot import (" + oneLine(importer.GetErrorString()) + ")");
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
-  // Step 3: walk the nodes, concatenating meshes.
+  // Step 2: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
   if (state.mesh.indices.empty()) throw Error(path + ": no triangles in file");
   if (!state.anyColors) state.mesh.colors.clear();
-  // Step 4: materials and their textures.
+  // Step 3: materials and their textures.
   loadMaterials(state);
   for (uint32_t& m : state.mesh.triMaterial)
     if (m >= state.mesh.materials.size()) throw Error(path + ": mesh refers to missing material " + std::to_string(m));

@@ -46,6 +46,13 @@ struct Bounds {
 
 Mesh loadScene(const std::string& path);
 
+// loadScene in two steps, so that a caller can report a bad file at once
+// and import a good one while it does something else: checkSceneFile runs
+// the quick checks (a readable, non-empty regular file; model_checks.h),
+// importScene the rest, on a file that passed them.
+void checkSceneFile(const std::string& path);
+Mesh importScene(const std::string& path);
+
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();
 

@@ -239,6 +239,30 @@ TEST_CASE("cli: hostile scene files are rejected with one line and no output", "
   }
 }
 
+TEST_CASE("cli: a scene file loads while the program builds and its error comes first", "[cli]")
+{
+  // A file's quick checks run first, then its import on a second thread
+  // while the device's program builds (main.cpp): a bad scene is the error
+  // reported either way, also when the device fails as well, and a good
+  // scene leaves the device's error.
+  const std::string png = tmpDir() + "/both-bad.png";
+  std::remove(png.c_str());
+  const std::string header = writeFile("both-bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
+  const std::string points = writeFile("both-bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\n");
+  const std::string device = " --device no-such-device-anywhere";
+  for (const auto& [scene, needle] : {std::pair{header, header + ": PLY header has no end_header"},
+                                      std::pair{points, points + ": no triangles in file"}}) {
+    const Run r = expectError("render '" + scene + "' -o '" + png + "'" + device, needle);
+    CHECK(r.err.find("--device") == std::string::npos);
+  }
+  const std::string good = writeFile("both-good.obj", kSmallObj);
+  expectError("render '" + good + "' -o '" + png + "'" + device,
+              "--device no-such-device-anywhere: no device name matches");
+  struct stat st;
+  CHECK(stat(png.c_str(), &st) != 0);
+  CHECK(leftoverTemps(png) == 0);
+}
+
 TEST_CASE("cli: an unwritable output is reported before anything is rendered", "[cli]")
 {
   expectError("render -o /nonexistent-dir/out.png", "/nonexistent-dir/out.png: cannot write");
