@@ -130,20 +130,20 @@ CompileAheadRequest compileAheadFor(const RenderArgs& args)
 Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<ClContext>& cl)
 {
   Mesh mesh;
+  std::future<Mesh> importing;  // a file's import, when valid()
   if (args.scenePath.empty()) {
     mesh = defaultScene();
-    cl = std::make_unique<ClContext>(args.device, 0, compileAheadFor(args));
   } else {
     checkSceneFile(args.scenePath);
-    std::future<Mesh> import = std::async(std::launch::async, [&args] { return importScene(args.scenePath); });
-    try {
-      cl = std::make_unique<ClContext>(args.device, 0, compileAheadFor(args));
-    } catch (...) {
-      import.get();  // the scene's error first (this waits for the import either way)
-      throw;
-    }
-    mesh = import.get();
+    importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath); });
   }
+  try {
+    cl = std::make_unique<ClContext>(args.device, 0, compileAheadFor(args));
+  } catch (...) {
+    if (importing.valid()) importing.get();  // the scene's error first (this waits for the import either way)
+    throw;
+  }
+  if (importing.valid()) mesh = importing.get();
   warnAbout(args, mesh);
   return mesh;
 }

@@ -18,12 +18,6 @@
 
 namespace {
 
-std::string testDevice()
-{
-  const char* selector = std::getenv("CLRASTER_TEST_DEVICE");
-  return selector ? selector : "";
-}
-
 // The built-in scene at 96×64, lambert (the lean resolve kernel), on a
 // fresh pipeline of cl.
 std::vector<uint32_t> defaultFrame(clr::ClContext& cl)
@@ -66,7 +60,7 @@ TEST_CASE("a context's helper compiles the kernels it was asked for and the pixe
           "[compile-ahead][helper]")
 {
   const std::vector<uint32_t> expected = defaultFrame(test::context());
-  clr::ClContext cl(testDevice(), 16, request(CLRASTER_BIN, {"scan_chunks", "resolve_lambert"}));
+  clr::ClContext cl(test::deviceSelector(), 16, request(CLRASTER_BIN, {"scan_chunks", "resolve_lambert"}));
   if (!clr::CompileAhead::worthwhile(cl.info, 16)) {
     CHECK(cl.compileAhead.state() == clr::CompileAhead::State::off);
     WARN("no helper on " << cl.info.name << " (not PoCL's CPU device, or fewer than two cores)");
@@ -90,13 +84,13 @@ TEST_CASE("a helper that cannot start, fails or hangs changes nothing but the ti
   }
   SECTION("no such executable")
   {
-    clr::ClContext cl(testDevice(), 16, request(test::tempDir() + "/no-such-clraster", {"resolve_lambert"}));
+    clr::ClContext cl(test::deviceSelector(), 16, request(test::tempDir() + "/no-such-clraster", {"resolve_lambert"}));
     CHECK(cl.compileAhead.state() == clr::CompileAhead::State::failed);
     CHECK(defaultFrame(cl) == expected);
   }
   SECTION("a helper that fails")
   {
-    clr::ClContext cl(testDevice(), 16, request("/bin/false", {"scan_chunks", "resolve_lambert"}));
+    clr::ClContext cl(test::deviceSelector(), 16, request("/bin/false", {"scan_chunks", "resolve_lambert"}));
     CHECK(defaultFrame(cl) == expected);
     CHECK(cl.compileAhead.state() == clr::CompileAhead::State::failed);
     CHECK(cl.compileAhead.ready().empty());
@@ -106,7 +100,7 @@ TEST_CASE("a helper that cannot start, fails or hangs changes nothing but the ti
     // (its wait is bounded by the context's own build time and half a second)
     const std::string hang = test::writeFile("hanging-helper.sh", "#!/bin/sh\nexec sleep 60\n");
     REQUIRE(chmod(hang.c_str(), 0755) == 0);
-    clr::ClContext cl(testDevice(), 16, request(hang, {"scan_chunks", "resolve_lambert"}));
+    clr::ClContext cl(test::deviceSelector(), 16, request(hang, {"scan_chunks", "resolve_lambert"}));
     CHECK(defaultFrame(cl) == expected);
     CHECK(cl.compileAhead.state() == clr::CompileAhead::State::stopped);
   }

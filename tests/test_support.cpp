@@ -8,14 +8,17 @@
 
 namespace test {
 
+std::string deviceSelector()
+{
+  const char* selector = std::getenv("CLRASTER_TEST_DEVICE");
+  return selector ? selector : "";
+}
+
 clr::ClContext& context()
 {
   // Never destroyed: releasing OpenCL objects from a static destructor races
   // the ICD's own teardown at exit (Oclgrind's runtime crashes on it).
-  static clr::ClContext* ctx = new clr::ClContext([] {
-    const char* selector = std::getenv("CLRASTER_TEST_DEVICE");
-    return std::string(selector ? selector : "");
-  }());
+  static clr::ClContext* ctx = new clr::ClContext(deviceSelector());
   return *ctx;
 }
 

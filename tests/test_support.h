@@ -14,7 +14,10 @@
 
 namespace test {
 
-// The context every test shares (device from CLRASTER_TEST_DEVICE, else default).
+// The device selector of the tests: CLRASTER_TEST_DEVICE, else "" (default).
+std::string deviceSelector();
+
+// The context every test shares (on deviceSelector()'s device).
 clr::ClContext& context();
 
 // A mesh builder. With an identity MVP, a position (x, y, z) is already in
