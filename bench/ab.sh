@@ -5,7 +5,8 @@
 #
 # DIR_A and DIR_B each hold a built clraster_bench (a build folder, or a copy
 # of one); the arguments name the case as clraster_bench takes them (default:
-# the built-in scene at 1920x1080), and --no-ids --serve are added. Both
+# the built-in scene at 1920x1080), and --no-ids --serve are added (so
+# --shade MODE, which only --serve takes, compares another shading mode). Both
 # builds load the case once, in two processes side by side, then take turns
 # (clraster_bench --serve): PAIRS pairs of turns (default 40) in ABBA order
 # (A B, B A, A B, ...), each turn --warmup untimed frames (default 1) and

@@ -6,7 +6,7 @@
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
-//   clraster_bench [the case's arguments] --serve
+//   clraster_bench [the case's arguments] --serve [--shade MODE]
 //
 // The case: SCENE (a file assimp reads; the built-in scene when absent), or
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
@@ -61,6 +61,9 @@
 // "frame=MS STAGE=MS ...", the medians over the turn's timed frames; it
 // ends at the end of stdin. It draws no ID frame (any triangle count) and
 // refuses --csv, --images and --max-shade-mad, which it would not honour.
+// --shade MODE (clraster's --shade names; only with --serve, which has no
+// peer to match) shades its frames in another mode than lambert, so that
+// bench/ab.sh can compare two builds' general resolve kernel.
 // Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
 #include "procedural.h"
@@ -103,8 +106,9 @@ struct Args {
   std::string csvPath;
   std::string imagePrefix;
   std::optional<double> peakLaneGops, peakCopyGbs;
-  std::optional<double> maxShadeMad;  // fail when the per-pixel images differ more (a CTest check)
-  bool serve = false;                 // turns driven on stdin (header comment)
+  std::optional<double> maxShadeMad;       // fail when the per-pixel images differ more (a CTest check)
+  bool serve = false;                      // turns driven on stdin (header comment)
+  uint32_t shadeMode = CLR_SHADE_LAMBERT;  // --shade, only with --serve
 };
 
 double parsePositive(const std::string& flag, const std::string& text)
@@ -155,6 +159,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.maxShadeMad = parsePositive(a, flagValue(args, i));
     } else if (a == "--serve") {
       r.serve = true;
+    } else if (a == "--shade") {
+      r.shadeMode = parseShadeMode(a, flagValue(args, i));
     } else {
       takeScenePath(a, r.scenePath);
     }
@@ -163,6 +169,8 @@ Args parseArgs(const std::vector<std::string>& args)
   // --serve times clraster alone and writes only its turns' lines.
   if (r.serve && (!r.csvPath.empty() || !r.imagePrefix.empty() || r.maxShadeMad))
     throw Error("--serve writes only its turns' lines: --csv, --images and --max-shade-mad do not apply");
+  if (!r.serve && r.shadeMode != CLR_SHADE_LAMBERT)
+    throw Error("--shade applies only with --serve: the comparison with llvmpipe shades lambert");
   return r;
 }
 
@@ -424,7 +432,7 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
+  const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode);
   ImageView view;
   pipeline.render(settings, view);  // the first frame: kernel code generation
   std::printf("ready\n");

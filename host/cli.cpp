@@ -133,6 +133,14 @@ uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_
   return v;
 }
 
+uint32_t parseShadeMode(const std::string& flag, const std::string& text)
+{
+  // The order is the CLR_SHADE_* numbering.
+  return parseChoice(
+      flag, text,
+      {"lambert", "normal", "depth", "id", "uv", "checker", "color", "flat", "gouraud", "phong", "texture"});
+}
+
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height)
 {
   const size_t x = text.find('x');
@@ -165,10 +173,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--far") {
       r.camera.zFar = parseFloat(a, flagValue(args, i));
     } else if (a == "--shade") {
-      // The order is the CLR_SHADE_* numbering.
-      r.shadeMode = parseChoice(
-          a, flagValue(args, i),
-          {"lambert", "normal", "depth", "id", "uv", "checker", "color", "flat", "gouraud", "phong", "texture"});
+      r.shadeMode = parseShadeMode(a, flagValue(args, i));
     } else if (a == "--filter") {
       r.texFilter = parseChoice(a, flagValue(args, i), {"nearest", "bilinear", "trilinear"});
     } else if (a == "--light-point") {

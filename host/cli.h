@@ -72,6 +72,7 @@ void takeScenePath(const std::string& arg, std::string& scenePath);
 // clr::Error naming the flag and the bad text.
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi);
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height);
+uint32_t parseShadeMode(const std::string& flag, const std::string& text);  // a --shade name: its CLR_SHADE_*
 
 // Helpers every command-line program of the project shares.
 double median(std::vector<double> values);     // of a non-empty list

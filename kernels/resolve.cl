@@ -64,162 +64,251 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
   return qr | (qg << 8) | (qb << 16) | 0xFF000000u;
 }
 
-/* What resolve needs of the CLR_LANES pixels' fragments, gathered per lane:
- * screen barycentrics' gradients, the triangle's 1/w, the weights of the
- * input triangle's vertices in each setup vertex (identity, swapped or
- * ClipBary) and the input vertices' attributes that the shading reads. */
+/* What resolve needs of the CLR_LANES pixels' fragments, in lane types: the
+ * visible triangles' source words (the back face, the clip slot), their
+ * 1/w at the setup vertices, the screen barycentrics' gradients and the
+ * input vertices' attributes that the shading reads (the need flags: the
+ * others hold nothing). Lanes that show no triangle hold some triangle's
+ * values; the background replaces them. */
+#define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
 typedef struct ResolveLanes {
-  bool uniform;  // all lanes show one triangle: only lane 0 of the per-triangle arrays is filled
-  bool needNormals, needUvs, needColours, needPositions, needGradients;
-  uint triId[CLR_LANES], backfacing[CLR_LANES], material[CLR_LANES];
-  float invW[3][CLR_LANES];
-  float weight[3][3][CLR_LANES];  // [setup vertex][input vertex][lane]
-  float normal[3][3][CLR_LANES];  // [input vertex][component][lane]
-  float uv[3][2][CLR_LANES];      // [input vertex][component][lane]
-  float colour[3][4][CLR_LANES];  // [input vertex][RGBA][lane]
-  float pos[3][3][CLR_LANES];     // [input vertex][component][lane], world space
-  float grad[3][2][CLR_LANES];    // [setup vertex][d/dx, d/dy][lane]: screen barycentric per pixel
+  bool needNormals, needUvs, needColours, needPositions, needGradients, needMaterial;
+  intL covered;
+  uintL source;    // the source words (shared.h)
+  uintL material;  // the materials' indices (0 without materials)
+  floatL invW[3];
+  floatL normal[3][3];  // [input vertex][component]
+  floatL uv[3][2];      // [input vertex][component]
+  floatL colour[3][4];  // [input vertex][RGBA]
+  floatL pos[3][3];     // [input vertex][component], world space
+  floatL grad[3][2];    // [setup vertex][d/dx, d/dy]: screen barycentric per pixel
 } ResolveLanes;
 
-/* Fills each lane of a per-lane array with the value of lane from[lane]
- * (clr_permute, lanes.h). */
-CLR_INLINE void resolve_spread(uint* lanes, uintL from)
+/* The gradients of setup record t's screen barycentrics per pixel, from its
+ * edge functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
+ * ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE). */
+CLR_INLINE float resolve_gradient(__global const TriSetup* t, int i, int d)
 {
-  CLR_STORE_LANES(clr_permute(CLR_LOAD_LANES(lanes), from), lanes);
-}
-CLR_INLINE void resolve_spread_float(float* lanes, uintL from)
-{
-  CLR_STORE_LANES(as_floatL(clr_permute(as_uintL(CLR_LOAD_LANES(lanes)), from)), lanes);
+  const int a = (i + 1) % 3, b = (i + 2) % 3;
+  const float scale = CLR_RECORD_INV_AREA2(*t) * (float)CLR_FIXED_ONE;
+  return (d == 0 ? (float)(t->y[a] - t->y[b]) : (float)(t->x[b] - t->x[a])) * scale;
 }
 
-/* Gives every lane the per-triangle values of the lane that starts its run
- * (from): only those the shading reads (the flags are the same for every
- * lane). */
-CLR_INLINE void resolve_spread_lanes(ResolveLanes* g, uintL from)
+/* Reads what the shading reads of setup record s (its record and source
+ * word, then its vertex indices and material, then their attributes) into
+ * the lanes of `in`, by a select: into every lane when `in` is all lanes.
+ * The values stay in registers, where the per-lane arrays and permutes
+ * that this replaced went through memory: with bench/ab.sh --shade at
+ * 1080p, resolve of yxa_1 filling the screen with phong 3.92 -> 3.06 ms
+ * (lower in 30 of 30 pairs), SuzanneSubdiv filling it with normal 10.5 ->
+ * 8.4 ms (19 of 20), the 1M-triangle sphere far with phong 10.6 -> 8.9 ms
+ * (18 of 20), the IFC house filling it with phong 3.45 -> 3.09 ms (15). */
+CLR_HOT void resolve_take(__global const TriSetup* setup, __global const uint* source,
+                          __global const ClipBary* clipBary, __global const uint* indices,
+                          __global const float* positions, __global const float* normals, __global const float* uvs,
+                          __global const float* colours, __global const uint* triMaterial, uint s, intL in,
+                          ResolveLanes* g)
 {
-  resolve_spread(g->triId, from);
-  resolve_spread(g->backfacing, from);
-  resolve_spread(g->material, from);
-  for (int i = 0; i < 3; ++i) {
-    resolve_spread_float(g->invW[i], from);
-    for (int j = 0; j < 3; ++j) resolve_spread_float(g->weight[i][j], from);
-    if (g->needNormals)
-      for (int j = 0; j < 3; ++j) resolve_spread_float(g->normal[i][j], from);
-    if (g->needPositions)
-      for (int j = 0; j < 3; ++j) resolve_spread_float(g->pos[i][j], from);
-    if (g->needColours)
-      for (int j = 0; j < 4; ++j) resolve_spread_float(g->colour[i][j], from);
-    if (g->needUvs)
-      for (int j = 0; j < 2; ++j) resolve_spread_float(g->uv[i][j], from);
-    if (g->needGradients)
-      for (int j = 0; j < 2; ++j) resolve_spread_float(g->grad[i][j], from);
+#define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
+  __global const TriSetup* t = &setup[s];
+  const uint word = source[s], tri = clr_source_triangle(word, clipBary);
+  CLR_TAKE(g->source, (uintL)word);
+  for (int i = 0; i < 3; ++i) CLR_TAKE(g->invW[i], (floatL)t->invW[i]);
+  for (int i = 0; g->needGradients && i < 3; ++i)
+    for (int d = 0; d < 2; ++d) CLR_TAKE(g->grad[i][d], (floatL)resolve_gradient(t, i, d));
+  if (g->needMaterial) CLR_TAKE(g->material, (uintL)triMaterial[tri]);
+  for (int j = 0; j < 3; ++j) {
+    const uint v = indices[3 * tri + j];
+    for (int k = 0; g->needNormals && k < 3; ++k) CLR_TAKE(g->normal[j][k], (floatL)normals[3 * v + k]);
+    for (int k = 0; g->needPositions && k < 3; ++k) CLR_TAKE(g->pos[j][k], (floatL)positions[3 * v + k]);
+    for (int k = 0; g->needUvs && k < 2; ++k) CLR_TAKE(g->uv[j][k], (floatL)uvs[2 * v + k]);
+    for (int k = 0; g->needColours && k < 4; ++k) CLR_TAKE(g->colour[j][k], (floatL)colours[4 * v + k]);
+  }
+#undef CLR_TAKE
+}
+
+/* One attribute of `components` floats per vertex, of the lanes' three
+ * input vertices, into out[j · components + k] (vertex j, component k). */
+CLR_INLINE void resolve_gather_attribute(__global const float* values, uint components, const uint vertex[3][CLR_LANES],
+                                         floatL* out)
+{
+  for (int j = 0; j < 3; ++j) {
+    float lanes[4][CLR_LANES];
+    CLR_NO_UNROLL
+    for (uint lane = 0; lane < CLR_LANES; ++lane)
+      for (uint k = 0; k < components; ++k) lanes[k][lane] = values[components * vertex[j][lane] + k];
+    for (uint k = 0; k < components; ++k) out[j * components + k] = CLR_LOAD_LANES(lanes[k]);
   }
 }
 
-/* visIndex: the lanes' setup indices, CLR_NONE past the viewport's edge.
- * Neighbouring pixels mostly show the same triangle, in runs of lanes: the
- * lane that starts a run gathers its triangle's values, in stages whose
- * loads do not depend on each other (so the CPU overlaps their cache
- * misses): the setup records, then the vertex indices and materials, then
- * the attributes. The run's other lanes then take them
- * (resolve_spread_lanes). */
-CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* visIndex, __global const TriSetup* setup,
-                               __global const uint* source, __global const ClipBary* clipBary,
-                               __global const uint* indices, __global const float* positions,
-                               __global const float* normals, __global const float* uvs, __global const float* colours,
+/* Step 1 of the gathers lane by lane (resolve_gather_lanes, and
+ * resolve_lambert_gather in resolve_lambert.cl): lane `lane`'s setup record
+ * (record 0 where the lane shows none: a tile with a bin has one), its
+ * source word, input triangle and 1/w into the per-lane arrays. */
+CLR_HOT __global const TriSetup* resolve_lane_record(__global const TriSetup* setup, __global const uint* source,
+                                                     __global const ClipBary* clipBary, const uint* index, uint lane,
+                                                     uint* from, uint* tri, float invW[3][CLR_LANES])
+{
+  const uint s = index[lane] != CLR_NONE ? index[lane] : 0;
+  from[lane] = source[s];
+  tri[lane] = clr_source_triangle(from[lane], clipBary);
+  for (int i = 0; i < 3; ++i) invW[i][lane] = setup[s].invW[i];
+  return &setup[s];
+}
+
+/* resolve_take for every lane at once, for rows of many runs (tiny
+ * triangles): gathers lane by lane in stages, each a loop whose loads do
+ * not depend on each other (so the CPU overlaps their cache misses): the
+ * setup records and source words, then vertex indices and materials, then
+ * the attributes. Uncovered lanes read record 0 (a tile with a bin has
+ * one). */
+CLR_HOT void resolve_gather_lanes(__global const TriSetup* setup, __global const uint* source,
+                                  __global const ClipBary* clipBary, __global const uint* indices,
+                                  __global const float* positions, __global const float* normals,
+                                  __global const float* uvs, __global const float* colours,
+                                  __global const uint* triMaterial, const uint* index, ResolveLanes* g)
+{
+  // Step 1: the records and source words.
+  uint from[CLR_LANES], tri[CLR_LANES], material[CLR_LANES], vertex[3][CLR_LANES];
+  float invW[3][CLR_LANES], grad[3][2][CLR_LANES];
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, tri, invW);
+    for (int i = 0; g->needGradients && i < 3; ++i)
+      for (int d = 0; d < 2; ++d) grad[i][d][lane] = resolve_gradient(t, i, d);
+  }
+  // Step 2: the vertex indices and materials.
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * tri[lane] + j];
+    material[lane] = g->needMaterial ? triMaterial[tri[lane]] : 0u;
+  }
+  // Step 3: the attributes, and everything into lane types.
+  if (g->needNormals) resolve_gather_attribute(normals, 3, vertex, &g->normal[0][0]);
+  if (g->needPositions) resolve_gather_attribute(positions, 3, vertex, &g->pos[0][0]);
+  if (g->needUvs) resolve_gather_attribute(uvs, 2, vertex, &g->uv[0][0]);
+  if (g->needColours) resolve_gather_attribute(colours, 4, vertex, &g->colour[0][0]);
+  g->source = CLR_LOAD_LANES(from);
+  g->material = CLR_LOAD_LANES(material);
+  for (int i = 0; i < 3; ++i) {
+    g->invW[i] = CLR_LOAD_LANES(invW[i]);
+    for (int d = 0; g->needGradients && d < 2; ++d) g->grad[i][d] = CLR_LOAD_LANES(grad[i][d]);
+  }
+}
+
+/* The lanes' fragments of a row with at least one covered lane (index: the
+ * lanes' setup indices, CLR_NONE past the viewport's edge; indexLanes the
+ * same as a vector). Neighbouring pixels mostly show the same triangle, in
+ * runs of lanes: a row of at most CLR_RESOLVE_MAX_RUNS covered runs (a
+ * uniform row is one) reads them one run at a time (resolve_take), the
+ * first covered run's into every lane, then each later run's into its
+ * lanes; a row of more gathers lane by lane (resolve_gather_lanes). What
+ * to gather follows the shading mode and what the host bound
+ * (FrameParams.sceneFlags). */
+CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* index, uintL indexLanes,
+                               __global const TriSetup* setup, __global const uint* source,
+                               __global const ClipBary* clipBary, __global const uint* indices,
+                               __global const float* positions, __global const float* normals,
+                               __global const float* uvs, __global const float* colours,
                                __global const uint* triMaterial, ResolveLanes* g)
 {
-  // Step 0: a row inside one triangle (common for large triangles) needs one
-  // gather; its barycentrics still differ per lane. What to gather follows
-  // the shading mode and what the host bound (FrameParams.sceneFlags).
-  g->uniform = !CLR_ANY(CLR_LOAD_LANES(visIndex) != visIndex[0]);  // a vector compare, not a branch per lane
+  // Step 1: what the shading reads.
   const uint mode = params->shadeMode, flags = params->sceneFlags;
+  g->covered = indexLanes != CLR_NONE;
   g->needNormals = CLR_NEEDS_NORMALS(mode);
   g->needUvs = CLR_NEEDS_UVS(mode) || (flags & CLR_SCENE_TEXTURES);
   g->needColours = (flags & CLR_SCENE_COLORS) != 0;
   g->needPositions = CLR_NEEDS_POSITIONS(mode, params->pointLightOn);
   g->needGradients = (flags & CLR_SCENE_TEXTURES) && params->texFilter == CLR_FILTER_TRILINEAR;
-  const bool needMaterial = (flags & CLR_SCENE_MATERIALS) != 0;
-  // Step 1: the lanes that start a run (lane 0 alone when uniform), and the
-  // run start of every lane.
-  uint first[CLR_LANES], from[CLR_LANES], runs = 0;
+  g->needMaterial = (flags & CLR_SCENE_MATERIALS) != 0;
+  g->material = 0u;
+  // Step 2: the lanes that start a covered run.
+  uint starts = 0;
+  for (uint lane = 0; lane < CLR_LANES; ++lane)
+    starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
+  if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
+    resolve_gather_lanes(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index, g);
+    return;
+  }
+  // Step 3: run by run.
+  uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
+  resolve_take(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane], (intL)(-1),
+               g);
+  CLR_NO_UNROLL
+  for (starts &= starts - 1; starts; starts &= starts - 1) {
+    lane = 31 - clz(starts & (0u - starts));
+    resolve_take(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane],
+                 indexLanes == index[lane], g);
+  }
+}
+
+/* The weights mu_j of the input vertices in the lanes of `clippedL`, clipped
+ * triangles: mu_j = Σ_i λ_i · w_ij over the ClipBary slot's weights (in this
+ * order, the floats of the general sum), whether each is a back face, and
+ * with `uvs` the setup vertices' texture coordinates, Σ_j w_ij · uv_j. Both
+ * resolve kernels call it for their few clipped lanes. */
+CLR_INLINE void resolve_clipped_lanes(__global const ClipBary* clipBary, uintL sourceL, intL clippedL,
+                                      const floatL lambda[3], floatL mu[3], intL* backL, bool uvs,
+                                      const floatL uv[3][2], floatL uvAt[3][2])
+{
+  int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
+  uint from[CLR_LANES];
+  CLR_STORE_LANES(clippedL, clippedLane);
+  CLR_STORE_LANES(sourceL, from);
+  float l[3][CLR_LANES], m[3][CLR_LANES], u[3][2][CLR_LANES], at[3][2][CLR_LANES];
+  for (int i = 0; i < 3; ++i) {
+    CLR_STORE_LANES(lambda[i], l[i]);
+    CLR_STORE_LANES(mu[i], m[i]);
+    for (int k = 0; uvs && k < 2; ++k) {
+      CLR_STORE_LANES(uv[i][k], u[i][k]);
+      CLR_STORE_LANES(uvAt[i][k], at[i][k]);
+    }
+  }
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    if (lane == 0 || (!g->uniform && visIndex[lane] != visIndex[lane - 1])) first[runs++] = lane;
-    from[lane] = first[runs - 1];
-  }
-  // Step 2: each run's visible triangle, and the input-vertex weights of
-  // each setup vertex.
-  CLR_NO_UNROLL
-  for (uint run = 0; run < runs; ++run) {
-    const uint lane = first[run], index = visIndex[lane];
-    const bool covered = index != CLR_NONE;
-    const TriSetup t = setup[covered ? index : 0];
-    const uint word = source[covered ? index : 0], clipSlot = clr_source_clip_slot(word);
-    const bool backfacing = clr_source_backfacing(word, clipBary);
-    g->triId[lane] = covered ? clr_source_triangle(word, clipBary) : CLR_NONE;
-    g->backfacing[lane] = backfacing;
-    for (int i = 0; i < 3; ++i) g->invW[i][lane] = covered ? t.invW[i] : 1.0f;
-    const bool clipped = covered && clipSlot != CLR_NOT_CLIPPED;
-    const bool swapped = !clipped && backfacing;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const int identity = swapped && i != 0 ? 3 - i : i;  // setup vertices 1, 2 are input 2, 1
-        g->weight[i][j][lane] = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
-      }
-    // Gradients of the screen barycentrics per pixel, from the edge
-    // functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
-    // ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE).
-    for (int i = 0; g->needGradients && i < 3; ++i) {
-      const int a = (i + 1) % 3, b = (i + 2) % 3;
-      const float scale = covered ? CLR_RECORD_INV_AREA2(t) * (float)CLR_FIXED_ONE : 0.0f;
-      g->grad[i][0][lane] = (float)(t.y[a] - t.y[b]) * scale;
-      g->grad[i][1][lane] = (float)(t.x[b] - t.x[a]) * scale;
-    }
-  }
-  // Step 3: vertex indices and materials (an uncovered run reads none).
-  uint vertex[3][CLR_LANES];
-  CLR_NO_UNROLL
-  for (uint run = 0; run < runs; ++run) {
-    const uint lane = first[run], tri = g->triId[lane];
-    const bool covered = tri != CLR_NONE;
-    for (int j = 0; j < 3; ++j) vertex[j][lane] = covered ? indices[3 * tri + j] : 0;
-    g->material[lane] = covered && needMaterial ? triMaterial[tri] : 0;
-  }
-  // Step 4: the input vertices' attributes that the shading reads.
-  CLR_NO_UNROLL
-  for (uint run = 0; run < runs; ++run) {
-    const uint lane = first[run];
-    const bool covered = g->triId[lane] != CLR_NONE;
+    clippedBack[lane] = 0;
+    if (!clippedLane[lane]) continue;
+    __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
     for (int j = 0; j < 3; ++j) {
-      const uint v = vertex[j][lane];
-      if (g->needNormals) {
-        const float3 n = covered ? vload3(v, normals) : (float3)(0.0f);
-        g->normal[j][0][lane] = n.x;
-        g->normal[j][1][lane] = n.y;
-        g->normal[j][2][lane] = n.z;
-      }
-      if (g->needPositions) {
-        const float3 p = covered ? vload3(v, positions) : (float3)(0.0f);
-        g->pos[j][0][lane] = p.x;
-        g->pos[j][1][lane] = p.y;
-        g->pos[j][2][lane] = p.z;
-      }
-      if (g->needUvs) {
-        const float2 uv = covered ? vload2(v, uvs) : (float2)(0.0f);
-        g->uv[j][0][lane] = uv.x;
-        g->uv[j][1][lane] = uv.y;
-      }
-      if (g->needColours) {
-        const float4 c = covered ? vload4(v, colours) : (float4)(1.0f);
-        g->colour[j][0][lane] = c.x;
-        g->colour[j][1][lane] = c.y;
-        g->colour[j][2][lane] = c.z;
-        g->colour[j][3][lane] = c.w;
-      }
+      m[j][lane] = 0.0f;
+      for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
     }
+    for (int i = 0; uvs && i < 3; ++i)
+      for (int k = 0; k < 2; ++k) {
+        at[i][k][lane] = 0.0f;
+        for (int j = 0; j < 3; ++j) at[i][k][lane] += w->w[i][j] * u[j][k][lane];
+      }
+    clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
   }
-  // Step 5: the runs' values into their other lanes.
-  if (!g->uniform && runs < CLR_LANES) resolve_spread_lanes(g, CLR_LOAD_LANES(from));
+  for (int j = 0; j < 3; ++j) {
+    mu[j] = CLR_LOAD_LANES(m[j]);
+    for (int k = 0; uvs && k < 2; ++k) uvAt[j][k] = CLR_LOAD_LANES(at[j][k]);
+  }
+  *backL = *backL | CLR_LOAD_LANES(clippedBack);
+}
+
+/* The weights mu_j of the input vertices: lambda itself, with vertices 1
+ * and 2 swapped for a back face, or through ClipBary for a clipped triangle
+ * (resolve_clipped_lanes). (Summing λ_i · w_ij over an identity or swap
+ * matrix gives the same floats.) A back face's normal flips: an unclipped
+ * one's source word says so (it is also the swap), a clipped one's ClipBary
+ * slot; *backL says which lanes. With `uvs`, also the setup vertices'
+ * texture coordinates uvAt (the input vertices' uv through the same map). */
+CLR_INLINE void resolve_vertex_weights(__global const ClipBary* clipBary, uintL sourceL, intL covered,
+                                       const floatL lambda[3], floatL mu[3], intL* backL, bool uvs,
+                                       const floatL uv[3][2], floatL uvAt[3][2])
+{
+  const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
+  const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
+  *backL = swappedL;
+  mu[0] = lambda[0];
+  mu[1] = select(lambda[1], lambda[2], swappedL);
+  mu[2] = select(lambda[2], lambda[1], swappedL);
+  for (int k = 0; uvs && k < 2; ++k) {
+    uvAt[0][k] = uv[0][k];
+    uvAt[1][k] = select(uv[1][k], uv[2][k], swappedL);
+    uvAt[2][k] = select(uv[2][k], uv[1][k], swappedL);
+  }
+  if (CLR_ANY(clippedL)) resolve_clipped_lanes(clipBary, sourceL, clippedL, lambda, mu, backL, uvs, uv, uvAt);
 }
 
 /* The colour of a row of samples, channels in [0, 1]. */
@@ -365,17 +454,15 @@ typedef struct ShadeInputs {
 } ShadeInputs;
 
 /* Shades the lanes of one sample plane from its gathered fragments. */
-CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLanes* g, const ShadeInputs* in,
-                                 floatL b1, floatL b2)
+CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const ClipBary* clipBary,
+                                 const ResolveLanes* g, const ShadeInputs* in, floatL b1, floatL b2)
 {
-  // A per-triangle value for every lane: broadcast when the row is uniform.
-#define CLR_PER_LANE(array, type) (g->uniform ? (type)((array)[0]) : CLR_LOAD_LANES(array))
   const uint mode = params->shadeMode;
   // Step 1: barycentrics of the setup vertices: the 1/w rule, or affine.
   // Afterwards q_i holds q_i·w with q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL q[3], lambda[3], eyeDepth;
-  for (int i = 0; i < 3; ++i) q[i] = CLR_PER_LANE(g->invW[i], floatL);
+  for (int i = 0; i < 3; ++i) q[i] = g->invW[i];
   if (params->interpMode == CLR_INTERP_AFFINE) {
     eyeDepth = b[0] / q[0] + b[1] / q[1] + b[2] / q[2];  // w interpolated in screen space
     for (int i = 0; i < 3; ++i) {
@@ -393,16 +480,15 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
     const floatL grey = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
     return colour_make(grey, grey, grey);
   }
-  // Step 2: weights of the input vertices, and an attribute's value.
-  floatL mu[3];
-  for (int j = 0; j < 3; ++j) {
-    mu[j] = 0.0f;
-    for (int i = 0; i < 3; ++i) mu[j] += lambda[i] * CLR_PER_LANE(g->weight[i][j], floatL);
-  }
-#define CLR_INTERPOLATE(out, array, components)                                           \
-  for (int k = 0; k < (components); ++k) {                                                \
-    (out)[k] = 0.0f;                                                                      \
-    for (int j = 0; j < 3; ++j) (out)[k] += mu[j] * CLR_PER_LANE(g->array[j][k], floatL); \
+  // Step 2: weights of the input vertices (and, for the derivatives, the
+  // setup vertices' texture coordinates), and an attribute's value.
+  floatL mu[3], uvAt[3][2];
+  intL backL;
+  resolve_vertex_weights(clipBary, g->source, g->covered, lambda, mu, &backL, g->needGradients, g->uv, uvAt);
+#define CLR_INTERPOLATE(out, array, components)                     \
+  for (int k = 0; k < (components); ++k) {                          \
+    (out)[k] = 0.0f;                                                \
+    for (int j = 0; j < 3; ++j) (out)[k] += mu[j] * g->array[j][k]; \
   }
   // Step 3: texture coordinates and, for trilinear filtering, their screen
   // derivatives: with a_i the setup vertices' values and a the pixel's,
@@ -413,12 +499,10 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
     CLR_INTERPOLATE(uv, uv, 2)
     if (g->needGradients)
       for (int i = 0; i < 3; ++i) {
-        const floatL gx = CLR_PER_LANE(g->grad[i][0], floatL) * q[i], gy = CLR_PER_LANE(g->grad[i][1], floatL) * q[i];
+        const floatL gx = g->grad[i][0] * q[i], gy = g->grad[i][1] * q[i];
         for (int k = 0; k < 2; ++k) {
-          floatL ai = 0.0f;
-          for (int j = 0; j < 3; ++j) ai += CLR_PER_LANE(g->weight[i][j], floatL) * CLR_PER_LANE(g->uv[j][k], floatL);
-          duvdx[k] += gx * (ai - uv[k]);
-          duvdy[k] += gy * (ai - uv[k]);
+          duvdx[k] += gx * (uvAt[i][k] - uv[k]);
+          duvdy[k] += gy * (uvAt[i][k] - uv[k]);
         }
       }
   }
@@ -434,18 +518,18 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
   if (mode == CLR_SHADE_COLOR) return colour_make(colour[0], colour[1], colour[2]);
   floatL albedo[3] = {0.0f, 0.0f, 0.0f};
   if (mode != CLR_SHADE_NORMAL) {
-    shade_albedo(params, in->materials, in->texDescs, in->texels, g->material, g->uniform, uv, duvdx, duvdy, albedo);
+    shade_albedo(params, in->materials, in->texDescs, in->texels, g->material, uv, duvdx, duvdy, albedo);
     for (int k = 0; k < 3; ++k) albedo[k] *= colour[k];
   }
   if (mode == CLR_SHADE_TEXTURE) return colour_make(albedo[0], albedo[1], albedo[2]);
   // Step 5: the normal and the point: interpolated, or the face's for flat.
   // Two-sided: back faces use the flipped normal.
-  const floatL sign = select((floatL)1.0f, (floatL)-1.0f, CLR_PER_LANE(g->backfacing, uintL) != 0u);
+  const floatL sign = select((floatL)1.0f, (floatL)-1.0f, backL);
   floatL n[3], p[3] = {0.0f, 0.0f, 0.0f}, diffuse, specular;
   if (mode == CLR_SHADE_FLAT) {
     floatL v[3][3];
     for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) v[j][k] = CLR_PER_LANE(g->pos[j][k], floatL);
+      for (int k = 0; k < 3; ++k) v[j][k] = g->pos[j][k];
     const floatL e1[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
     const floatL e2[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
     n[0] = e1[1] * e2[2] - e1[2] * e2[1];
@@ -465,8 +549,8 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
     for (int j = 0; j < 3; ++j) {
       floatL nj[3], pj[3], d, s;
       for (int k = 0; k < 3; ++k) {
-        nj[k] = CLR_PER_LANE(g->normal[j][k], floatL);
-        pj[k] = CLR_PER_LANE(g->pos[j][k], floatL);
+        nj[k] = g->normal[j][k];
+        pj[k] = g->pos[j][k];
       }
       resolve_unit_normal(nj, sign);
       shade_lights(params, nj, pj, true, &d, &s);
@@ -479,7 +563,6 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, const ResolveLa
   const floatL light = CLR_AMBIENT + CLR_DIFFUSE * diffuse, highlight = CLR_SPECULAR * specular;
   return colour_make(albedo[0] * light + highlight, albedo[1] * light + highlight, albedo[2] * light + highlight);
 #undef CLR_INTERPOLATE
-#undef CLR_PER_LANE
 }
 
 /* The id mode: the input triangle that holds most samples of each pixel. */
@@ -645,11 +728,11 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     ColourL c = backgroundColour;
     if (CLR_ANY(covered)) {
       ResolveLanes g;
-      resolve_gather(params, index, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial,
-                     &g);
+      resolve_gather(params, index, indexLanes, setup, source, clipBary, indices, positions, normals, uvs, colours,
+                     triMaterial, &g);
       floatL b1, b2;
       resolve_barycentrics(params, visAttr, plane, p, count, 0, setup, index, indexLanes, firstX, py, &b1, &b2);
-      c = colour_select(backgroundColour, resolve_shade(params, &g, &inputs, b1, b2), covered);
+      c = colour_select(backgroundColour, resolve_shade(params, clipBary, &g, &inputs, b1, b2), covered);
     }
     colour = pack_rgba(c.r, c.g, c.b);
   } else {
@@ -673,11 +756,11 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
         sampleColour[k] = c;
       } else {
         ResolveLanes g;
-        resolve_gather(params, index, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial,
-                       &g);
+        resolve_gather(params, index, sampleIndex[k], setup, source, clipBary, indices, positions, normals, uvs,
+                       colours, triMaterial, &g);
         floatL b1, b2;
         resolve_barycentrics(params, visAttr, plane, p, count, k, setup, index, sampleIndex[k], firstX, py, &b1, &b2);
-        sampleColour[k] = colour_select(resolve_shade(params, &g, &inputs, b1, b2), c, done);
+        sampleColour[k] = colour_select(resolve_shade(params, clipBary, &g, &inputs, b1, b2), c, done);
       }
       sum.r += sampleColour[k].r;
       sum.g += sampleColour[k].g;

@@ -12,7 +12,6 @@
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* What resolve_lambert reads of the lanes' fragments. */
-#define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
 typedef struct LambertLanes {
   uintL source;  // the source words (shared.h)
   floatL invW[3];
@@ -79,11 +78,7 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
   int vx[3][CLR_LANES], vy[3][CLR_LANES];
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    const uint s = index[lane] != CLR_NONE ? index[lane] : 0;
-    __global const TriSetup* t = &setup[s];
-    from[lane] = source[s];
-    triId[lane] = clr_source_triangle(from[lane], clipBary);
-    for (int i = 0; i < 3; ++i) invW[i][lane] = t->invW[i];
+    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, triId, invW);
     if (vertices)
       for (int i = 0; i < 3; ++i) {
         vx[i][lane] = t->x[i];
@@ -138,44 +133,15 @@ CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global co
 {
   // Step 1: the 1/w rule,
   const floatL* q = f->invW;
-  const uintL sourceL = f->source;
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL lambda[3];
   const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
   for (int i = 0; i < 3; ++i) lambda[i] = b[i] * (q[i] * eyeDepth);
-  // Step 2: the weights mu_j of the input vertices: lambda itself, with
-  // vertices 1 and 2 swapped for a back face, or through ClipBary for a
-  // clipped triangle. (resolve_shade sums lambda_i · w_ij over an identity
-  // or swap matrix there, which gives the same floats.) A back face's
-  // normal flips: an unclipped one's source word says so (it is also the
-  // swap), a clipped one's ClipBary slot.
-  const intL clippedL = ((sourceL & CLR_SOURCE_CLIPPED) != 0u) & covered;
-  const intL swappedL = ((sourceL & CLR_SOURCE_BACKFACING) != 0u) & CLR_NOT(clippedL);
-  intL backL = swappedL;
-  floatL mu[3] = {lambda[0], select(lambda[1], lambda[2], swappedL), select(lambda[2], lambda[1], swappedL)};
-  if (CLR_ANY(clippedL)) {
-    int clippedLane[CLR_LANES], clippedBack[CLR_LANES];
-    uint from[CLR_LANES];
-    CLR_STORE_LANES(clippedL, clippedLane);
-    CLR_STORE_LANES(sourceL, from);
-    float l[3][CLR_LANES], m[3][CLR_LANES];
-    for (int i = 0; i < 3; ++i) {
-      CLR_STORE_LANES(lambda[i], l[i]);
-      CLR_STORE_LANES(mu[i], m[i]);
-    }
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
-      clippedBack[lane] = 0;
-      if (!clippedLane[lane]) continue;
-      __global const ClipBary* w = &clipBary[clr_source_clip_slot(from[lane])];
-      for (int j = 0; j < 3; ++j) {
-        m[j][lane] = 0.0f;
-        for (int i = 0; i < 3; ++i) m[j][lane] += l[i][lane] * w->w[i][j];
-      }
-      clippedBack[lane] = (w->flags & CLR_FLAG_BACKFACING) ? -1 : 0;
-    }
-    for (int j = 0; j < 3; ++j) mu[j] = CLR_LOAD_LANES(m[j]);
-    backL = backL | CLR_LOAD_LANES(clippedBack);
-  }
+  // Step 2: the weights mu_j of the input vertices (resolve_vertex_weights,
+  // resolve.cl, as in the general kernel), and which lanes are back faces.
+  floatL mu[3], noUvs[3][2];
+  intL backL;
+  resolve_vertex_weights(clipBary, f->source, covered, lambda, mu, &backL, false, noUvs, noUvs);
   floatL n[3];
   for (int k = 0; k < 3; ++k) {
     n[k] = 0.0f;

@@ -74,20 +74,21 @@ CLR_INLINE void shade_lights(__constant FrameParams* params, const floatL n[3], 
 }
 
 /* The base colour of each lane: material factor × texture × vertex colour
- * (the latter multiplied by the caller). material: per lane (only lane 0
- * when uniform); uv and its screen derivatives per lane. */
+ * (the latter multiplied by the caller). material: the lanes' materials;
+ * uv and its screen derivatives per lane. */
 CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Material* materials,
-                             __global const TextureDesc* texDescs, __global const uint* texels, const uint* material,
-                             bool uniform, const floatL uv[2], const floatL duvdx[2], const floatL duvdy[2],
-                             floatL albedo[3])
+                             __global const TextureDesc* texDescs, __global const uint* texels, uintL materialL,
+                             const floatL uv[2], const floatL duvdx[2], const floatL duvdy[2], floatL albedo[3])
 {
   albedo[0] = CLR_GREY_R;
   albedo[1] = CLR_GREY_G;
   albedo[2] = CLR_GREY_B;
   if (!(params->sceneFlags & CLR_SCENE_MATERIALS)) return;
   const bool textured = (params->sceneFlags & CLR_SCENE_TEXTURES) != 0;
+  uint material[CLR_LANES];
+  CLR_STORE_LANES(materialL, material);
   // Step 0: one untextured material for the whole row: its factor, once.
-  if (uniform && (!textured || materials[material[0]].texture < 0)) {
+  if (!CLR_ANY(materialL != material[0]) && (!textured || materials[material[0]].texture < 0)) {
     const Material m = materials[material[0]];
     albedo[0] = m.baseColor[0];
     albedo[1] = m.baseColor[1];
@@ -107,7 +108,7 @@ CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Mate
   // Step 2: per lane, factor × texture.
   float rgb[3][CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    const Material m = materials[material[uniform ? 0 : lane]];
+    const Material m = materials[material[lane]];
     float4 c = (float4)(m.baseColor[0], m.baseColor[1], m.baseColor[2], m.baseColor[3]);
     if (textured && m.texture >= 0)
       c *= tex_sample(&texDescs[m.texture], texels, params->texFilter, u[lane], v[lane], ux[lane], vx[lane], uy[lane],

@@ -70,6 +70,16 @@ if(TARGET clraster_bench)
                                                     $<TARGET_FILE:clraster_bench> ${CMAKE_BINARY_DIR}/serve.csv)
   set_tests_properties(bench_serve_rejects_outputs PROPERTIES PASS_REGULAR_EXPRESSION
                                                               "--serve writes only its turns' lines.*\nexit status 1")
+  # --shade: clraster's other modes in ab.sh's turns (the general resolve kernel), and only there, since the
+  # comparison with llvmpipe is of the lambert image.
+  add_test(NAME bench_ab_script_shade COMMAND bash ${CMAKE_SOURCE_DIR}/bench/ab.sh -n 1 ${CMAKE_BINARY_DIR}
+                                              ${CMAKE_BINARY_DIR} --size 64x48 --warmup 0 --frames 1 --shade phong)
+  set_tests_properties(bench_ab_script_shade PROPERTIES PASS_REGULAR_EXPRESSION
+                                                        "A frame [0-9.]+ ms, .*resolve [0-9.]+.*\nB frame [0-9.]+ ms")
+  add_test(NAME bench_shade_needs_serve COMMAND bash -c "\"$0\" --shade phong 2>&1 || echo \"exit status $?\""
+                                                $<TARGET_FILE:clraster_bench>)
+  set_tests_properties(bench_shade_needs_serve PROPERTIES PASS_REGULAR_EXPRESSION
+                                                          "--shade applies only with --serve.*\nexit status 1")
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
                        bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()

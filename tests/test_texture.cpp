@@ -296,25 +296,30 @@ TEST_CASE("trilinear on a perspective plane: the level follows the analytic deri
   // A ground plane seen at a grazing angle, textured with a 1-texel checker
   // of 128×128 (levels from 1 on: uniform 128), (u, v) = (x, −z) / 8. The
   // host casts each pixel's ray for the exact (u, v) and takes ρ from
-  // central differences of the ray hits at ±1e-3 pixel.
+  // central differences of the ray hits at ±1e-3 pixel. The plane starts
+  // below the eye (z = 0), or reaches behind it (z = 2), so that the near
+  // plane clips both triangles and the derivatives come through ClipBary.
   const uint32_t W = 96, H = 64;
   clr::Texture t;
   t.name = "checker";
   t.width = t.height = 128;
   for (uint32_t y = 0; y < 128; ++y)
     for (uint32_t x = 0; x < 128; ++x) t.rgba.push_back((x + y) % 2 ? 0xFFFFFFFFu : 0xFF000000u);
-  clr::Mesh mesh = quad(t, 0, 0, 1, 1);
-  mesh.positions = {-4, 0, 0, 4, 0, 0, 4, 0, -8, -4, 0, -8};
-  mesh.uvs = {-0.5f, 0, 0.5f, 0, 0.5f, 1, -0.5f, 1};
   const glm::mat4 mvp = glm::perspective(glm::radians(60.0f), float(W) / H, 0.5f, 50.0f) *
                         glm::lookAt(glm::vec3(0, 1, 1), glm::vec3(0, 0, -3), glm::vec3(0, 1, 0));
+  const float nearZ = GENERATE(0.0f, 2.0f);
+  INFO("the plane's near edge at z = " << nearZ);
+  clr::Mesh mesh = quad(t, 0, 0, 1, 1);
+  mesh.positions = {-4, 0, nearZ, 4, 0, nearZ, 4, 0, -8, -4, 0, -8};
+  mesh.uvs = {-0.5f, -nearZ / 8, 0.5f, -nearZ / 8, 0.5f, 1, -0.5f, 1};
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(mesh);
   clr::FrameSettings s = test::idSettings(W, H, mvp);
   s.shadeMode = CLR_SHADE_TEXTURE;
   s.texFilter = CLR_FILTER_TRILINEAR;
   std::vector<uint32_t> rgba;
-  pipeline.render(s, rgba);
+  const clr::FrameStats stats = pipeline.render(s, rgba);
+  CHECK(stats.trianglesClipped == (nearZ > 0 ? 2u : 0u));
   const glm::dmat4 inv = glm::inverse(glm::dmat4(mvp));
   auto uvAt = [&](double px, double py, bool& onPlane) {
     const glm::dvec2 ndc(px / W * 2 - 1, py / H * 2 - 1);
