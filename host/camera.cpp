@@ -44,10 +44,43 @@ FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t sh
   return s;
 }
 
+namespace {
+
+const glm::vec3 kDefaultUp(0.0f, 1.0f, 0.0f);
+
+void checkNear(float zNear, const std::string& prefix)
+{
+  if (!(zNear > 0.0f) || !std::isfinite(zNear)) throw Error(prefix + "near must be > 0");
+}
+
+void checkFar(float zNear, float zFar, const std::string& prefix)
+{
+  if (!(zFar > zNear) || !std::isfinite(zFar)) throw Error(prefix + "far must be greater than " + prefix + "near");
+}
+
+void checkViewDirection(glm::vec3 eye, glm::vec3 target, glm::vec3 up, const std::string& prefix)
+{
+  const glm::vec3 view = target - eye;
+  if (!(glm::length(view) > 0.0f)) throw Error(prefix + "eye and " + prefix + "target must differ");
+  if (!(glm::length(glm::cross(view, up)) > 1e-6f * glm::length(view) * glm::length(up)))
+    throw Error(prefix + "up must not be parallel to the view direction");
+}
+
+}  // namespace
+
+void checkCameraArgs(const CameraArgs& args, const std::string& prefix)
+{
+  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f)) throw Error(prefix + "fov must lie in (0, 180) degrees");
+  if (args.zNear) checkNear(*args.zNear, prefix);
+  if (args.zNear && args.zFar) checkFar(*args.zNear, *args.zFar, prefix);
+  if (args.eye && args.target) checkViewDirection(*args.eye, *args.target, args.up.value_or(kDefaultUp), prefix);
+}
+
 Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::string& prefix)
 {
-  // Step 1: the field of view comes first, everything else may depend on it.
-  if (!(args.fovDegrees > 0.0f && args.fovDegrees < 180.0f)) throw Error(prefix + "fov must lie in (0, 180) degrees");
+  // Step 1: what the arguments alone decide (the field of view first,
+  // everything else may depend on it).
+  checkCameraArgs(args, prefix);
   Camera cam;
   cam.fovDegrees = args.fovDegrees;
   const glm::vec3 centre = bounds.empty ? glm::vec3(0.0f) : 0.5f * (bounds.min + bounds.max);
@@ -59,7 +92,7 @@ Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::stri
 
   // Step 2: eye on a diagonal above the scene, far enough to see the sphere.
   cam.target = args.target.value_or(centre);
-  cam.up = args.up.value_or(glm::vec3(0.0f, 1.0f, 0.0f));
+  cam.up = args.up.value_or(kDefaultUp);
   const float halfFov = glm::radians(cam.fovDegrees) * 0.5f;
   const float distance = radius / std::tan(std::min(halfFov, 1.2f)) * 1.1f;
   cam.eye = args.eye.value_or(cam.target + distance * glm::normalize(glm::vec3(0.55f, 0.45f, 1.0f)));
@@ -70,13 +103,9 @@ Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::stri
   cam.zNear = args.zNear.value_or(std::max(cam.zFar * 1e-4f, (eyeDistance - 1.5f * radius) * 0.9f));
 
   // Step 4: validate.
-  if (!(cam.zNear > 0.0f) || !std::isfinite(cam.zNear)) throw Error(prefix + "near must be > 0");
-  if (!(cam.zFar > cam.zNear) || !std::isfinite(cam.zFar))
-    throw Error(prefix + "far must be greater than " + prefix + "near");
-  const glm::vec3 view = cam.target - cam.eye;
-  if (!(glm::length(view) > 0.0f)) throw Error(prefix + "eye and " + prefix + "target must differ");
-  if (!(glm::length(glm::cross(view, cam.up)) > 1e-6f * glm::length(view) * glm::length(cam.up)))
-    throw Error(prefix + "up must not be parallel to the view direction");
+  checkNear(cam.zNear, prefix);
+  checkFar(cam.zNear, cam.zFar, prefix);
+  checkViewDirection(cam.eye, cam.target, cam.up, prefix);
   return cam;
 }
 

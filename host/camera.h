@@ -4,8 +4,9 @@
 // vertical fov, GL clip conventions, model matrix the identity (with the
 // reversed depth format the projection is depth.h's reversedPerspective,
 // the same x and y rows). Missing
-// values are chosen to frame the scene's bounds. validate() rejects an
-// impossible camera with a clr::Error.
+// values are chosen to frame the scene's bounds. An impossible camera is a
+// clr::Error: from the arguments alone (checkCameraArgs) before any device
+// work, or once framed (frameCamera).
 #pragma once
 
 #include "pipeline.h"
@@ -39,5 +40,10 @@ struct Camera {
 // validates the result. Error messages name each field with `prefix` before
 // it: "--fov" for the command line, "fov" for a views file (views.h).
 Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::string& prefix = "--");
+
+// frameCamera's checks that need no scene: the field of view, and those of
+// near, far, eye, target and up that the arguments give. The commands run
+// it before any device work, so that such a camera fails at once.
+void checkCameraArgs(const CameraArgs& args, const std::string& prefix = "--");
 
 }  // namespace clr

@@ -164,6 +164,7 @@ int renderViewsCommand(const RenderArgs& args)
   // output: a bad view writes nothing.
   const auto commandStart = std::chrono::steady_clock::now();
   const std::vector<ViewSpec> views = loadViews(args.viewsPath, args.camera, args.width, args.height);
+  checkViewCameras(args.viewsPath, views);
   const std::vector<size_t> selected = shardViews(views.size(), args.shard);
   std::set<std::string> folders;
   for (size_t v : selected) {
@@ -239,6 +240,7 @@ int renderCommand(const std::vector<std::string>& argList)
   // scene, loaded while the program builds, and the camera.
   const RenderArgs args = parseRenderArgs(argList);
   if (!args.viewsPath.empty()) return renderViewsCommand(args);
+  checkCameraArgs(args.camera);
   checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   std::unique_ptr<ClContext> context;

@@ -99,6 +99,19 @@ size_t integerConversion(const std::string& pattern, size_t i)
   return 0;
 }
 
+// Calls fn(view) for each view; an error names the file and the view.
+template <class Fn>
+void forEachView(const std::string& path, const std::vector<ViewSpec>& views, Fn fn)
+{
+  for (size_t i = 0; i < views.size(); ++i) {
+    try {
+      fn(views[i]);
+    } catch (const Error& e) {
+      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<ViewSpec> parseViews(const std::string& path, const std::string& text, const CameraArgs& defaults,
@@ -162,17 +175,16 @@ std::vector<ViewSpec> loadViews(const std::string& path, const CameraArgs& defau
   return parseViews(path, text.str(), defaults, width, height);
 }
 
+void checkViewCameras(const std::string& path, const std::vector<ViewSpec>& views)
+{
+  forEachView(path, views, [](const ViewSpec& view) { checkCameraArgs(view.camera, ""); });
+}
+
 std::vector<Camera> frameViews(const std::string& path, const std::vector<ViewSpec>& views, const Bounds& bounds)
 {
   std::vector<Camera> cameras;
   cameras.reserve(views.size());
-  for (size_t i = 0; i < views.size(); ++i) {
-    try {
-      cameras.push_back(frameCamera(views[i].camera, bounds, ""));
-    } catch (const Error& e) {
-      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
-    }
-  }
+  forEachView(path, views, [&](const ViewSpec& view) { cameras.push_back(frameCamera(view.camera, bounds, "")); });
   return cameras;
 }
 

@@ -41,6 +41,10 @@ std::vector<ViewSpec> loadViews(const std::string& path, const CameraArgs& defau
 std::vector<ViewSpec> parseViews(const std::string& path, const std::string& text, const CameraArgs& defaults,
                                  uint32_t width, uint32_t height);
 
+// The checks of every view's camera that need no scene (checkCameraArgs),
+// before any device work; a clr::Error "PATH: view I: problem".
+void checkViewCameras(const std::string& path, const std::vector<ViewSpec>& views);
+
 // Frames every view on the scene's bounds (frameCamera); an impossible
 // camera is a clr::Error "PATH: view I: problem".
 std::vector<Camera> frameViews(const std::string& path, const std::vector<ViewSpec>& views, const Bounds& bounds);

@@ -104,16 +104,25 @@ TEST_CASE("cli: bad flags and values", "[cli]")
 
 TEST_CASE("cli: impossible cameras", "[cli]")
 {
+  // Each is found from the arguments alone (checkCameraArgs), before any
+  // device work: with a device that does not exist as well, the camera's
+  // error is the one reported. A camera that only the scene's framing makes
+  // impossible is found after the build.
   const std::string out = " -o '" + tmpDir() + "/camera.png'";
-  expectError("render --fov 0" + out, "--fov");
-  expectError("render --fov 180" + out, "--fov");
-  expectError("render --fov -5" + out, "--fov");
-  expectError("render --near 0" + out, "--near");
-  expectError("render --near -1" + out, "--near");
-  expectError("render --near 2 --far 1" + out, "--far");
-  expectError("render --near 2 --far 2" + out, "--far");
-  expectError("render --eye 1,1,1 --target 1,1,1" + out, "--eye and --target");
-  expectError("render --eye 0,5,0 --target 0,0,0 --up 0,1,0" + out, "--up");
+  for (const std::string device : {"", " --device no-such-device-anywhere"}) {
+    for (const auto& [flags, needle] :
+         {std::pair{"--fov 0", "--fov must lie"}, std::pair{"--fov 180", "--fov must lie"},
+          std::pair{"--fov -5", "--fov must lie"}, std::pair{"--near 0", "--near must be > 0"},
+          std::pair{"--near -1", "--near must be > 0"}, std::pair{"--near 2 --far 1", "--far must be greater"},
+          std::pair{"--near 2 --far 2", "--far must be greater"},
+          std::pair{"--eye 1,1,1 --target 1,1,1", "--eye and --target must differ"},
+          std::pair{"--eye 0,5,0 --target 0,0,0 --up 0,1,0", "--up must not be parallel"}}) {
+      const Run r = expectError(std::string("render ") + flags + out + device, needle);
+      CHECK(r.err.find("--device") == std::string::npos);
+    }
+  }
+  // The eye's default lies on (0.55, 0.45, 1) from the target (camera.cpp).
+  expectError("render --target 0,0,0 --up 0.55,0.45,1" + out, "--up must not be parallel");
 }
 
 TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")

@@ -168,6 +168,17 @@ TEST_CASE("views: a bad views file is one error line and writes no output", "[vi
   expectNothingWritten("{\"views\": [{}, {}, {\"eye\": 5}]}", "views-bad.json: view 2: \"eye\" must be an array");
   expectNothingWritten("{\"views\": [{}, {}, {\"eye\": [0.5, 0.5, 0.5], \"target\": [0.5, 0.5, 0.5]}]}",
                        "views-bad.json: view 2: eye and target must differ");
+  // Found from the file alone, before any device work (checkViewCameras): a
+  // device that does not exist as well is not the error reported.
+  const std::string sameEye =
+      writeFile("views-same-eye.json", "{\"views\": [{}, {\"eye\": [1, 1, 1], \"target\": [1, 1, 1]}]}");
+  const test::Run r = expectError("render '" + scene + "' --views '" + sameEye + "' -o '" + dir +
+                                      "/out_%d.png' --size 16x16 --device no-such-device-anywhere",
+                                  "views-same-eye.json: view 1: eye and target must differ");
+  CHECK(r.err.find("--device") == std::string::npos);
+  // Found only by framing on the scene (the default eye lies on (0.55, 0.45, 1) from the target).
+  expectNothingWritten("{\"views\": [{}, {}, {\"target\": [0, 0, 0], \"up\": [0.55, 0.45, 1]}]}",
+                       "views-bad.json: view 2: up must not be parallel");
   expectError("render --views '" + dir + "/missing.json' -o '" + dir + "/out_%d.png'", "missing.json: cannot open");
   CHECK(countFiles(dir) == 0);
   // An unwritable output folder is found before rendering.
