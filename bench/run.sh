@@ -235,6 +235,41 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
       $c["setup_triangles"], $c["bin_entries"], s, $c["device_idle_ms"]
   }' "$csv"
   echo
+  echo "## Scale series: time per triangle"
+  echo
+  echo "Each renderer's frame time over the series' triangle count (**per triangle**), and the cost of the triangles"
+  echo "each step adds (**added**: the frame's growth over the triangles' growth since the previous size). The issue's"
+  echo "target is per triangle within 2x from 100k to 10M; a frame's fixed costs (clearing, the pixels every size"
+  echo "covers) weigh on the small sizes per triangle, not on the added cost. **spread**: the largest value over the"
+  echo "smallest from 100k triangles on."
+  echo
+  echo "| series | triangles | clraster ns per triangle (added) | llvmpipe ns per triangle (added) |"
+  echo "|---|---|---|---|"
+  for series in sphere-far sphere-near; do
+    awk -F, -v series="$series" "$columns"'NR > 1 && $c["name"] == series {
+      n++; tris[n] = $c["triangles"]; clr[n] = $c["clr_ms"]; llvm[n] = $c["llvm_ms"]
+    }
+    function spread(lo, hi) { return lo > 0 ? sprintf("%.2fx", hi / lo) : "-" }
+    END {
+      for (i = 1; i <= n; i++) {
+        pc = 1e6 * clr[i] / tris[i]; pl = 1e6 * llvm[i] / tris[i]; ac = al = "-"
+        if (i > 1) {
+          ac = sprintf("%.1f", 1e6 * (clr[i] - clr[i - 1]) / (tris[i] - tris[i - 1]))
+          al = sprintf("%.1f", 1e6 * (llvm[i] - llvm[i - 1]) / (tris[i] - tris[i - 1]))
+        }
+        printf "| %s | %d | %.1f (%s) | %.1f (%s) |\n", series, tris[i], pc, ac, pl, al
+        if (tris[i] < 90000) continue
+        if (!m || pc < pcLo) pcLo = pc; if (!m || pc > pcHi) pcHi = pc
+        if (!m || pl < plLo) plLo = pl; if (!m || pl > plHi) plHi = pl
+        if (m && (m == 1 || ac + 0 < acLo)) acLo = ac + 0; if (m && (m == 1 || ac + 0 > acHi)) acHi = ac + 0
+        if (m && (m == 1 || al + 0 < alLo)) alLo = al + 0; if (m && (m == 1 || al + 0 > alHi)) alHi = al + 0
+        m++
+      }
+      if (m) printf "| %s spread | | %s (%s) | %s (%s) |\n", series, spread(pcLo, pcHi),
+        (m > 1 ? spread(acLo, acHi) : "-"), spread(plLo, plHi), (m > 1 ? spread(alLo, alHi) : "-")
+    }' "$csv"
+  done
+  echo
   echo "## Cold start"
   echo
   echo "Whole \`build/clraster render -o OUT.png --size 1920x1080\` process (built-in scene, one frame), wall time:"
