@@ -112,7 +112,7 @@ void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& 
   }
 }
 
-void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba)
+void writePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
 {
   // Step 1: encode in memory.
   std::vector<unsigned char> rgb(size_t(width) * height * 3);

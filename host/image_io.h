@@ -11,7 +11,11 @@ namespace clr {
 
 // rgba: width·height pixels, RGBA8 with R in the low byte, top row first.
 // Written as 8-bit RGB.
-void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba);
+void writePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba);
+inline void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& rgba)
+{
+  writePng(path, width, height, rgba.data());
+}
 
 // Writes bytes to a temporary file beside path, flushes it and renames it
 // over path (the pattern every output file follows).

@@ -260,11 +260,13 @@ int renderCommand(const std::vector<std::string>& argList)
   if (args.aa == "auto" || args.qualityAuto)
     autoJson = chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto).json();
 
-  // Step 3: frames, timed from parameter upload to the image in host memory.
-  // With --stats, one untimed frame first: PoCL finishes compiling each
-  // kernel for its work-group size at its first launch, which is program
-  // build, not frame time (reported as first_frame_ms).
-  std::vector<uint32_t> image;
+  // Step 3: frames, timed from parameter upload to the image the host can
+  // read where the device left it (an ImageView, as the bench times: on a
+  // CPU device no copy). With --stats, one untimed frame first: PoCL
+  // finishes compiling each kernel for its work-group size at its first
+  // launch, which is program build, not frame time (reported as
+  // first_frame_ms).
+  ImageView image;
   std::vector<double> frameMs;
   std::vector<FrameStats> frames;
   double firstFrameMs = -1.0;
@@ -282,7 +284,7 @@ int renderCommand(const std::vector<std::string>& argList)
   // Step 4: output.
   std::vector<float> aov;  // --aov: the last frame's visibility buffer (aov.h)
   if (!args.aovPath.empty()) pipeline.aov(), aov = pipeline.readAov();
-  writePng(args.outPath, args.width, args.height, image);
+  writePng(args.outPath, image.width, image.height, image.pixels);
   if (!args.aovPath.empty()) writeAovExr(args.aovPath, args.width, args.height, aov);
   if (args.stats) printStats(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames);
   exitAfterOutput();
