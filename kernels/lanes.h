@@ -120,27 +120,6 @@ CLR_INLINE floatL clr_inv_area2L(intL x0, intL y0, intL x1, intL y1, intL x2, in
   return 1.0f / convert_floatL(clr_area2L(x0, y0, x1, y1, x2, y2));
 }
 
-/* The lanes of v rearranged: lane i takes lane from[i] (each below
- * CLR_LANES). Where PoCL compiles for AVX-512 (it defines __AVX512F__)
- * that is one vpermd; elsewhere the shuffle() builtin, which PoCL expands
- * lane by lane. With one lane, v itself. */
-#if CLR_LANES == 16 && defined(__AVX512F__)
-CLR_INLINE uintL clr_permute(uintL v, uintL from)
-{
-  return as_uint16(__builtin_ia32_permvarsi512(as_int16(v), as_int16(from)));
-}
-#elif CLR_LANES == 16
-CLR_INLINE uintL clr_permute(uintL v, uintL from)
-{
-  return shuffle(v, from);
-}
-#else
-CLR_INLINE uintL clr_permute(uintL v, uintL from)
-{
-  return v;
-}
-#endif
-
 /* A row of CLR_LANES values stored around the caches (a non-temporal
  * store), where the compiler is clang targeting x86 with 16 lanes (PoCL's
  * CPU device): the image is written once per frame and read by the host
