@@ -1,4 +1,6 @@
-/* texture.cl — base-colour texture sampling for resolve (one lane at a time).
+/* texture.cl — base-colour texture sampling for resolve: one lane at a time
+ * (tex_sample), or a row's lanes on one texture at once in lane types
+ * (tex_sample_lanes), with the same floats.
  *
  * Textures live in one texel buffer described by TextureDesc records
  * (shared.h, filled by host/texture.cpp): RGBA8, rows bottom first, so a
@@ -91,5 +93,128 @@ CLR_CALLED float4 tex_sample(__global const TextureDesc* d, __global const uint*
   const float t = lambda - (float)l0;
   const float4 a = tex_bilinear(d, texels, l0, u, v);
   return t > 0.0f ? a * (1.0f - t) + tex_bilinear(d, texels, l1, u, v) * t : a;
+}
+
+/* tex_wrap in lane types, without integer division (which no vector unit
+ * here has): i mod p from a float quotient, off by at most one period
+ * (the division's rounding, and i's above 2^24), then corrected. At the
+ * clamp (tex_coord) the bilinear corner i = 2^24 + 1 takes such a
+ * correction; its weight is 0 there, but the load must stay in its level. */
+CLR_INLINE intL tex_wrap_lanes(intL i, int n, uint mode)
+{
+  if (mode == CLR_WRAP_CLAMP) return clamp(i, (intL)0, (intL)(n - 1));
+  const int period = mode == CLR_WRAP_MIRROR ? 2 * n : n;
+  intL m = i - convert_intL(floor(convert_floatL(i) / (float)period)) * period;
+  m = select(m, m + period, m < 0);
+  m = select(m, m - period, m >= period);
+  return mode == CLR_WRAP_MIRROR ? select(m, period - 1 - m, m >= n) : m;
+}
+
+/* The lanes' texels (x, y) of the level at `offset` (per lane) of `width`
+ * (per lane) as RGB in [0, 1] into rgb (what the albedo reads of them):
+ * one load per lane, then tex_fetch's conversion. (The lane functions
+ * return through arrays, not structs: inlining a struct's return left an
+ * intrinsic that Oclgrind cannot run.) */
+CLR_INLINE void tex_fetch_lanes(__global const uint* texels, uintL offset, uintL width, intL x, intL y, floatL rgb[3])
+{
+  uint at[CLR_LANES], value[CLR_LANES];
+  CLR_STORE_LANES(offset + as_uintL(y) * width + as_uintL(x), at);
+  for (uint lane = 0; lane < CLR_LANES; ++lane) value[lane] = texels[at[lane]];
+  const uintL t = CLR_LOAD_LANES(value);
+  for (int k = 0; k < 3; ++k) rgb[k] = convert_floatL((t >> (8 * k)) & 0xFFu) / 255.0f;
+}
+
+/* tex_coord in lane types. */
+CLR_INLINE floatL tex_coord_lanes(floatL t, uintL size)
+{
+  return fmin(fmax(t * convert_floatL(size), -16777216.0f), 16777216.0f);
+}
+
+/* a · (1 − t) + b · t per channel into out, as tex_bilinear and
+ * tex_sample weigh (out may be a). */
+CLR_INLINE void tex_mix_lanes(const floatL a[3], const floatL b[3], floatL t, floatL out[3])
+{
+  for (int k = 0; k < 3; ++k) out[k] = a[k] * (1.0f - t) + b[k] * t;
+}
+
+/* tex_bilinear in lane types, each lane at its own level. */
+CLR_INLINE void tex_bilinear_lanes(__global const TextureDesc* d, __global const uint* texels, uintL level, floatL u,
+                                   floatL v, floatL rgb[3])
+{
+  // Step 1: the levels' sizes and offsets, and the four texels around the point.
+  const uintL w = max((uintL)1u, (uintL)d->width >> level), h = max((uintL)1u, (uintL)d->height >> level);
+  uint lanesLevel[CLR_LANES], offsets[CLR_LANES];
+  CLR_STORE_LANES(level, lanesLevel);
+  for (uint lane = 0; lane < CLR_LANES; ++lane) offsets[lane] = d->levelOffset[lanesLevel[lane]];
+  const uintL offset = CLR_LOAD_LANES(offsets);
+  const floatL fx = tex_coord_lanes(u, w) - 0.5f, fy = tex_coord_lanes(v, h) - 0.5f;
+  const floatL x0f = floor(fx), y0f = floor(fy);
+  const floatL ax = fx - x0f, ay = fy - y0f;
+  const intL xi = convert_intL(x0f), yi = convert_intL(y0f);
+  // (Within a row the lanes' level is mostly one; the wrap takes one size.)
+  intL x0, x1, y0, y1;
+  if (!CLR_ANY(level != lanesLevel[0])) {
+    const int wl = (int)max(1u, d->width >> lanesLevel[0]), hl = (int)max(1u, d->height >> lanesLevel[0]);
+    x0 = tex_wrap_lanes(xi, wl, d->wrapS), x1 = tex_wrap_lanes(xi + 1, wl, d->wrapS);
+    y0 = tex_wrap_lanes(yi, hl, d->wrapT), y1 = tex_wrap_lanes(yi + 1, hl, d->wrapT);
+  } else {
+    int xs[4][CLR_LANES], ws[CLR_LANES], hs[CLR_LANES];
+    CLR_STORE_LANES(xi, xs[0]);
+    CLR_STORE_LANES(yi, xs[1]);
+    CLR_STORE_LANES(as_intL(w), ws);
+    CLR_STORE_LANES(as_intL(h), hs);
+    for (uint lane = 0; lane < CLR_LANES; ++lane) {
+      const int x = xs[0][lane], y = xs[1][lane];
+      xs[0][lane] = tex_wrap(x, ws[lane], d->wrapS);
+      xs[1][lane] = tex_wrap(y, hs[lane], d->wrapT);
+      xs[2][lane] = tex_wrap(x + 1, ws[lane], d->wrapS);
+      xs[3][lane] = tex_wrap(y + 1, hs[lane], d->wrapT);
+    }
+    x0 = CLR_LOAD_LANES(xs[0]), y0 = CLR_LOAD_LANES(xs[1]), x1 = CLR_LOAD_LANES(xs[2]), y1 = CLR_LOAD_LANES(xs[3]);
+  }
+  // Step 2: weights from the fractional parts.
+  floatL bottom[3], top[3], corner[3];
+  tex_fetch_lanes(texels, offset, w, x0, y0, bottom);
+  tex_fetch_lanes(texels, offset, w, x1, y0, corner);
+  tex_mix_lanes(bottom, corner, ax, bottom);
+  tex_fetch_lanes(texels, offset, w, x0, y1, top);
+  tex_fetch_lanes(texels, offset, w, x1, y1, corner);
+  tex_mix_lanes(top, corner, ax, top);
+  tex_mix_lanes(bottom, top, ay, rgb);
+}
+
+/* tex_sample for a row's lanes on one texture, in lane types: the same
+ * floats lane by lane (a test holds them so). The level of detail's log2
+ * stays scalar, as tex_lod computes it: a vector log2 need not round as
+ * the scalar one does. */
+CLR_CALLED void tex_sample_lanes(__global const TextureDesc* d, __global const uint* texels, uint filter, floatL u,
+                                 floatL v, floatL dudx, floatL dvdx, floatL dudy, floatL dvdy, floatL rgb[3])
+{
+  if (filter == CLR_FILTER_NEAREST) {
+    const intL x = tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(u, (uintL)d->width))), (int)d->width, d->wrapS);
+    const intL y = tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(v, (uintL)d->height))), (int)d->height, d->wrapT);
+    tex_fetch_lanes(texels, (uintL)d->levelOffset[0], (uintL)d->width, x, y, rgb);
+    return;
+  }
+  if (filter == CLR_FILTER_BILINEAR) {
+    tex_bilinear_lanes(d, texels, (uintL)0u, u, v, rgb);
+    return;
+  }
+  float x[4][CLR_LANES], lambda[CLR_LANES];
+  CLR_STORE_LANES(dudx, x[0]);
+  CLR_STORE_LANES(dvdx, x[1]);
+  CLR_STORE_LANES(dudy, x[2]);
+  CLR_STORE_LANES(dvdy, x[3]);
+  for (uint lane = 0; lane < CLR_LANES; ++lane)
+    lambda[lane] = tex_lod(d, x[0][lane], x[1][lane], x[2][lane], x[3][lane]);
+  const floatL lod = CLR_LOAD_LANES(lambda);
+  const uintL l0 = convert_uintL(lod), l1 = min(l0 + 1u, (uintL)(d->levels - 1));
+  const floatL t = lod - convert_floatL(l0);
+  tex_bilinear_lanes(d, texels, l0, u, v, rgb);
+  if (!CLR_ANY(t > 0.0f)) return;
+  floatL next[3], mixed[3];
+  tex_bilinear_lanes(d, texels, l1, u, v, next);
+  tex_mix_lanes(rgb, next, t, mixed);
+  for (int k = 0; k < 3; ++k) rgb[k] = select(rgb[k], mixed[k], t > 0.0f);
 }
 #endif

@@ -401,3 +401,68 @@ TEST_CASE("Debian's textured test models load their textures, invented materials
   CHECK(blue > 200);
   CHECK(green > 200);
 }
+
+TEST_CASE("a row's texels sampled in lane types are the lane-by-lane sampler's, bit for bit", "[texture]")
+{
+  // A row whose lanes all show one material samples its texture in lane
+  // types (tex_sample_lanes), a row of several materials lane by lane
+  // (tex_sample). A ground plane at a grazing angle, cut into 16 × 16 quads,
+  // carries a 37 × 23 texture (odd sizes: the wraps' periods are no powers
+  // of two) with (u, v) running far past [0, 1]; its triangles name
+  // material 0, or materials 0 and 1 in turn, which are the same material.
+  // Most of the second frame's rows cross both, so it is sampled lane by
+  // lane where the first frame's rows are sampled in lane types.
+  const uint32_t W = 96, H = 64, N = 16;
+  const glm::mat4 mvp = glm::perspective(glm::radians(60.0f), float(W) / H, 0.5f, 50.0f) *
+                        glm::lookAt(glm::vec3(0, 1, 1), glm::vec3(0, 0, -3), glm::vec3(0, 1, 0));
+  // (u, v) offset by ±1e6 reaches the sampler's clamp to ±2^24 texels.
+  const float offset = GENERATE(0.0f, 1.0e6f, -1.0e6f);
+  clr::Mesh mesh;
+  for (uint32_t j = 0; j <= N; ++j)
+    for (uint32_t i = 0; i <= N; ++i) {
+      const float x = -4.0f + 8.0f * i / N, z = -8.0f * j / N;
+      mesh.positions.insert(mesh.positions.end(), {x, 0.0f, z});
+      mesh.normals.insert(mesh.normals.end(), {0.0f, 1.0f, 0.0f});
+      mesh.uvs.insert(mesh.uvs.end(), {0.7f * x + 0.15f + offset, -0.6f * z - 1.3f - offset});
+    }
+  for (uint32_t j = 0; j < N; ++j)
+    for (uint32_t i = 0; i < N; ++i) {
+      const uint32_t a = j * (N + 1) + i, b = a + 1, c = a + N + 2, d = a + N + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+    }
+  clr::Texture t;
+  t.name = "odd";
+  t.width = 37;
+  t.height = 23;
+  for (uint32_t y = 0; y < t.height; ++y)
+    for (uint32_t x = 0; x < t.width; ++x)
+      t.rgba.push_back(((x * 37 + y * 11) & 0xFFu) | ((x * 5 + y * 29) & 0xFFu) << 8 |
+                       ((x * 13 + y * 7) & 0xFFu) << 16 | 0xFF000000u);
+  Material m{};
+  for (int k = 0; k < 4; ++k) m.baseColor[k] = 0.9f;
+  m.texture = 0;
+  mesh.materials = {m, m};
+  const auto [wrapS, wrapT] =
+      GENERATE(std::pair{CLR_WRAP_REPEAT, CLR_WRAP_MIRROR}, std::pair{CLR_WRAP_MIRROR, CLR_WRAP_CLAMP},
+               std::pair{CLR_WRAP_CLAMP, CLR_WRAP_REPEAT});
+  t.wrapS = wrapS;
+  t.wrapT = wrapT;
+  mesh.textures = {t};
+  const uint32_t filter = GENERATE(CLR_FILTER_NEAREST, CLR_FILTER_BILINEAR, CLR_FILTER_TRILINEAR);
+  INFO("wrap " << wrapS << ", " << wrapT << ", filter " << filter << ", (u, v) offset " << offset);
+  std::vector<uint32_t> frames[2];
+  for (int alternate = 0; alternate < 2; ++alternate) {
+    mesh.triMaterial.assign(mesh.numTris(), 0);
+    for (size_t tri = 0; alternate && tri < mesh.numTris(); ++tri) mesh.triMaterial[tri] = uint32_t(tri % 2);
+    clr::Pipeline pipeline(test::context());
+    pipeline.uploadScene(mesh);
+    clr::FrameSettings s = test::idSettings(W, H, mvp);
+    s.shadeMode = CLR_SHADE_TEXTURE;
+    s.texFilter = filter;
+    pipeline.render(s, frames[alternate]);
+  }
+  size_t covered = 0;
+  for (uint32_t p : frames[0]) covered += p != frames[0][0];
+  CHECK(covered > W * H / 3);
+  CHECK(frames[0] == frames[1]);
+}
