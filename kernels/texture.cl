@@ -100,11 +100,11 @@ CLR_CALLED float4 tex_sample(__global const TextureDesc* d, __global const uint*
  * (the division's rounding, and i's above 2^24), then corrected. At the
  * clamp (tex_coord) the bilinear corner i = 2^24 + 1 takes such a
  * correction; its weight is 0 there, but the load must stay in its level. */
-CLR_INLINE intL tex_wrap_lanes(intL i, int n, uint mode)
+CLR_INLINE intL tex_wrap_lanes(intL i, intL n, uint mode)
 {
-  if (mode == CLR_WRAP_CLAMP) return clamp(i, (intL)0, (intL)(n - 1));
-  const int period = mode == CLR_WRAP_MIRROR ? 2 * n : n;
-  intL m = i - convert_intL(floor(convert_floatL(i) / (float)period)) * period;
+  if (mode == CLR_WRAP_CLAMP) return clamp(i, (intL)0, n - 1);
+  const intL period = mode == CLR_WRAP_MIRROR ? 2 * n : n;
+  intL m = i - convert_intL(floor(convert_floatL(i) / convert_floatL(period))) * period;
   m = select(m, m + period, m < 0);
   m = select(m, m - period, m >= period);
   return mode == CLR_WRAP_MIRROR ? select(m, period - 1 - m, m >= n) : m;
@@ -151,27 +151,8 @@ CLR_INLINE void tex_bilinear_lanes(__global const TextureDesc* d, __global const
   const floatL x0f = floor(fx), y0f = floor(fy);
   const floatL ax = fx - x0f, ay = fy - y0f;
   const intL xi = convert_intL(x0f), yi = convert_intL(y0f);
-  // (Within a row the lanes' level is mostly one; the wrap takes one size.)
-  intL x0, x1, y0, y1;
-  if (!CLR_ANY(level != lanesLevel[0])) {
-    const int wl = (int)max(1u, d->width >> lanesLevel[0]), hl = (int)max(1u, d->height >> lanesLevel[0]);
-    x0 = tex_wrap_lanes(xi, wl, d->wrapS), x1 = tex_wrap_lanes(xi + 1, wl, d->wrapS);
-    y0 = tex_wrap_lanes(yi, hl, d->wrapT), y1 = tex_wrap_lanes(yi + 1, hl, d->wrapT);
-  } else {
-    int xs[4][CLR_LANES], ws[CLR_LANES], hs[CLR_LANES];
-    CLR_STORE_LANES(xi, xs[0]);
-    CLR_STORE_LANES(yi, xs[1]);
-    CLR_STORE_LANES(as_intL(w), ws);
-    CLR_STORE_LANES(as_intL(h), hs);
-    for (uint lane = 0; lane < CLR_LANES; ++lane) {
-      const int x = xs[0][lane], y = xs[1][lane];
-      xs[0][lane] = tex_wrap(x, ws[lane], d->wrapS);
-      xs[1][lane] = tex_wrap(y, hs[lane], d->wrapT);
-      xs[2][lane] = tex_wrap(x + 1, ws[lane], d->wrapS);
-      xs[3][lane] = tex_wrap(y + 1, hs[lane], d->wrapT);
-    }
-    x0 = CLR_LOAD_LANES(xs[0]), y0 = CLR_LOAD_LANES(xs[1]), x1 = CLR_LOAD_LANES(xs[2]), y1 = CLR_LOAD_LANES(xs[3]);
-  }
+  const intL x0 = tex_wrap_lanes(xi, as_intL(w), d->wrapS), x1 = tex_wrap_lanes(xi + 1, as_intL(w), d->wrapS);
+  const intL y0 = tex_wrap_lanes(yi, as_intL(h), d->wrapT), y1 = tex_wrap_lanes(yi + 1, as_intL(h), d->wrapT);
   // Step 2: weights from the fractional parts.
   floatL bottom[3], top[3], corner[3];
   tex_fetch_lanes(texels, offset, w, x0, y0, bottom);
@@ -191,8 +172,10 @@ CLR_CALLED void tex_sample_lanes(__global const TextureDesc* d, __global const u
                                  floatL v, floatL dudx, floatL dvdx, floatL dudy, floatL dvdy, floatL rgb[3])
 {
   if (filter == CLR_FILTER_NEAREST) {
-    const intL x = tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(u, (uintL)d->width))), (int)d->width, d->wrapS);
-    const intL y = tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(v, (uintL)d->height))), (int)d->height, d->wrapT);
+    const intL x =
+        tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(u, (uintL)d->width))), (intL)(int)d->width, d->wrapS);
+    const intL y =
+        tex_wrap_lanes(convert_intL(floor(tex_coord_lanes(v, (uintL)d->height))), (intL)(int)d->height, d->wrapT);
     tex_fetch_lanes(texels, (uintL)d->levelOffset[0], (uintL)d->width, x, y, rgb);
     return;
   }
