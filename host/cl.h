@@ -10,15 +10,16 @@
 #define CL_HPP_TARGET_OPENCL_VERSION 300
 #include <CL/opencl.hpp>
 
+#include <clraster/error.hpp>
+
 #include <stdexcept>
 #include <string>
 
 namespace clr {
 
 // A user-facing failure: the message is printed as is, and the CLI exits 1.
-struct Error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// The library's public exception type (include/clraster/error.hpp).
+using Error = clraster::Error;
 
 // Human-readable name of an OpenCL status code.
 const char* clErrorName(cl_int code);

@@ -103,10 +103,11 @@ int defaultLanes(const cl::Device& device)
   return (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) ? 16 : 1;
 }
 
-std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide)
+std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide, bool clipInput)
 {
   std::ostringstream options;
   options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
+  if (clipInput) options << " -D CLR_CLIP_INPUT=1";
   // Why exactDivide matters: device.h.
   if (exactDivide) options << " -cl-fp32-correctly-rounded-divide-sqrt";
   // Raster fetches 12 bin entries ahead: measured 10-20% off raster on the
@@ -153,8 +154,9 @@ int contextLanes(const cl::Device& device, int lanesOverride)
   return lanes;
 }
 
-ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead)
-    : compileAhead(ahead, selector, lanesOverride), info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead,
+                     bool clipInputPrograms)
+    : compileAhead(ahead, selector, lanesOverride), info(selectDevice(selector)), clipInput(clipInputPrograms)
 {
   // Step 1: the work shape; a helper started for the selector (compileAhead,
   // before the device was known) stays only where it helps.
@@ -165,7 +167,7 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, const Compi
   prefetch = isPocl(info);
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
-  buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);
+  buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide, clipInput);
   // (A helper compiling kernels ahead repeats the build beside this one, and
   // learns how long this one took.)
   const auto buildStart = std::chrono::steady_clock::now();

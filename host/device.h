@@ -47,13 +47,17 @@ int contextLanes(const cl::Device& device, int lanesOverride);
 // A non-empty `ahead` starts a helper process that compiles those kernels
 // while this context builds and compiles the first ones (compile_ahead.h).
 struct ClContext {
-  explicit ClContext(const std::string& selector, int lanes = 0, const CompileAheadRequest& ahead = {});
+  // clipInput: the programs take clip-space float4 positions (-D
+  // CLR_CLIP_INPUT=1, transform.cl), for the library's rasterize (api.cpp).
+  explicit ClContext(const std::string& selector, int lanes = 0, const CompileAheadRequest& ahead = {},
+                     bool clipInput = false);
   // The helper of `ahead`, started before anything else (so first here),
   // awaited before the first launch of each kernel it compiles.
   CompileAhead compileAhead;
   DeviceInfo info;
-  int lanes = 1;          // CLR_LANES the program was built with
-  bool prefetch = false;  // the program was built with CLR_PREFETCH (kernelBuildOptions)
+  int lanes = 1;           // CLR_LANES the program was built with
+  bool prefetch = false;   // the program was built with CLR_PREFETCH (kernelBuildOptions)
+  bool clipInput = false;  // the programs were built with CLR_CLIP_INPUT=1
   cl::Context context;
   cl::CommandQueue queue;  // in order, profiling enabled
   cl::Program program;     // the frame program (CLR_EXTRAS 0, shared.h)
@@ -80,7 +84,8 @@ struct ClContext {
 // it. OpenCL C otherwise allows 2.5 ulp for x / y and 3 ulp for sqrt, and
 // NVIDIA's driver takes that licence: setup's 1 / w then snaps a vertex to
 // another subpixel, and coverage and depth part from the oracle's.
-std::string kernelBuildOptions(int lanes, bool prefetch = false, bool exactDivide = false);
+// clipInput: -D CLR_CLIP_INPUT=1 (ClContext).
+std::string kernelBuildOptions(int lanes, bool prefetch = false, bool exactDivide = false, bool clipInput = false);
 
 // extras: the extras program rather than the frame program (shared.h).
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options,

@@ -123,7 +123,10 @@ Pipeline::Pipeline(ClContext& cl)
       lineTileCount_(memory_, "line tile counts"),
       lineTileCursor_(memory_, "line tile cursors"),
       lineBinEntries_(memory_, "line bin entries"),
-      aov_(memory_, "visibility-buffer outputs")
+      aov_(memory_, "visibility-buffer outputs"),
+      rastOut_(memory_, "rasterize output"),
+      rastDb_(memory_, "rasterize derivatives"),
+      rastIds_(memory_, "rasterize triangle ids")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments
@@ -180,6 +183,7 @@ static std::vector<float> clusterBounds(const Mesh& mesh)
 void Pipeline::uploadScene(const Mesh& mesh)
 {
   // Step 1: validate the optional attributes against the vertices.
+  if (cl_.clipInput) throw Error("uploadScene: this context's programs take clip-space positions (uploadClipScene)");
   if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
   if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.numVerts()) ||
       (!mesh.colors.empty() && mesh.colors.size() != 4 * mesh.numVerts()))

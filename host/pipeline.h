@@ -197,6 +197,17 @@ class Pipeline {
   };
   uint32_t resident() const { return resident_; }
 
+  // The library's rasterize (api.cpp), on a ClContext built with clipInput:
+  // clip-space positions (4 floats per vertex) and triangles whose indices
+  // the caller has checked against numVerts. A frame's mvp is then unused.
+  void uploadClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris);
+  // After raster of a frame that kept its visibility attributes: nvdiffrast's
+  // rasterize outputs (rast_outputs.cl), then their read into the caller's
+  // arrays of width·height float4s (rast, db; db may be null when derivatives
+  // is false) and uint32s (ids), bottom row first.
+  void rastOutputs(bool derivatives);
+  void readRastOutputs(float* rast, uint32_t* ids, float* db) const;
+
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
   FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
   // The same frame without the copy: `view` shows the image buffer mapped
@@ -356,7 +367,7 @@ class Pipeline {
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
       scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
       rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
-      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+      linesBinFillKernel_, linesDrawKernel_, aovKernel_, rastOutputsKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
@@ -392,6 +403,9 @@ class Pipeline {
   DeviceBuffer<LineSeg> lineSegs_;
   DeviceBuffer<uint32_t> lineTileCount_, lineTileCursor_, lineBinEntries_;
   DeviceBuffer<float> aov_;
+  DeviceBuffer<cl_float4> rastOut_, rastDb_;
+  DeviceBuffer<uint32_t> rastIds_;
+  bool rastDbWritten_ = false;
 };
 
 }  // namespace clr

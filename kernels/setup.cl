@@ -73,7 +73,7 @@ CLR_INLINE void setup_load_batch(const uint* tri, __constant FrameParams* params
   float4 loaded[3][CLR_LANES];
   for (int v = 0; v < 3; ++v)
     for (int lane = 0; lane < CLR_LANES; ++lane)
-      loaded[v][lane] = vload4(0, positions + 3 * indices[3 * tri[lane] + v]);
+      loaded[v][lane] = vload4(0, positions + CLR_POSITION_STRIDE * indices[3 * tri[lane] + v]);
 #endif
   for (int v = 0; v < 3; ++v) {
 #if CLR_LANES == 1
@@ -89,10 +89,17 @@ CLR_INLINE void setup_load_batch(const uint* tri, __constant FrameParams* params
     const float16 px = (float16)(a.s048c, b.s048c, d.s048c, e.s048c);
     const float16 py = (float16)(a.s159d, b.s159d, d.s159d, e.s159d);
     const float16 pz = (float16)(a.s26ae, b.s26ae, d.s26ae, e.s26ae);
+#if CLR_CLIP_INPUT
+    c->x[v] = px;
+    c->y[v] = py;
+    c->z[v] = pz;
+    c->w[v] = (float16)(a.s37bf, b.s37bf, d.s37bf, e.s37bf);
+#else
     c->x[v] = transform_lanes(params, 0, px, py, pz);
     c->y[v] = transform_lanes(params, 1, px, py, pz);
     c->z[v] = transform_lanes(params, 2, px, py, pz);
     c->w[v] = transform_lanes(params, 3, px, py, pz);
+#endif
 #endif
   }
 }
@@ -120,7 +127,7 @@ CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx,
          select(zero, (uintL)512u, beyondFar);
 }
 
-#if CLR_LANES > 1
+#if CLR_LANES > 1 && !CLR_CLIP_INPUT
 /* Whether the cluster with bounds b (CLR_CLUSTER_TRIS, shared.h) lies wholly
  * outside one plane that setup_classify culls by: behind the near plane,
  * beyond an edge of the viewport, or beyond the far plane. Then so is every
@@ -444,7 +451,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
   if (first >= (emit ? numSetup : params->numTris)) return;
-#if CLR_LANES > 1
+#if CLR_LANES > 1 && !CLR_CLIP_INPUT
   // (Pass 1 skips a batch whose cluster lies beside the view, unloaded.)
   if (!emit && params->clusterMargin > 0.0f &&
       setup_cluster_outside(params, clusterBounds + 6 * (first / CLR_CLUSTER_TRIS))) {

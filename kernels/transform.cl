@@ -8,6 +8,10 @@
  * transform_vertices writes them all, one work-item per vertex, for the
  * painter's algorithm's host sort and for tests; it computes the same
  * floats.
+ *
+ * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api.cpp) the
+ * positions are clip-space float4 already, 4 floats per vertex, and
+ * transform_vertex reads them unchanged: every later stage is the frame's.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -18,13 +22,23 @@
 #define CLR_TRANSFORM_ROW(m, row, x, y, z) \
   ((m)[row] * (x) + (m)[4 + (row)] * (y) + (m)[8 + (row)] * (z) + (m)[12 + (row)])
 
+#ifndef CLR_CLIP_INPUT
+#define CLR_CLIP_INPUT 0
+#endif
+/* Floats per vertex of the positions buffer. */
+#define CLR_POSITION_STRIDE (CLR_CLIP_INPUT ? 4 : 3)
+
 /* The clip position of vertex v. */
 CLR_INLINE float4 transform_vertex(__constant FrameParams* params, __global const float* positions, uint v)
 {
+#if CLR_CLIP_INPUT
+  return vload4(v, positions);
+#else
   const float3 p = (float3)(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
   __constant const float* m = params->mvp;
   return (float4)(CLR_TRANSFORM_ROW(m, 0, p.x, p.y, p.z), CLR_TRANSFORM_ROW(m, 1, p.x, p.y, p.z),
                   CLR_TRANSFORM_ROW(m, 2, p.x, p.y, p.z), CLR_TRANSFORM_ROW(m, 3, p.x, p.y, p.z));
+#endif
 }
 
 /* Clip coordinate `row` of the lanes' positions (px, py, pz): the same

@@ -167,6 +167,16 @@ glm::vec4 transformVertex(const glm::mat4& m, const float* p)
 Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t>& indices, const glm::mat4& mvp,
                  const Options& o)
 {
+  std::vector<float> clip(4 * (positions.size() / 3));
+  for (size_t v = 0; v < positions.size() / 3; ++v) {
+    const glm::vec4 c = transformVertex(mvp, &positions[3 * v]);
+    for (int k = 0; k < 4; ++k) clip[4 * v + k] = c[k];
+  }
+  return rasterizeClip(clip, indices, o);
+}
+
+Result rasterizeClip(const std::vector<float>& clip, const std::vector<uint32_t>& indices, const Options& o)
+{
   Result r;
   r.width = o.width;
   r.height = o.height;
@@ -182,7 +192,8 @@ Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t
     glm::vec4 c[3];
     bool finite = true;
     for (int i = 0; i < 3; ++i) {
-      c[i] = transformVertex(mvp, &positions[3 * indices[3 * t + i]]);
+      const float* p = &clip[4 * size_t(indices[3 * t + i])];
+      c[i] = glm::vec4(p[0], p[1], p[2], p[3]);
       for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(c[i][k]);
     }
     bool rejected = !finite;

@@ -49,6 +49,10 @@ struct Result {
 Result rasterize(const std::vector<float>& positions, const std::vector<uint32_t>& indices, const glm::mat4& mvp,
                  const Options& options);
 
+// The same from clip-space positions, 4 floats per vertex (the library's
+// rasterize, whose kernels read them untransformed).
+Result rasterizeClip(const std::vector<float>& clip, const std::vector<uint32_t>& indices, const Options& options);
+
 // clip = mvp · (p, 1), with the kernels' order of operations.
 glm::vec4 transformVertex(const glm::mat4& mvp, const float* p);
 

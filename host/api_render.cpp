@@ -1,0 +1,244 @@
+// api_render.cpp — the public API's scene level (clraster.hpp): Scene,
+// RenderOptions, Renderer, writePng and render, the `clraster render`
+// command's steps as calls. RenderOptions keeps the flags and parses them
+// with the CLI's parser (cli.h), the one place that decides what a flag
+// means; a Renderer frames its camera, chooses the methods and renders as
+// the command does (camera.h, cli.h applyMethods and chooseDepth, quality.h).
+#include "aov.h"
+#include "api_impl.h"
+#include "camera.h"
+#include "image_io.h"
+#include "quality.h"
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+
+namespace clraster {
+
+// ---- Scene ----
+
+Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+Scene Scene::load(const std::string& path)
+{
+  return guarded([&] {
+    auto impl = std::make_unique<Impl>();
+    impl->mesh = clr::loadScene(path);
+    return Scene(std::move(impl));
+  });
+}
+
+Scene Scene::builtin()
+{
+  return guarded([&] {
+    auto impl = std::make_unique<Impl>();
+    impl->mesh = clr::defaultScene();
+    return Scene(std::move(impl));
+  });
+}
+
+size_t Scene::numVertices() const
+{
+  return impl_->mesh.numVerts();
+}
+size_t Scene::numTriangles() const
+{
+  return impl_->mesh.numTris();
+}
+const std::vector<std::string>& Scene::warnings() const
+{
+  return impl_->mesh.warnings;
+}
+
+// ---- RenderOptions ----
+
+namespace {
+
+// The CLI's parser, where -o is optional: a stand-in output is parsed along
+// when the flags name none, then dropped.
+clr::RenderArgs parseOptions(const std::vector<std::string>& flags)
+{
+  const bool hasOutput = std::find_if(flags.begin(), flags.end(),
+                                      [](const std::string& f) { return f == "-o" || f == "--output"; }) != flags.end();
+  if (hasOutput) return clr::parseRenderArgs(flags);
+  std::vector<std::string> withOutput = flags;
+  withOutput.insert(withOutput.end(), {"-o", "unused_%d.png"});
+  clr::RenderArgs args = clr::parseRenderArgs(withOutput);
+  args.outPath.clear();
+  return args;
+}
+
+}  // namespace
+
+RenderOptions::RenderOptions() : impl_(std::make_unique<Impl>())
+{
+  impl_->args = parseOptions({});
+}
+RenderOptions::~RenderOptions() = default;
+RenderOptions::RenderOptions(const RenderOptions& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
+RenderOptions& RenderOptions::operator=(const RenderOptions& o)
+{
+  *impl_ = *o.impl_;
+  return *this;
+}
+
+RenderOptions RenderOptions::parse(const std::vector<std::string>& flags)
+{
+  return guarded([&] {
+    RenderOptions o;
+    o.impl_->args = parseOptions(flags);
+    o.impl_->flags = flags;
+    return o;
+  });
+}
+
+RenderOptions& RenderOptions::set(const std::string& flag, const std::string& value)
+{
+  return guarded([&]() -> RenderOptions& {
+    std::vector<std::string> flags = impl_->flags;
+    if (!flag.empty()) flags.push_back(flag);
+    if (!value.empty()) flags.push_back(value);
+    impl_->args = parseOptions(flags);
+    impl_->flags = std::move(flags);
+    return *this;
+  });
+}
+
+uint32_t RenderOptions::width() const
+{
+  return impl_->args.width;
+}
+uint32_t RenderOptions::height() const
+{
+  return impl_->args.height;
+}
+const std::string& RenderOptions::scenePath() const
+{
+  return impl_->args.scenePath;
+}
+const std::string& RenderOptions::outputPath() const
+{
+  return impl_->args.outPath;
+}
+const std::string& RenderOptions::aovPath() const
+{
+  return impl_->args.aovPath;
+}
+const std::string& RenderOptions::viewsPath() const
+{
+  return impl_->args.viewsPath;
+}
+const std::string& RenderOptions::device() const
+{
+  return impl_->args.device;
+}
+uint32_t RenderOptions::frames() const
+{
+  return impl_->args.frames;
+}
+bool RenderOptions::stats() const
+{
+  return impl_->args.stats;
+}
+bool RenderOptions::idShading() const
+{
+  return impl_->args.shadeMode == CLR_SHADE_ID;
+}
+
+// ---- Renderer ----
+
+struct Renderer::Impl {
+  explicit Impl(clr::ClContext& cl) : pipeline(cl) {}
+  clr::Pipeline pipeline;
+  clr::Bounds bounds;
+  float radius = 1.0f;  // half the bounds' diagonal: the point light's default range
+  bool aovKept = false;
+};
+
+Renderer::Renderer(Context& ctx, const Scene& scene)
+{
+  guarded([&] {
+    impl_ = std::make_unique<Impl>(ctx.impl().frameContext());
+    const clr::Mesh& mesh = scene.impl().mesh;
+    impl_->pipeline.uploadScene(mesh);
+    impl_->bounds = clr::meshBounds(mesh);
+    if (!impl_->bounds.empty) impl_->radius = 0.5f * glm::length(impl_->bounds.max - impl_->bounds.min);
+  });
+}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+Image Renderer::render(const RenderOptions& options, FrameStats* stats)
+{
+  return guarded([&] {
+    // Step 1: camera, depth format and methods, as the render command.
+    const clr::RenderArgs& args = options.impl().args;
+    clr::checkCameraArgs(args.camera);
+    const clr::Camera camera = clr::frameCamera(args.camera, impl_->bounds);
+    const clr::DepthChoice depth = clr::chooseDepth(args, camera);
+    clr::FrameSettings settings =
+        camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
+    clr::applyMethods(args, settings, impl_->radius);
+    settings.keepVisAttributes = !args.aovPath.empty();
+    if (args.aa == "auto" || args.qualityAuto)
+      clr::chooseAutomatically(impl_->pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
+    // Step 2: the frame.
+    Image image;
+    image.width = settings.width;
+    image.height = settings.height;
+    const clr::FrameStats s = impl_->pipeline.render(settings, image.rgba);
+    impl_->aovKept = settings.keepVisAttributes;
+    if (stats) {
+      stats->stageMs = s.stageMs;
+      stats->deviceIdleMs = s.deviceIdleMs;
+      stats->trianglesIn = s.trianglesIn;
+      stats->trianglesClipped = s.trianglesClipped;
+      stats->trianglesCulled = s.trianglesCulled;
+      stats->setupTriangles = s.setupTriangles;
+      stats->binEntries = s.binEntries;
+    }
+    return image;
+  });
+}
+
+void Renderer::writeAov(const std::string& path)
+{
+  guarded([&] {
+    if (!impl_->aovKept) throw Error("--aov: the last frame was rendered without --aov");
+    impl_->pipeline.aov();
+    const FrameParams& p = impl_->pipeline.params();
+    clr::writeAovExr(path, p.width, p.height, impl_->pipeline.readAov());
+  });
+}
+
+void writePng(const std::string& path, const Image& image)
+{
+  guarded([&] {
+    if (image.rgba.size() != size_t(image.width) * image.height)
+      throw Error(path + ": image holds " + std::to_string(image.rgba.size()) + " pixels, not " +
+                  std::to_string(image.width) + "x" + std::to_string(image.height));
+    clr::writePng(path, image.width, image.height, image.rgba);
+  });
+}
+
+Image render(Context& ctx, const RenderOptions& options)
+{
+  return guarded([&] {
+    // Outputs are checked before any device work, as the CLI does.
+    if (!options.outputPath().empty()) clr::checkWritable(options.outputPath());
+    if (!options.aovPath().empty()) clr::checkWritable(options.aovPath());
+    const Scene scene = options.scenePath().empty() ? Scene::builtin() : Scene::load(options.scenePath());
+    Renderer renderer(ctx, scene);
+    Image image = renderer.render(options);
+    if (!options.outputPath().empty()) writePng(options.outputPath(), image);
+    if (!options.aovPath().empty()) renderer.writeAov(options.aovPath());
+    return image;
+  });
+}
+
+}  // namespace clraster

@@ -1,0 +1,97 @@
+/* rast_outputs.cl — the library's rasterize outputs (host/api.cpp), in
+ * nvdiffrast's layout, from a frame built with -D CLR_CLIP_INPUT=1
+ * (positions are the caller's clip-space float4, transform.cl).
+ *
+ * One work-item per pixel reads sample 0 of the visibility buffer (with its
+ * depth and barycentric planes) and writes, bottom row first:
+ *  rast float4 (u, v, z/w, id): u and v the perspective-correct weights of
+ *    input vertices 0 and 1 (vertex 2 weighs 1 − u − v), mapped through
+ *    ClipBary and the back-face swap as aov.cl does; z/w = Σμz / Σμw over the
+ *    input clip vertices; id = triangle index + 1 as nvdiffrast encodes it
+ *    (exact float up to 2^24, above that the biased bit pattern
+ *    0x4a800000 + id, which decodes exactly);
+ *  ids uint: triangle index + 1, exact;
+ *  db float4 (du/dX, du/dY, dv/dX, dv/dY) per pixel, when writeDb: with the
+ *    clip vertices p_i = (x_i, y_i, w_i) and s = (x_ndc, y_ndc, 1), k_i =
+ *    (p_j × p_k)·s (i, j, k cyclic) and λ_i = k_i / Σk, so
+ *    dλ_i/dx_ndc = (r_i.x − λ_i Σ r.x) / Σk with r_i = p_j × p_k, and
+ *    dx_ndc/dX = 2/W, dy_ndc/dY = 2/H.
+ * Background: all zero.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+#if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
+
+/* nvdiffrast's triangle-id encoding (triidx_to_float). */
+CLR_INLINE float rast_id_float(uint id)
+{
+  return id <= 0x01000000u ? (float)id : as_float(0x4a800000u + id);
+}
+
+__kernel void rast_outputs(__constant FrameParams* params,
+                           __global const uint* visIndex,    // sample plane 0 (shared.h)
+                           __global const float* visAttr,    // its depth, b1, b2 planes
+                           __global const uint* tileOffset,  // tiles + 1
+                           __global const TriSetup* setup, __global const uint* source,
+                           __global const ClipBary* clipBary,
+                           __global const uint* indices,     // 3·numTris
+                           __global const float* positions,  // 4·numVerts, clip space
+                           __global const uint* tileSlot,    // tiles + 1
+                           uint visPlane,
+                           __global float4* rast,  // width · height
+                           __global uint* ids,     // width · height
+                           __global float4* db,    // width · height when writeDb
+                           uint writeDb)
+{
+  const uint px = get_global_id(0), py = get_global_id(1);
+  if (px >= params->width || py >= params->height) return;
+  const uint p = py * params->width + px;
+  // Step 1: the visible triangle, or none.
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + px / CLR_TILE_SIZE;
+  const bool empty = tileOffset[tile] == tileOffset[tile + 1];
+  const uint v = empty ? 0u : vis_address(tileSlot[tile], px, py);
+  const uint index = empty ? CLR_NONE : vis_index_at(params, visIndex, v);
+  if (index == CLR_NONE) {
+    rast[p] = (float4)(0.0f);
+    ids[p] = 0u;
+    if (writeDb) db[p] = (float4)(0.0f);
+    return;
+  }
+  const TriSetup t = setup[index];
+  const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
+  // Step 2: perspective-correct weights of the setup vertices, then of the
+  // input vertices (aov.cl, steps 2 and 3).
+  const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
+                      visAttr[2 * visPlane + v]};
+  const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
+  const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
+  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
+  const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
+  float mu[3] = {0.0f, 0.0f, 0.0f};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int identity = swapped && i != 0 ? 3 - i : i;
+      const float w = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
+      mu[j] += (q[i] * eyeDepth) * w;
+    }
+  // Step 3: z/w from the input clip vertices, and the outputs.
+  float4 c[3];
+  for (int j = 0; j < 3; ++j) c[j] = vload4(indices[3 * triId + j], positions);
+  const float zw =
+      (mu[0] * c[0].z + mu[1] * c[1].z + mu[2] * c[2].z) / (mu[0] * c[0].w + mu[1] * c[1].w + mu[2] * c[2].w);
+  rast[p] = (float4)(mu[0], mu[1], zw, rast_id_float(triId + 1u));
+  ids[p] = triId + 1u;
+  if (!writeDb) return;
+  // Step 4: the pixel derivatives of u and v (the formula above).
+  const float3 p0 = (float3)(c[0].x, c[0].y, c[0].w), p1 = (float3)(c[1].x, c[1].y, c[1].w),
+               p2 = (float3)(c[2].x, c[2].y, c[2].w);
+  const float3 r0 = cross(p1, p2), r1 = cross(p2, p0), r2 = cross(p0, p1);
+  const float3 s = (float3)(2.0f * ((float)px + 0.5f) / (float)params->width - 1.0f,
+                            2.0f * ((float)py + 0.5f) / (float)params->height - 1.0f, 1.0f);
+  const float k0 = dot(r0, s), k1 = dot(r1, s), k2 = dot(r2, s);
+  const float sum = k0 + k1 + k2, l0 = k0 / sum, l1 = k1 / sum;
+  const float sx = r0.x + r1.x + r2.x, sy = r0.y + r1.y + r2.y;
+  const float dx = 2.0f / (float)params->width, dy = 2.0f / (float)params->height;
+  db[p] = (float4)((r0.x - l0 * sx) / sum * dx, (r0.y - l0 * sy) / sum * dy, (r1.x - l1 * sx) / sum * dx,
+                   (r1.y - l1 * sy) / sum * dy);
+}
+#endif

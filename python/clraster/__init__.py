@@ -1,0 +1,172 @@
+"""clraster: an exact OpenCL triangle rasterizer with nvdiffrast's calls.
+
+    import clraster as dr            # was: import nvdiffrast.torch as dr
+    ctx = dr.Context()               # was: dr.RasterizeCudaContext()
+    rast, rast_db = dr.rasterize(ctx, pos, tri, resolution=(H, W))
+    out, _ = dr.interpolate(attr, rast, tri)
+
+Arrays are numpy: pos float32 [V, 4] or [B, V, 4] (clip space, OpenGL
+conventions), tri int32 [T, 3], attr float32 [V, C] or [B, V, C]. rast is
+float32 [B, H, W, 4] = (u, v, z/w, triangle_id + 1), row 0 at the bottom,
+zero where nothing covers; u and v weigh the triangle's vertices 0 and 1.
+triangle_ids(rast) gives the exact int32 triangle_id + 1 for any triangle
+count. Coverage and ids are those of `clraster render` (fixed-point,
+watertight, nearest z/w wins, ties to the lower triangle index, no culling;
+triangles with a non-finite vertex are culled). Every bad argument raises
+ValueError naming it. docs/python.md maps the rest of nvdiffrast.
+"""
+
+import numbers
+
+import numpy as np
+
+from . import _clraster
+from ._clraster import Error
+
+__all__ = ["Context", "Error", "rasterize", "interpolate", "triangle_ids", "devices"]
+
+_MAX_RESOLUTION = 16384
+
+
+class Context:
+    """One OpenCL device. device: None or "" (the first GPU, else the first
+    CPU), a device index, or a substring of the device or platform name (see
+    devices()). Kernels are built on the first rasterize call."""
+
+    def __init__(self, device=None):
+        if device is None:
+            device = ""
+        if isinstance(device, bool) or not isinstance(device, (str, numbers.Integral)):
+            raise ValueError(f"device: expected None, an index or a name, got {type(device).__name__}")
+        if isinstance(device, numbers.Integral):
+            if device < 0:
+                raise ValueError(f"device: index {device} is negative")
+            device = str(int(device))
+        self._ctx = _clraster.Context(device)
+
+    @property
+    def device_name(self):
+        return self._ctx.device_name
+
+    @property
+    def device_type(self):
+        return self._ctx.device_type
+
+    def __repr__(self):
+        return f"clraster.Context({self._ctx.device_name!r}, {self._ctx.device_type})"
+
+
+def devices():
+    """The OpenCL devices as dicts (index, name, platform, type)."""
+    return _clraster.devices()
+
+
+def _array(name, value, dtype, ndims, last=None):
+    """value as a C-contiguous array of dtype with one of ndims dimensions
+    (and last extent `last`), or a ValueError naming the argument."""
+    if not isinstance(value, np.ndarray):
+        raise ValueError(f"{name}: expected a numpy array, got {type(value).__name__}")
+    if value.dtype != dtype:
+        raise ValueError(f"{name}: expected dtype {np.dtype(dtype).name}, got {value.dtype.name}")
+    if value.ndim not in ndims:
+        dims = " or ".join(str(n) for n in ndims)
+        raise ValueError(f"{name}: expected {dims} dimensions, got shape {list(value.shape)}")
+    if last is not None and value.shape[-1] != last:
+        raise ValueError(f"{name}: the last dimension must be {last}, got shape {list(value.shape)}")
+    return np.ascontiguousarray(value)
+
+
+def _check_tri(tri, num_vertices):
+    tri = _array("tri", tri, np.int32, (2,), 3)
+    if tri.size and (tri.min() < 0 or tri.max() >= num_vertices):
+        bad = int(tri.min()) if tri.min() < 0 else int(tri.max())
+        raise ValueError(f"tri: vertex index {bad} outside [0, {num_vertices})")
+    return tri
+
+
+def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
+    """nvdiffrast's rasterize: returns (rast, rast_db), both float32
+    [B, H, W, 4]; rast_db = (du/dX, du/dY, dv/dX, dv/dY) per pixel, or
+    [B, H, W, 0] with grad_db=False. pos [V, 4] gives B = 1; [B, V, 4] is
+    instanced mode (one image per entry, the same tri). Range mode (ranges)
+    is not supported."""
+    if not isinstance(glctx, Context):
+        raise ValueError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
+    if ranges is not None:
+        raise ValueError("ranges: range mode is not supported (pass one pos array per image, or [B, V, 4])")
+    if not isinstance(grad_db, bool):
+        raise ValueError(f"grad_db: expected True or False, got {grad_db!r}")
+    try:
+        height, width = resolution
+    except (TypeError, ValueError):
+        raise ValueError(f"resolution: expected (height, width), got {resolution!r}") from None
+    for n in (height, width):
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= _MAX_RESOLUTION:
+            raise ValueError(f"resolution: expected two integers in 1..{_MAX_RESOLUTION}, got {resolution!r}")
+    height, width = int(height), int(width)
+    pos = _array("pos", pos, np.float32, (2, 3), 4)
+    batch = pos if pos.ndim == 3 else pos[None]
+    tri = _check_tri(tri, batch.shape[1])
+    rast = np.empty((batch.shape[0], height, width, 4), np.float32)
+    db = np.empty((batch.shape[0], height, width, 4 if grad_db else 0), np.float32)
+    for b in range(batch.shape[0]):
+        _clraster.rasterize_into(glctx._ctx, batch[b], tri, rast[b], db[b] if grad_db else None)
+    return rast, db
+
+
+def triangle_ids(rast):
+    """The exact int32 triangle_id + 1 (0: background) of each pixel of a
+    rast from rasterize(), [B, H, W], for any triangle count: channel 3 holds
+    the id in nvdiffrast's encoding (the float itself up to 2^24, above that
+    the float's bits biased by 0x4a800000)."""
+    rast = _array("rast", rast, np.float32, (3, 4), 4)
+    f = rast[..., 3]
+    big = f > 16777216.0
+    ids = np.where(big, f.view(np.int32) - np.int32(0x4A800000), f.astype(np.int32))
+    return np.where(f > 0, ids, 0).astype(np.int32)
+
+
+def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
+    """nvdiffrast's interpolate: out [B, H, W, C] = u·a0 + v·a1 + (1−u−v)·a2
+    of the covering triangle (0 where none), and out_da [B, H, W, 2·len]
+    = (dA/dX, dA/dY) per attribute of diff_attrs (a list of indices or
+    'all', with rast_db), else [B, H, W, 0]. attr [V, C] is shared by every
+    image; [B, V, C] gives each image its own (B matching rast, or 1)."""
+    attr = _array("attr", attr, np.float32, (2, 3))
+    rast = _array("rast", rast, np.float32, (4,), 4)
+    batch = rast.shape[0]
+    attrs = attr if attr.ndim == 3 else attr[None]
+    if attrs.shape[0] not in (1, batch):
+        raise ValueError(f"attr: {attrs.shape[0]} attribute sets for {batch} images in rast")
+    tri = _check_tri(tri, attrs.shape[1])
+    num_attrs = attrs.shape[2]
+    if diff_attrs is None:
+        diff = []
+    elif isinstance(diff_attrs, str):
+        if diff_attrs != "all":
+            raise ValueError(f"diff_attrs: expected a list of indices or 'all', got {diff_attrs!r}")
+        diff = list(range(num_attrs))
+    else:
+        try:
+            diff = [int(j) for j in diff_attrs if not isinstance(j, bool) and isinstance(j, numbers.Integral)]
+            ok = len(diff) == len(diff_attrs)
+        except TypeError:
+            ok = False
+        if not ok:
+            raise ValueError(f"diff_attrs: expected a list of integer indices or 'all', got {diff_attrs!r}")
+        for j in diff:
+            if not -num_attrs <= j < num_attrs:
+                raise ValueError(f"diff_attrs: attribute index {j} outside [-{num_attrs}, {num_attrs})")
+    if diff:
+        if rast_db is None:
+            raise ValueError("rast_db: needed with diff_attrs (rasterize(..., grad_db=True))")
+        rast_db = _array("rast_db", rast_db, np.float32, (4,), 4)
+        if rast_db.shape != rast.shape:
+            raise ValueError(f"rast_db: shape {list(rast_db.shape)} differs from rast's {list(rast.shape)}")
+    out = np.empty(rast.shape[:3] + (num_attrs,), np.float32)
+    out_da = np.empty(rast.shape[:3] + (2 * len(diff),), np.float32)
+    for b in range(batch):
+        a = attrs[b if attrs.shape[0] == batch else 0]
+        _clraster.interpolate_into(a, rast[b], tri, out[b], rast_db[b] if diff else None, diff,
+                                   out_da[b] if diff else None)
+    return out, out_da

@@ -1,0 +1,90 @@
+// module.cpp — the extension clraster._clraster: the C++ API's calls on
+// numpy arrays, for python/clraster/__init__.py, which checks shapes, dtypes
+// and index ranges first (with ValueErrors naming the argument) and gives
+// the nvdiffrast calling conventions. These bindings check again what memory
+// safety needs (shapes and contiguity: a wrong array is a ValueError, never
+// a read out of bounds); clraster::Error becomes clraster.Error, a
+// RuntimeError. The GIL stays held: a Context belongs to one thread at a time.
+#include <clraster/clraster.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+namespace py = pybind11;
+
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style>;
+using IntArray = py::array_t<int32_t, py::array::c_style>;
+
+void expectShape(const char* name, const py::array& a, std::initializer_list<py::ssize_t> shape)
+{
+  bool ok = a.ndim() == py::ssize_t(shape.size());
+  size_t k = 0;
+  for (py::ssize_t n : shape) {
+    ok = ok && (n < 0 || a.shape(k) == n);
+    ++k;
+  }
+  if (!ok) throw py::value_error(std::string(name) + ": wrong shape");
+}
+
+// rasterize of one image into rast (and db when given): pos [V, 4], tri [T, 3], out [H, W, 4].
+void rasterizeInto(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, FloatArray rast,
+                   std::optional<FloatArray> db)
+{
+  expectShape("pos", pos, {-1, 4});
+  expectShape("tri", tri, {-1, 3});
+  expectShape("rast", rast, {-1, -1, 4});
+  const uint32_t h = uint32_t(rast.shape(0)), w = uint32_t(rast.shape(1));
+  if (db) expectShape("rast_db", *db, {h, w, 4});
+  clraster::rasterizeInto(ctx, pos.data(), size_t(pos.shape(0)), tri.data(), size_t(tri.shape(0)), w, h,
+                          rast.mutable_data(), nullptr, db ? db->mutable_data() : nullptr);
+}
+
+// interpolate of one image: attr [V, C], rast [H, W, 4], tri [T, 3], out [H, W, C],
+// with db [H, W, 4] and out_da [H, W, 2·len(diff)] when diff is not empty.
+void interpolateInto(const FloatArray& attr, const FloatArray& rast, const IntArray& tri, FloatArray out,
+                     std::optional<FloatArray> db, const std::vector<int>& diff, std::optional<FloatArray> outDa)
+{
+  expectShape("attr", attr, {-1, -1});
+  expectShape("rast", rast, {-1, -1, 4});
+  expectShape("tri", tri, {-1, 3});
+  const py::ssize_t h = rast.shape(0), w = rast.shape(1), c = attr.shape(1);
+  expectShape("out", out, {h, w, c});
+  if (!diff.empty()) {
+    if (!db || !outDa) throw py::value_error("rast_db: needed for diff_attrs");
+    expectShape("rast_db", *db, {h, w, 4});
+    expectShape("out_da", *outDa, {h, w, py::ssize_t(2 * diff.size())});
+  }
+  clraster::interpolateInto(attr.data(), size_t(attr.shape(0)), size_t(c), rast.data(), size_t(h * w), tri.data(),
+                            size_t(tri.shape(0)), out.mutable_data(), db ? db->data() : nullptr, diff,
+                            outDa ? outDa->mutable_data() : nullptr);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_clraster, m)
+{
+  m.doc() = "clraster's C++ API for the clraster package (use `import clraster`)";
+  py::register_exception<clraster::Error>(m, "Error", PyExc_RuntimeError);
+  py::class_<clraster::Context>(m, "Context")
+      .def(py::init<const std::string&>(), py::arg("device") = "")
+      .def_property_readonly("device_name", [](const clraster::Context& c) { return c.device().name; })
+      .def_property_readonly("device_type", [](const clraster::Context& c) { return c.device().type; })
+      .def_property_readonly("platform", [](const clraster::Context& c) { return c.device().platform; });
+  m.def("rasterize_into", &rasterizeInto, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
+        py::arg("rast").noconvert(), py::arg("db").noconvert() = py::none());
+  m.def("interpolate_into", &interpolateInto, py::arg("attr").noconvert(), py::arg("rast").noconvert(),
+        py::arg("tri").noconvert(), py::arg("out").noconvert(), py::arg("db").noconvert() = py::none(),
+        py::arg("diff") = std::vector<int>{}, py::arg("out_da").noconvert() = py::none());
+  m.def("devices", [] {
+    py::list out;
+    for (const clraster::DeviceInfo& d : clraster::listDevices())
+      out.append(py::dict(py::arg("index") = d.index, py::arg("name") = d.name, py::arg("platform") = d.platform,
+                          py::arg("type") = d.type));
+    return out;
+  });
+}

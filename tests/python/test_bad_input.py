@@ -1,0 +1,128 @@
+"""Every bad argument of the Python module raises ValueError naming it,
+within bounded time; nothing reaches the C++ side unchecked. Extreme but
+valid positions (huge, tiny, non-finite) rasterize without error."""
+import numpy as np
+import pytest
+
+import clraster
+
+POS = np.array([[-1, -1, 0, 1], [1, -1, 0, 1], [0, 1, 0, 1]], np.float32)
+TRI = np.array([[0, 1, 2]], np.int32)
+
+
+@pytest.fixture(scope="module")
+def rast(ctx):
+    return clraster.rasterize(ctx, POS, TRI, (8, 8))
+
+
+@pytest.mark.parametrize(
+    "name, kwargs",
+    [
+        ("glctx", dict(glctx=None)),
+        ("glctx", dict(glctx="cpu")),
+        ("pos", dict(pos=POS.tolist())),
+        ("pos", dict(pos=POS.astype(np.float64))),
+        ("pos", dict(pos=POS[:, :3].copy())),
+        ("pos", dict(pos=POS[0])),
+        ("pos", dict(pos=POS[None, None])),
+        ("tri", dict(tri=TRI.astype(np.int64))),
+        ("tri", dict(tri=TRI.astype(np.uint32))),
+        ("tri", dict(tri=TRI[:, :2].copy())),
+        ("tri", dict(tri=TRI[0])),
+        ("tri", dict(tri=np.array([[0, 1, 3]], np.int32))),
+        ("tri", dict(tri=np.array([[0, -1, 2]], np.int32))),
+        ("tri", dict(tri=np.array([[0, 1, 2**31 - 1]], np.int32))),
+        ("resolution", dict(resolution=(0, 8))),
+        ("resolution", dict(resolution=(8, -1))),
+        ("resolution", dict(resolution=(8, 16385))),
+        ("resolution", dict(resolution=(8,))),
+        ("resolution", dict(resolution=8)),
+        ("resolution", dict(resolution=(8.0, 8))),
+        ("resolution", dict(resolution=(True, 8))),
+        ("resolution", dict(resolution=None)),
+        ("ranges", dict(ranges=np.zeros((1, 2), np.int32))),
+        ("grad_db", dict(grad_db=1)),
+    ],
+)
+def test_rasterize_rejects(ctx, name, kwargs):
+    args = dict(glctx=ctx, pos=POS, tri=TRI, resolution=(8, 8))
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=f"^{name}: "):
+        clraster.rasterize(**args)
+
+
+@pytest.mark.parametrize(
+    "name, kwargs",
+    [
+        ("attr", dict(attr=POS.tolist())),
+        ("attr", dict(attr=POS.astype(np.float16))),
+        ("attr", dict(attr=POS[0])),
+        ("attr", dict(attr=np.zeros((2, 3, 3, 1), np.float32))),
+        ("attr", dict(attr=np.zeros((3, 3, 4), np.float32))),  # 3 sets for 1 image
+        ("rast", dict(rast="rast")),
+        ("rast", dict(rast=np.zeros((8, 8, 4), np.float32))),
+        ("rast", dict(rast=np.zeros((1, 8, 8, 3), np.float32))),
+        ("rast", dict(rast=np.zeros((1, 8, 8, 4), np.float64))),
+        ("tri", dict(tri=np.array([[0, 1, 5]], np.int32))),
+        ("tri", dict(tri=TRI.astype(np.int16))),
+        ("diff_attrs", dict(diff_attrs="some")),
+        ("diff_attrs", dict(diff_attrs=[0, 4])),
+        ("diff_attrs", dict(diff_attrs=[-5])),
+        ("diff_attrs", dict(diff_attrs=[0.5])),
+        ("diff_attrs", dict(diff_attrs=7)),
+        ("rast_db", dict(diff_attrs=[0])),
+        ("rast_db", dict(diff_attrs=[0], rast_db=np.zeros((1, 8, 4, 4), np.float32))),
+        ("rast_db", dict(diff_attrs=[0], rast_db=np.zeros((1, 8, 8, 4), np.float64))),
+    ],
+)
+def test_interpolate_rejects(rast, name, kwargs):
+    args = dict(attr=POS, rast=rast[0], tri=TRI)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=f"^{name}: "):
+        clraster.interpolate(**args)
+
+
+def test_context_rejects_bad_devices():
+    with pytest.raises(ValueError, match="^device: "):
+        clraster.Context(-1)
+    with pytest.raises(ValueError, match="^device: "):
+        clraster.Context(3.5)
+    with pytest.raises(clraster.Error, match="--device no-such-device-xyz: no device name matches"):
+        clraster.Context("no-such-device-xyz")
+    with pytest.raises(clraster.Error, match="no such device index"):
+        clraster.Context(999)
+
+
+def test_triangle_ids_rejects():
+    with pytest.raises(ValueError, match="^rast: "):
+        clraster.triangle_ids(np.zeros((2, 2, 3), np.float32))
+
+
+def test_garbage_in_rast_reads_as_background(rast):
+    garbage = rast[0].copy()
+    garbage[0, 0, 0, 3] = np.nan
+    garbage[0, 0, 1, 3] = -5.0
+    garbage[0, 0, 2, 3] = 1e30  # decodes to an id far beyond the triangles
+    out, _ = clraster.interpolate(POS, garbage, TRI)
+    assert (out[0, 0, :3] == 0).all()
+
+
+def test_extreme_positions_do_not_fail(ctx):
+    # Huge and tiny finite coordinates, inf and nan: culled or clipped as the
+    # kernels do, never an error or a non-finite output.
+    pos = np.array(
+        [[-3e38, -3e38, 0, 1], [3e38, -3e38, 0, 1], [0, 3e38, 0, 1],
+         [1e-30, 1e-30, 0, 1e-30], [2e-30, 1e-30, 0, 1e-30], [1e-30, 2e-30, 0, 1e-30],
+         [np.inf, 0, 0, 1], [0, np.nan, 0, 1], [0, 0, 0, 0]], np.float32)
+    tri = np.array([[0, 1, 2], [3, 4, 5], [6, 7, 8], [8, 8, 8]], np.int32)
+    rast, db = clraster.rasterize(ctx, pos, tri, (16, 16))
+    assert np.isfinite(rast[..., 3]).all()
+    assert set(np.unique(clraster.triangle_ids(rast))) <= {0, 1, 2}
+
+
+def test_non_contiguous_inputs_are_accepted(ctx):
+    pos = np.asfortranarray(POS)
+    tri = np.asfortranarray(TRI)
+    a, _ = clraster.rasterize(ctx, pos, tri, (8, 8))
+    b, _ = clraster.rasterize(ctx, POS, TRI, (8, 8))
+    assert np.array_equal(a, b)

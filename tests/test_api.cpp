@@ -1,0 +1,136 @@
+// test_api.cpp — the public C++ API (include/clraster/clraster.hpp) as a
+// program outside the library sees it (api_tests links only libclraster):
+// rasterize's ids against the scalar oracle exactly, its outputs' layout,
+// interpolate against the barycentric formula, the id encoding, the scene
+// level, and that bad arguments are clraster::Errors naming them.
+#include "reference_raster.h"
+
+#include <clraster/clraster.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+namespace {
+
+clraster::Context& context()
+{
+  static clraster::Context ctx(std::getenv("CLRASTER_TEST_DEVICE") ? std::getenv("CLRASTER_TEST_DEVICE") : "");
+  return ctx;
+}
+
+// count random clip-space triangles with w in [0.5, 3]; some cross the near
+// plane or reach beyond the guard band.
+void randomTriangles(uint32_t seed, size_t count, std::vector<float>& pos, std::vector<int32_t>& tri)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(-1.3f, 1.3f), depth(-1.2f, 0.9f), w(0.5f, 3.0f);
+  pos.clear();
+  tri.clear();
+  for (size_t v = 0; v < 3 * count; ++v) {
+    const float wv = w(rng);
+    const float scale = v % 17 == 0 ? 2000.0f : 1.0f;
+    pos.insert(pos.end(), {unit(rng) * wv * scale, unit(rng) * wv, depth(rng) * wv, wv});
+    tri.push_back(int32_t(v));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("api rasterize ids equal the oracle", "[api]")
+{
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    std::vector<float> pos;
+    std::vector<int32_t> tri;
+    randomTriangles(seed, 60, pos, tri);
+    const uint32_t w = 40 + 13 * seed, h = 70 - 9 * seed;
+    const clraster::Raster r =
+        clraster::rasterize(context(), pos.data(), pos.size() / 4, tri.data(), tri.size() / 3, w, h, true);
+    REQUIRE(r.rast.size() == size_t(w) * h * 4);
+    REQUIRE(r.db.size() == size_t(w) * h * 4);
+    ref::Options o;
+    o.width = w;
+    o.height = h;
+    const ref::Result expected = ref::rasterizeClip(pos, {tri.begin(), tri.end()}, o);
+    size_t covered = 0;
+    for (size_t p = 0; p < r.ids.size(); ++p) {
+      const uint32_t want = expected.triId[p] == ref::kNone ? 0u : expected.triId[p] + 1;
+      REQUIRE(r.ids[p] == want);
+      REQUIRE(clraster::decodeTriangleId(r.rast[4 * p + 3]) == want);
+      covered += want != 0;
+      if (!want) REQUIRE((r.rast[4 * p] == 0.0f && r.rast[4 * p + 1] == 0.0f && r.rast[4 * p + 2] == 0.0f));
+    }
+    REQUIRE(covered > size_t(w) * h / 4);
+  }
+}
+
+TEST_CASE("api interpolate follows the barycentric formula", "[api]")
+{
+  std::vector<float> pos;
+  std::vector<int32_t> tri;
+  randomTriangles(9, 30, pos, tri);
+  const size_t nv = pos.size() / 4;
+  const clraster::Raster r = clraster::rasterize(context(), pos.data(), nv, tri.data(), tri.size() / 3, 32, 24);
+  std::vector<float> attr(2 * nv);
+  for (size_t k = 0; k < attr.size(); ++k) attr[k] = float(k % 7) - 2.5f;
+  const std::vector<float> out = clraster::interpolate(context(), attr.data(), nv, 2, r, tri.data());
+  REQUIRE(out.size() == 32 * 24 * 2);
+  for (size_t p = 0; p < r.ids.size(); ++p)
+    for (size_t c = 0; c < 2; ++c) {
+      float want = 0.0f;
+      if (r.ids[p]) {
+        const int32_t* t = &tri[3 * (r.ids[p] - 1)];
+        const float u = r.rast[4 * p], v = r.rast[4 * p + 1];
+        want = u * attr[2 * t[0] + c] + v * attr[2 * t[1] + c] + (1.0f - u - v) * attr[2 * t[2] + c];
+      }
+      REQUIRE(out[2 * p + c] == want);  // the same float operations in the same order
+    }
+}
+
+TEST_CASE("api triangle id encoding is exact", "[api]")
+{
+  for (uint32_t id : {0u, 1u, 16777215u, 16777216u, 16777217u, 16777219u, 300000001u, 889192447u})
+    REQUIRE(clraster::decodeTriangleId(clraster::encodeTriangleId(id)) == id);
+  REQUIRE(clraster::encodeTriangleId(16777216u) == 16777216.0f);
+  REQUIRE(clraster::decodeTriangleId(std::nanf("")) == 0u);
+}
+
+TEST_CASE("api bad arguments are errors naming them", "[api]")
+{
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 3};
+  REQUIRE_THROWS_WITH(clraster::rasterize(context(), pos, 3, tri, 1, 8, 8), Catch::StartsWith("tri: vertex index 3"));
+  const int32_t good[] = {0, 1, 2};
+  REQUIRE_THROWS_WITH(clraster::rasterize(context(), pos, 3, good, 1, 0, 8), Catch::StartsWith("resolution"));
+  REQUIRE_THROWS_WITH(clraster::rasterize(context(), pos, 3, good, 1, 8, 16385), Catch::StartsWith("resolution"));
+  REQUIRE_THROWS_WITH(clraster::Context("no-such-device-xyz"), Catch::Contains("--device no-such-device-xyz"));
+  REQUIRE_THROWS_WITH(clraster::RenderOptions::parse({"--shade", "glossy"}), Catch::StartsWith("--shade: unknown"));
+  REQUIRE_THROWS_WITH(clraster::Scene::load("/nonexistent/model.obj"), Catch::Contains("/nonexistent/model.obj"));
+  clraster::Raster r = clraster::rasterize(context(), pos, 3, good, 1, 8, 8);
+  r.rast.pop_back();
+  const float attr[] = {0, 1, 2};
+  REQUIRE_THROWS_WITH(clraster::interpolate(context(), attr, 3, 1, r, good), Catch::StartsWith("raster: "));
+}
+
+TEST_CASE("api renderer draws the built in scene", "[api]")
+{
+  const clraster::Scene scene = clraster::Scene::builtin();
+  REQUIRE(scene.numTriangles() > 0);
+  clraster::Renderer renderer(context(), scene);
+  clraster::RenderOptions options = clraster::RenderOptions::parse({"--size", "64x48"});
+  options.set("--shade", "id");
+  clraster::FrameStats stats;
+  const clraster::Image image = renderer.render(options, &stats);
+  REQUIRE(image.width == 64);
+  REQUIRE(image.height == 48);
+  REQUIRE(stats.trianglesIn == scene.numTriangles());
+  size_t drawn = 0;
+  for (uint32_t px : image.rgba) {
+    const uint32_t id = px & 0xFFFFFFu;
+    REQUIRE(id <= scene.numTriangles());
+    drawn += id != 0;
+  }
+  REQUIRE(drawn > 64 * 48 / 10);
+}
