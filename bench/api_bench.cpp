@@ -19,7 +19,8 @@
 //                 memory, as clraster::rasterizeInto does after uploading;
 //   api_ms        clraster::rasterizeInto itself (index checks and upload
 //                 included), for reference.
-// Prints one JSON line with ratio = rasterize_ms / cli_ms.
+// Prints one JSON line with ratio = rasterize_ms / cli_ms and the median
+// device time of each stage of both (OpenCL profiling).
 #include "cli.h"
 #include "procedural.h"
 
@@ -28,6 +29,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <map>
 
 using namespace clr;
 
@@ -100,14 +102,21 @@ int main(int argc, char** argv)
     clraster::Context api(device);
     std::vector<float> rast(4 * pixels), apiRast(4 * pixels);
     ImageView image;
-    auto cliFrame = [&] { cli.render(cliSettings, image); };
+    std::map<std::string, std::vector<double>> cliStages, rasterStages;  // per stage, the timed frames'
+    bool timing = false;
+    auto keep = [&](const FrameStats& stats, std::map<std::string, std::vector<double>>& stages) {
+      for (const auto& [stage, ms] : stats.stageMs)
+        if (timing) stages[stage].push_back(ms);
+    };
+    auto cliFrame = [&] { keep(cli.render(cliSettings, image), cliStages); };
     auto rasterFrame = [&] {
       raster.beginFrame(rasterSettings);
       raster.setup();
       raster.bin();
       raster.raster();
-      raster.rastOutputs(false);
+      raster.rastOutputs(false, false);
       raster.readRastOutputs(rast.data(), nullptr, nullptr);
+      keep(raster.finishFrame(), rasterStages);
     };
     auto apiFrame = [&] {
       clraster::rasterizeInto(api, clip.data(), nv, tri.data(), nt, width, height, apiRast.data(), nullptr);
@@ -120,7 +129,9 @@ int main(int argc, char** argv)
     for (uint64_t r = 0; r < rounds; ++r) {
       const uint64_t n = frames / rounds + (r < frames % rounds ? 1 : 0);
       for (auto& [frame, ms] : turns) {
+        timing = false;
         frame();
+        timing = true;
         for (uint64_t f = 0; f < n; ++f) {
           const auto start = std::chrono::steady_clock::now();
           frame();
@@ -146,11 +157,19 @@ int main(int argc, char** argv)
           throw Error("ids differ at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")");
         covered += id != 0;
       }
+    auto stages = [](const std::map<std::string, std::vector<double>>& m) {
+      std::string out;
+      for (const auto& [stage, ms] : m)
+        out += (out.empty() ? "\"" : ",\"") + stage + "\":" + std::to_string(median(ms));
+      return "{" + out + "}";
+    };
     std::printf(
         "{\"device\":\"%s\",\"triangles\":%zu,\"width\":%u,\"height\":%u,\"view\":\"%s\",\"covered\":%llu,"
-        "\"frames\":%llu,\"cli_ms\":%.3f,\"rasterize_ms\":%.3f,\"api_ms\":%.3f,\"ratio\":%.3f}\n",
+        "\"frames\":%llu,\"cli_ms\":%.3f,\"rasterize_ms\":%.3f,\"api_ms\":%.3f,\"ratio\":%.3f,\"cli_stage_ms\":%s,"
+        "\"rasterize_stage_ms\":%s}\n",
         jsonEscape(cliContext.info.name).c_str(), nt, width, height, view.c_str(), (unsigned long long)covered,
-        (unsigned long long)frames, median(cliMs), median(rasterMs), median(apiMs), median(rasterMs) / median(cliMs));
+        (unsigned long long)frames, median(cliMs), median(rasterMs), median(apiMs), median(rasterMs) / median(cliMs),
+        stages(cliStages).c_str(), stages(rasterStages).c_str());
     return 0;
   });
 }

@@ -118,7 +118,7 @@ void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int
     pipeline.setup();
     pipeline.bin();
     pipeline.raster();
-    pipeline.rastOutputs(db != nullptr);
+    pipeline.rastOutputs(ids != nullptr, db != nullptr);
     pipeline.readRastOutputs(rast, ids, db);
   });
 }

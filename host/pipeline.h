@@ -202,10 +202,11 @@ class Pipeline {
   // the caller has checked against numVerts. A frame's mvp is then unused.
   void uploadClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris);
   // After raster of a frame that kept its visibility attributes: nvdiffrast's
-  // rasterize outputs (rast_outputs.cl), then their read into the caller's
-  // arrays of width·height float4s (rast, db; db may be null when derivatives
-  // is false) and uint32s (ids), bottom row first.
-  void rastOutputs(bool derivatives);
+  // rasterize outputs (rast_outputs.cl: rast always, the exact ids and the
+  // derivatives when asked), then their read into the caller's arrays of
+  // width·height float4s (rast, db) and uint32s (ids), bottom row first;
+  // null skips one.
+  void rastOutputs(bool ids, bool derivatives);
   void readRastOutputs(float* rast, uint32_t* ids, float* db) const;
 
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
@@ -405,7 +406,7 @@ class Pipeline {
   DeviceBuffer<float> aov_;
   DeviceBuffer<cl_float4> rastOut_, rastDb_;
   DeviceBuffer<uint32_t> rastIds_;
-  bool rastDbWritten_ = false;
+  bool rastIdsWritten_ = false, rastDbWritten_ = false;
 };
 
 }  // namespace clr

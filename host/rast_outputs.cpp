@@ -27,20 +27,21 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   params_.numTris = uint32_t(numTris);
 }
 
-void Pipeline::rastOutputs(bool derivatives)
+void Pipeline::rastOutputs(bool ids, bool derivatives)
 {
   if (!params_.visAttributes || !cl_.clipInput)
     throw Error("rastOutputs: needs a clip-input frame that kept its visibility attributes");
   const uint64_t n = uint64_t(params_.width) * params_.height;
   rastOut_.reserve(n, true);
-  rastIds_.reserve(n, true);
+  rastIds_.reserve(ids ? n : 1, true);
   rastDb_.reserve(derivatives ? n : 1, true);
+  rastIdsWritten_ = ids;
   rastDbWritten_ = derivatives;
   cl::Event event;
   cl::Kernel& kernel = extraKernel(rastOutputsKernel_, "rast_outputs");
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), tileSlot_.get(), visPlane(), rastOut_.get(),
-          rastIds_.get(), rastDb_.get(), derivatives ? 1u : 0u);
+          rastIds_.get(), rastDb_.get(), (ids ? 1u : 0u) | (derivatives ? 2u : 0u));  // CLR_RAST_OUT_*
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);
@@ -50,7 +51,8 @@ void Pipeline::rastOutputs(bool derivatives)
 void Pipeline::readRastOutputs(float* rast, uint32_t* ids, float* db) const
 {
   const uint64_t n = uint64_t(params_.width) * params_.height;
-  if (db && !rastDbWritten_) throw Error("readRastOutputs: the frame wrote no derivatives");
+  if ((db && !rastDbWritten_) || (ids && !rastIdsWritten_))
+    throw Error("readRastOutputs: the frame did not write the ids or derivatives asked for");
   // Non-blocking reads, then one wait: the in-order queue runs them after the kernel.
   if (rast) cl_.queue.enqueueReadBuffer(rastOut_.get(), CL_FALSE, 0, n * sizeof(cl_float4), rast);
   if (ids) cl_.queue.enqueueReadBuffer(rastIds_.get(), CL_FALSE, 0, n * sizeof(uint32_t), ids);

@@ -6,12 +6,16 @@
  * depth and barycentric planes) and writes, bottom row first:
  *  rast float4 (u, v, z/w, id): u and v the perspective-correct weights of
  *    input vertices 0 and 1 (vertex 2 weighs 1 − u − v), mapped through
- *    ClipBary and the back-face swap as aov.cl does; z/w = Σμz / Σμw over the
- *    input clip vertices; id = triangle index + 1 as nvdiffrast encodes it
+ *    ClipBary and the back-face swap as aov.cl does; z/w = 2d − 1 from the
+ *    window depth d = z/w · 0.5 + 0.5 that raster interpolated in screen
+ *    space and kept (float32 depth, setup.cl); id = triangle index + 1 as
+ *    nvdiffrast encodes it
  *    (exact float up to 2^24, above that the biased bit pattern
  *    0x4a800000 + id, which decodes exactly);
- *  ids uint: triangle index + 1, exact;
- *  db float4 (du/dX, du/dY, dv/dX, dv/dY) per pixel, when writeDb: with the
+ *  ids uint: triangle index + 1, exact, when `outputs` has
+ *    CLR_RAST_OUT_IDS;
+ *  db float4 (du/dX, du/dY, dv/dX, dv/dY) per pixel, when `outputs` has
+ *    CLR_RAST_OUT_DB (the only output that reads the positions): with the
  *    clip vertices p_i = (x_i, y_i, w_i) and s = (x_ndc, y_ndc, 1), k_i =
  *    (p_j × p_k)·s (i, j, k cyclic) and λ_i = k_i / Σk, so
  *    dλ_i/dx_ndc = (r_i.x − λ_i Σ r.x) / Σk with r_i = p_j × p_k, and
@@ -20,6 +24,9 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
+
+#define CLR_RAST_OUT_IDS 1u
+#define CLR_RAST_OUT_DB 2u
 
 /* nvdiffrast's triangle-id encoding (triidx_to_float). */
 CLR_INLINE float rast_id_float(uint id)
@@ -38,9 +45,9 @@ __kernel void rast_outputs(__constant FrameParams* params,
                            __global const uint* tileSlot,    // tiles + 1
                            uint visPlane,
                            __global float4* rast,  // width · height
-                           __global uint* ids,     // width · height
-                           __global float4* db,    // width · height when writeDb
-                           uint writeDb)
+                           __global uint* ids,     // width · height, with CLR_RAST_OUT_IDS
+                           __global float4* db,    // width · height, with CLR_RAST_OUT_DB
+                           uint outputs)
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   if (px >= params->width || py >= params->height) return;
@@ -52,17 +59,17 @@ __kernel void rast_outputs(__constant FrameParams* params,
   const uint index = empty ? CLR_NONE : vis_index_at(params, visIndex, v);
   if (index == CLR_NONE) {
     rast[p] = (float4)(0.0f);
-    ids[p] = 0u;
-    if (writeDb) db[p] = (float4)(0.0f);
+    if (outputs & CLR_RAST_OUT_IDS) ids[p] = 0u;
+    if (outputs & CLR_RAST_OUT_DB) db[p] = (float4)(0.0f);
     return;
   }
-  const TriSetup t = setup[index];
+  __global const TriSetup* t = &setup[index];
   const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
   // Step 2: perspective-correct weights of the setup vertices, then of the
   // input vertices (aov.cl, steps 2 and 3).
   const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
                       visAttr[2 * visPlane + v]};
-  const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
+  const float q[3] = {b[0] * t->invW[0], b[1] * t->invW[1], b[2] * t->invW[2]};
   const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
   const bool clipped = clipSlot != CLR_NOT_CLIPPED;
   const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
@@ -73,15 +80,13 @@ __kernel void rast_outputs(__constant FrameParams* params,
       const float w = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
       mu[j] += (q[i] * eyeDepth) * w;
     }
-  // Step 3: z/w from the input clip vertices, and the outputs.
+  // Step 3: the outputs.
+  rast[p] = (float4)(mu[0], mu[1], 2.0f * visAttr[v] - 1.0f, rast_id_float(triId + 1u));
+  if (outputs & CLR_RAST_OUT_IDS) ids[p] = triId + 1u;
+  if (!(outputs & CLR_RAST_OUT_DB)) return;
+  // Step 4: the pixel derivatives of u and v (the formula above).
   float4 c[3];
   for (int j = 0; j < 3; ++j) c[j] = vload4(indices[3 * triId + j], positions);
-  const float zw =
-      (mu[0] * c[0].z + mu[1] * c[1].z + mu[2] * c[2].z) / (mu[0] * c[0].w + mu[1] * c[1].w + mu[2] * c[2].w);
-  rast[p] = (float4)(mu[0], mu[1], zw, rast_id_float(triId + 1u));
-  ids[p] = triId + 1u;
-  if (!writeDb) return;
-  // Step 4: the pixel derivatives of u and v (the formula above).
   const float3 p0 = (float3)(c[0].x, c[0].y, c[0].w), p1 = (float3)(c[1].x, c[1].y, c[1].w),
                p2 = (float3)(c[2].x, c[2].y, c[2].w);
   const float3 r0 = cross(p1, p2), r1 = cross(p2, p0), r2 = cross(p0, p1);
