@@ -156,7 +156,7 @@ TEST_CASE("aa: hierarchical traversal gives the bounding-box scan's pixels with 
   CHECK(test::countDifferences(hierImage, bboxImage) == 0);
 }
 
-TEST_CASE("aa: perspective-correct interpolation matches the analytic (u, v); affine does not", "[aa][resolve]")
+TEST_CASE("aa: perspective-correct interpolation matches the analytic (u, v) and affine does not", "[aa][resolve]")
 {
   // A textured ground plane seen at a grazing angle: u runs across, v away
   // from the eye; (u, v) are affine in world space, as a texture is.
