@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdlib>
 #include <sstream>
 
@@ -153,25 +152,17 @@ int contextLanes(const cl::Device& device, int lanesOverride)
   return lanes;
 }
 
-ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead)
-    : compileAhead(ahead, selector, lanesOverride), info(selectDevice(selector))
+ClContext::ClContext(const std::string& selector, int lanesOverride) : info(selectDevice(selector))
 {
-  // Step 1: the work shape; a helper started for the selector (compileAhead,
-  // before the device was known) stays only where it helps.
+  // Step 1: the work shape, the queue and the frame program.
   lanes = contextLanes(info.device, lanesOverride);
-  compileAhead.deviceChosen(info, lanes);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   prefetch = isPocl(info);
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide);
-  // (A helper compiling kernels ahead repeats the build beside this one, and
-  // learns how long this one took.)
-  const auto buildStart = std::chrono::steady_clock::now();
   program = buildProgram(context, info.device, buildOptions_);
-  compileAhead.programBuilt(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count());
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests

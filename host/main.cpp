@@ -1,7 +1,5 @@
 // main.cpp — the clraster command line: `render` (one camera, or a views
-// file of many, views.h) and `devices`; and `__compile-ahead`, the helper
-// process a render starts to compile kernels beside it (compile_ahead.h),
-// which is not for users.
+// file of many, views.h) and `devices`.
 //
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
@@ -106,27 +104,13 @@ void warnAbout(const RenderArgs& args, const Mesh& mesh)
                  mesh.numTris());
 }
 
-// The frame-program kernels a helper compiles ahead (compile_ahead.h) for
-// these arguments' frames: the scan, and the resolve kernel the frame will
-// likely take (Pipeline::resolve decides, by resolveIsLean and the scene's
-// attributes, unknown here; a wrong guess costs only the head start). The
-// render compiles setup and raster itself meanwhile.
-CompileAheadRequest compileAheadFor(const RenderArgs& args)
-{
-  const uint32_t samples = args.aa.empty() || args.aa == "none" ? 1 : 0;  // 0: several, or --aa auto's choice
-  const bool lean = resolveIsLean(args.shadeMode, samples, args.interpMode, args.pointLightOn, 0);
-  return {"/proc/self/exe", {"scan_chunks", lean ? "resolve_lambert" : "resolve"}};
-}
-
-// The scene and the device context (ClContext: the compile-ahead helper's
-// start, the device's choice, the program's build) at once. A file gets its
-// quick checks first (checkSceneFile: most bad files fail there, before any
-// device work), then imports on a second thread while this one builds the
-// program, so the import (0.2-0.4 s for assimp's larger test models) no
-// longer waits for the build, nor the build for it. An import that fails is
-// reported rather than a device error, as when the scene loaded first; the
-// context is then dropped (its helper stopped) as the error unwinds. The
-// built-in scene is generated first: it takes milliseconds.
+// The scene and the device context (ClContext: the device's choice, the
+// program's build) at once. A file gets its quick checks first
+// (checkSceneFile: most bad files fail there, before any device work), then
+// imports on a second thread while this one builds the program, so neither
+// waits for the other. An import that fails is reported rather than a device
+// error, as when the scene loaded first; the context is then dropped as the
+// error unwinds. The built-in scene is generated first: it takes milliseconds.
 Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<ClContext>& cl)
 {
   Mesh mesh;
@@ -138,7 +122,7 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<ClContext>& cl
     importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath); });
   }
   try {
-    cl = std::make_unique<ClContext>(args.device, 0, compileAheadFor(args));
+    cl = std::make_unique<ClContext>(args.device);
   } catch (...) {
     if (importing.valid()) importing.get();  // the scene's error first (this waits for the import either way)
     throw;
@@ -302,7 +286,6 @@ int main(int argc, char** argv)
     }
     if (args[0] == "devices") return listDevicesCommand();
     if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
-    if (args[0] == "__compile-ahead") compileAheadCommand({args.begin() + 1, args.end()});
     throw Error("unknown command '" + args[0] + "' (render, devices)");
   });
 }

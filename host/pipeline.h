@@ -38,8 +38,7 @@ ScanChunks scanChunks(uint32_t n);
 cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
 
 // The work shapes of raster and resolve over tilesX × tilesY tiles, as
-// Pipeline launches them (and compileKernelsAhead, compile_ahead.h, whose
-// launches must match them for PoCL to reuse their code): raster one
+// Pipeline launches them: raster one
 // work-item per pixel sample in the GPU shape (lanes 1), per tile and sample
 // index in the CPU shape; resolve one work-item per row of lanes, a tile per
 // work-group, or per tile when a row of lanes spans the tile.

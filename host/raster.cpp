@@ -75,7 +75,6 @@ void Pipeline::raster()
   cl::Event event;
   setArgs(kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
           binEntries_.get(), visIndex_.get(), visAttr_.get(), paintRank_.get(), tileSlot_.get(), visPlane());
-  cl_.compileAhead.await("raster");  // when a helper compiles it (compile_ahead.h)
   const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("raster", event);

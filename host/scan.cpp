@@ -30,7 +30,6 @@ void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& 
   const ScanChunks c = scanChunks(n);
   partials.reserve((job.alsoNonZero ? 2 : 1) * (uint64_t(c.count) + 1));
   const cl::NDRange group(CLR_SCAN_GROUP(cl_.lanes));
-  cl_.compileAhead.await("scan_chunks");  // when a helper compiles it (compile_ahead.h)
   cl::Event reduceEvent, partialsEvent;
   setArgs(scanReduceKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
           counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_REDUCE, job.alsoNonZero, job.listing);

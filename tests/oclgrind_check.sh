@@ -16,7 +16,7 @@ binary="$1"
 lanes="$2"
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
-filter="[transform],[compile-ahead][launch],[setup],[scan],[raster]~[differential],[clip]~[differential]~[watertight],[resolve]~[prefetch],[shade]~[aa],[texture]~[cli],[lines],[aov]~[cli]"
+filter="[transform],[setup],[scan],[raster]~[differential],[clip]~[differential]~[watertight],[resolve]~[prefetch],[shade]~[aa],[texture]~[cli],[lines],[aov]~[cli]"
 [[ "$lanes" == 16 ]] && filter="$filter,[bin]"
 CLRASTER_LANES="$lanes" oclgrind --data-races --log "$log" "$binary" "$filter"
 if [[ -s "$log" ]]; then
