@@ -108,11 +108,8 @@ std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide)
   options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
   // Why exactDivide matters: device.h.
   if (exactDivide) options << " -cl-fp32-correctly-rounded-divide-sqrt";
-  // Raster fetches 12 bin entries ahead: measured 10-20% off raster on the
-  // 2-core development machine against no prefetch (Suzanne and a
-  // 1M-triangle sphere at 1080p), and 13-20% more against 4 entries (24 gave
-  // nothing more); resolve_lambert's row-ahead fetches took 40% off its time
-  // on the sphere. Other drivers' compilers need not know the clang builtin.
+  // Raster fetches 12 bin entries ahead (the distance is a bench/ab.sh choice); PoCL only: other drivers'
+  // compilers need not know the clang builtin.
   if (prefetch) options << " -D CLR_PREFETCH=12";
   return options.str();
 }

@@ -79,7 +79,7 @@ class ProgressBar {
   ProgressBar& operator=(const ProgressBar&) = delete;
   // Whether stderr is a terminal (the bar's default).
   static bool stderrIsTerminal();
-  void update(size_t done);  // thread-safe; redraws at most every 100 ms
+  void update(size_t done);  // thread-safe; redraws at most 10 times a second
   void finish();             // final redraw and newline, once drawn
 
  private:

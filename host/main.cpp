@@ -28,10 +28,9 @@ using namespace clr;
 namespace {
 
 // Ends a successful render once its outputs are written, flushed and renamed
-// into place, without tearing down the device context and scene. On a cold
-// start PoCL would free the LLVM modules it compiled the kernels with: about
-// 95 ms from the PNG's rename to the process's exit on the development
-// machine (strace; now 1 ms), of a 1.5-1.7 s `clraster render`. Nothing in
+// into place, without tearing down the device context and scene: on a cold
+// start PoCL would free the LLVM modules it compiled the kernels with, a
+// noticeable part of a short render. Nothing in
 // that teardown is needed: PoCL's kernel cache files are complete by each
 // kernel's first launch. (The tests keep their context to the end likewise:
 // tests/sanitize.sh.) Standard output carries --stats, so a failed flush is
@@ -104,13 +103,9 @@ void warnAbout(const RenderArgs& args, const Mesh& mesh)
                  mesh.numTris());
 }
 
-// The scene and the device context (ClContext: the device's choice, the
-// program's build) at once. A file gets its quick checks first
-// (checkSceneFile: most bad files fail there, before any device work), then
-// imports on a second thread while this one builds the program, so neither
-// waits for the other. An import that fails is reported rather than a device
-// error, as when the scene loaded first; the context is then dropped as the
-// error unwinds. The built-in scene is generated first: it takes milliseconds.
+// The scene and the device context at once: a file's quick checks first
+// (checkSceneFile), then its import on a second thread while this one builds
+// the program. An import error is reported in preference to a device error.
 Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<ClContext>& cl)
 {
   Mesh mesh;
@@ -166,7 +161,8 @@ int renderViewsCommand(const RenderArgs& args)
   pipeline.uploadScene(mesh);
 
   // Step 3: frames, rendered here and written by the writer thread. frame_ms
-  // is camera upload to image in host memory, as for a single view.
+  // is camera set-up to the image copied into host memory (the writer keeps it),
+  // where a single view's ends at the image mapped where the device left it.
   const double startupMs = msSince(commandStart);
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> frameMs, writeMs;

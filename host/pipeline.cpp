@@ -282,9 +282,7 @@ float Pipeline::clusterMargin(const glm::mat4& mvp) const
   // its own, so this only chooses when to run it: when a corner of the
   // scene's box lies behind the eye, or the box's projection covers more
   // than twice the view (NDC area 8), much of the scene may lie beside the
-  // view. Where less can, the test costs more than it saves (the count pass
-  // on yxa_1 filling 1080p, its box reaching just past the view, 1.18 ->
-  // 1.26 ms; six alternated pairs).
+  // view. Where less can, the test costs more than it saves (bench/ab.sh).
   if (sceneMin_.x > sceneMax_.x) return 0.0f;
   bool behind = false;
   glm::vec2 lo(INFINITY), hi(-INFINITY);

@@ -7,8 +7,7 @@
 // the two). The 64-bit total is read back, so callers size buffers exactly
 // and detect totals that do not fit in 32 bits; or it is copied among the
 // frame's counters, so that several scans and setup's counters come back
-// with one read (a read of its own cost the device 30-50 us of idle time
-// each on an NVIDIA H100).
+// with one read (each read of its own leaves the device idle).
 #include "pipeline.h"
 
 namespace clr {
