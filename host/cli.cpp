@@ -15,6 +15,15 @@
 
 namespace clr {
 
+namespace {
+const char* const kTraversalNames[] = {"bbox", "hierarchical", "spans", "spans-float"};  // by CLR_TRAVERSAL_*
+}  // namespace
+
+const char* traversalName(uint32_t traversal)
+{
+  return traversal < 4 ? kTraversalNames[traversal] : "unknown";
+}
+
 const char* usageText()
 {
   return "usage:\n"
@@ -25,7 +34,7 @@ const char* usageText()
          "                  [--cull none|back]\n"
          "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
-         "                  [--traversal bbox|hierarchical] [--quality auto]\n"
+         "                  [--traversal bbox|hierarchical|spans|spans-float] [--quality auto]\n"
          "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
          "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
          "                  [--aov PATH.exr] [--device SEL] [--frames N] [--stats]\n"
@@ -198,7 +207,8 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--interp") {
       r.interpMode = parseChoice(a, flagValue(args, i), {"perspective", "affine"});
     } else if (a == "--traversal") {
-      r.traversal = parseChoice(a, flagValue(args, i), {"bbox", "hierarchical"});
+      r.traversal = parseChoice(a, flagValue(args, i),
+                                {kTraversalNames[0], kTraversalNames[1], kTraversalNames[2], kTraversalNames[3]});
     } else if (a == "--depth") {
       const uint32_t choice = parseChoice(a, flagValue(args, i), {"float32", "unorm24", "reversed", "auto"});
       r.depthAuto = choice == 3;

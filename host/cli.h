@@ -60,6 +60,9 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args);
 
 const char* usageText();
 
+// The --traversal name of a CLR_TRAVERSAL_* value (for --stats).
+const char* traversalName(uint32_t traversal);
+
 // The value after flag args[i], moving i onto it; a clr::Error naming the
 // flag when it is the last argument. Every parse loop of the project uses it.
 const std::string& flagValue(const std::vector<std::string>& args, size_t& i);

@@ -83,9 +83,9 @@ void printStats(const RenderArgs& args, const ClContext& cl, const Pipeline& pip
       (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries,
       pipeline.deviceBytes(), aaModeName(settings.samples, settings.shadeEverySample).c_str(), settings.samples,
       pipeline.bytesPerPixel(), settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
-      settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective",
-      settings.traversal == CLR_TRAVERSAL_HIERARCHICAL ? "hierarchical" : "bbox", depthModeName(depth.mode),
-      jsonEscape(depth.reason).c_str(), settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer",
+      settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective", traversalName(settings.traversal),
+      depthModeName(depth.mode), jsonEscape(depth.reason).c_str(),
+      settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer",
       autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
 }
 

@@ -65,8 +65,10 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
     p.sampleMinY = std::min(p.sampleMinY, p.sampleY[k]);
     p.sampleMaxY = std::max(p.sampleMaxY, p.sampleY[k]);
   }
-  if (s.edgeMode > CLR_EDGES_FLOAT || s.interpMode > CLR_INTERP_AFFINE || s.traversal > CLR_TRAVERSAL_HIERARCHICAL)
+  if (s.edgeMode > CLR_EDGES_FLOAT || s.interpMode > CLR_INTERP_AFFINE || s.traversal > CLR_TRAVERSAL_SPANS_FLOAT)
     throw Error("unknown edge, interpolation or traversal method");
+  if (s.edgeMode == CLR_EDGES_FLOAT && s.traversal >= CLR_TRAVERSAL_SPANS)
+    throw Error("float edges and span traversal each decide coverage: use one of them");
   p.edgeMode = s.edgeMode;
   p.interpMode = s.interpMode;
   p.traversal = s.traversal;
@@ -76,10 +78,12 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.visibility = s.visibility;
   // Tiny triangles that cover no sample are culled in setup only where no
   // reader could tell: one sample (the test knows one sample position),
-  // fixed edges (raster's own integers) and no wireframe (which draws the
-  // setup triangles' edges, covered or not).
-  p.cullSampleFree =
-      s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED && s.wireframe == CLR_WIREFRAME_OFF ? 1u : 0u;
+  // exact coverage (raster's own integers: not float edges or the float
+  // walk) and no wireframe (which draws the setup triangles' edges).
+  p.cullSampleFree = s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED &&
+                             s.traversal != CLR_TRAVERSAL_SPANS_FLOAT && s.wireframe == CLR_WIREFRAME_OFF
+                         ? 1u
+                         : 0u;
   // The depth and barycentric planes of the visibility buffer, only for the
   // frames whose readers need them (shared.h): lines test against the depth
   // plane, and resolve recomputes only the fixed edges' barycentrics.

@@ -354,8 +354,8 @@ class Pipeline {
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
       scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
-      linesBinFillKernel_, linesDrawKernel_, aovKernel_;
+      rasterFloatKernel_, rasterSpansKernel_, rasterSpansFloatKernel_, resolveKernel_, resolveLambertKernel_,
+      linesFromSetupKernel_, linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

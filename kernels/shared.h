@@ -129,6 +129,8 @@ typedef uint32_t uint;
 /* FrameParams.traversal: which tiles and samples a triangle is tested on. */
 #define CLR_TRAVERSAL_BBOX 0u         /* every tile and row of its bounding box */
 #define CLR_TRAVERSAL_HIERARCHICAL 1u /* tiles outside an edge rejected, tiles inside all edges accepted */
+#define CLR_TRAVERSAL_SPANS 2u        /* each row's first and last sample from the fixed edges: exact */
+#define CLR_TRAVERSAL_SPANS_FLOAT 3u  /* the classic float edge walk of the notes: rounds, cracks */
 
 /* FrameParams.depthMode: the depth buffer's format and compare; every mode keeps the earlier triangle on a tie. */
 #define CLR_DEPTH_FLOAT32 0u  /* window z = z_ndc/2 + 1/2 in [0, 1], LESS, clear 1 */
