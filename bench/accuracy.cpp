@@ -134,11 +134,10 @@ Scene meshScene(const std::string& name, Mesh mesh, uint32_t width, uint32_t hei
   s.name = name;
   s.mesh = std::move(mesh);
   const Camera camera = frameCamera(CameraArgs{}, meshBounds(s.mesh));
-  const FrameSettings f = camera.frameSettings(width, height, CLR_SHADE_LAMBERT);
-  s.mvp = f.mvp;
-  s.lightDir = f.lightDir;
-  s.zNear = f.zNear;
-  s.zFar = f.zFar;
+  s.mvp = camera.viewProjection(width, height);
+  s.lightDir = camera.lightDirection();
+  s.zNear = camera.zNear;
+  s.zFar = camera.zFar;
   return s;
 }
 

@@ -72,6 +72,7 @@
 #include "cli.h"
 #include "cl.h"
 #include "device.h"
+#include "frame_settings.h"
 #include "image_io.h"
 #include "pipeline.h"
 #include "scene.h"
@@ -432,7 +433,9 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode);
+  RenderArgs frameArgs;  // the CLI's defaults, but the shading
+  frameArgs.shadeMode = args.shadeMode;
+  const FrameSettings settings = makeFrameSettings(frameArgs, camera, args.width, args.height, meshBounds(mesh));
   ImageView view;
   pipeline.render(settings, view);  // the first frame: kernel code generation
   std::printf("ready\n");
@@ -479,7 +482,7 @@ int run(const Args& args)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
+  const FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
   ClrasterRun clr;
   clr.device = cl.info.name;

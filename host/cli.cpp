@@ -102,36 +102,6 @@ void takeScenePath(const std::string& arg, std::string& scenePath)
   scenePath = arg;
 }
 
-void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius)
-{
-  settings.texFilter = args.texFilter;
-  settings.pointLightOn = args.pointLightOn;
-  settings.pointLight = args.pointLight;
-  settings.pointLightRange = args.pointLightRange.value_or(sceneRadius > 0.0f ? sceneRadius : 1.0f);
-  if (args.aa != "auto") {
-    const AaMode& mode = findAaMode(args.aa.empty() ? "none" : args.aa);
-    settings.samples = mode.samples;
-    settings.shadeEverySample = mode.shadeEverySample;
-  }
-  settings.edgeMode = args.edgeMode;
-  settings.interpMode = args.interpMode;
-  settings.traversal = args.traversal;
-  settings.visibility = args.visibility;
-  settings.wireframe = args.wireframe;
-  settings.lineMethod = args.lineMethod;
-  settings.lineWidth = args.lineWidth;
-}
-
-DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera)
-{
-  // --quality auto chooses the depth format too, unless --depth names one.
-  if (args.depthAuto || (args.qualityAuto && !args.depthGiven)) return chooseDepthFormat(camera.zNear, camera.zFar);
-  DepthChoice c;
-  c.mode = args.depthMode;
-  c.reason = "--depth";
-  return c;
-}
-
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
 {
   errno = 0;

@@ -47,14 +47,6 @@ struct RenderArgs {
   std::string aovPath;  // --aov PATH.exr: the visibility-buffer outputs (aov.h)
 };
 
-// Copies the chosen methods (not "auto"), the texture filter and the point
-// light into a frame's settings. sceneRadius: the point light's range when
-// --light-point gives none.
-void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius = 1.0f);
-
-// The depth format of a camera: --depth as given, or the auto rule (depth.h).
-DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera);
-
 // args: everything after "render".
 RenderArgs parseRenderArgs(const std::vector<std::string>& args);
 

@@ -7,6 +7,7 @@
 #include "aov.h"
 #include "cli.h"
 #include "device.h"
+#include "frame_settings.h"
 #include "frame_writer.h"
 #include "image_io.h"
 #include "pipeline.h"
@@ -127,13 +128,6 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<ClContext>& cl
   return mesh;
 }
 
-// Half the bounding box diagonal: the point light's default range.
-float sceneRadius(const Mesh& mesh)
-{
-  const Bounds b = meshBounds(mesh);
-  return b.empty ? 1.0f : 0.5f * glm::length(b.max - b.min);
-}
-
 // `render --views`: one scene upload, then the shard's views in order, each
 // image handed to the writer thread while the next one renders.
 int renderViewsCommand(const RenderArgs& args)
@@ -154,7 +148,8 @@ int renderViewsCommand(const RenderArgs& args)
   std::unique_ptr<ClContext> context;
   const Mesh mesh = loadSceneDuringBuild(args, context);
   ClContext& cl = *context;
-  const std::vector<Camera> cameras = frameViews(args.viewsPath, views, meshBounds(mesh));
+  const Bounds bounds = meshBounds(mesh);
+  const std::vector<Camera> cameras = frameViews(args.viewsPath, views, bounds);
 
   // Step 2: scene upload, once.
   Pipeline pipeline(cl);
@@ -175,9 +170,7 @@ int renderViewsCommand(const RenderArgs& args)
     for (size_t v : selected) {
       const auto frameStart = std::chrono::steady_clock::now();
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
-      FrameSettings settings = cameras[v].frameSettings(frame.width, frame.height, args.shadeMode, args.cullBack,
-                                                        chooseDepth(args, cameras[v]).mode);
-      applyMethods(args, settings, sceneRadius(mesh));
+      FrameSettings settings = makeFrameSettings(args, cameras[v], frame.width, frame.height, bounds);
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
         chosen = settings;
@@ -226,15 +219,14 @@ int renderCommand(const std::vector<std::string>& argList)
   std::unique_ptr<ClContext> context;
   const Mesh mesh = loadSceneDuringBuild(args, context);
   ClContext& cl = *context;
-  const Camera camera = frameCamera(args.camera, meshBounds(mesh));
+  const Bounds bounds = meshBounds(mesh);
+  const Camera camera = frameCamera(args.camera, bounds);
 
   // Step 2: scene upload (not part of the frame time).
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const DepthChoice depth = chooseDepth(args, camera);
-  FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
-  applyMethods(args, settings, sceneRadius(mesh));
-  settings.keepVisAttributes = !args.aovPath.empty();  // the AOVs read the depth and barycentric planes
+  DepthChoice depth;
+  FrameSettings settings = makeFrameSettings(args, camera, args.width, args.height, bounds, &depth);
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)
