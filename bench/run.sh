@@ -39,8 +39,8 @@
 # BENCH_COMMIT, when set, is the commit the results name. Each case times
 # llvmpipe twice: lighting per pixel as clraster does (the ratio), and per
 # vertex, the three renderers taking turns in four rounds (bench_suite.cpp).
-# Took 94-105 s on the 2-core development machine (well under the suite's 15-minute
-# budget); do not run it beside other heavy jobs if the numbers matter. Any
+# It stays well under the suite's 15-minute budget; do not run it beside
+# other heavy jobs if the numbers matter. Any
 # failure stops the suite with a message and a non-zero exit, leaving
 # earlier results in place.
 set -euo pipefail
@@ -60,11 +60,9 @@ warmup="${WARMUP:-3}"
 frames="${FRAMES:-20}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
 # PoCL's worker threads pinned one per core (POCL_AFFINITY, unless set):
-# unpinned, in about one process in five the scheduler left both workers on
-# one core for the first frames, and a case's median came out at one core's
-# speed (raster on the IFC house at 1080p 4.1 ms against 2.1; 7 of 36
-# twenty-frame runs, none of 36 pinned). Mesa has no such setting for
-# llvmpipe's threads.
+# unpinned, the scheduler can leave both workers on one core for the first
+# frames, and a case's median then comes out at one core's speed. Mesa has no
+# such setting for llvmpipe's threads.
 export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 export POCL_CACHE_DIR="$PWD/build/pocl-cache"
 out_dir="${BENCH_OUT:-docs/bench}"

@@ -3,18 +3,14 @@
 //   clraster_stability coords [--size WxH] [--bands N] [--seeds N] [--reach PX|guard] [--csv FILE]
 //   clraster_stability load [--tris N] [--fullscreen N] [--size WxH]
 //
-// coords renders a band mesh (tests/stability_scenes.h: a shared-edge mesh
-// whose vertices lie `reach` pixels from the viewport's centre) at growing
-// reach with fixed-point and float edge functions, counts cracked pixels
-// (holes and double hits, from the kernels' own coverage) and writes one CSV
-// row per magnitude and method. Reaches past the guard band (fixed.h) are
-// clipped to it. --reach renders one reach only ("guard": the largest
-// inside the guard band), for one-off checks of large viewports. load renders N small triangles inside one tile and M
-// triangles that each cover the whole viewport, and prints one JSON line
-// per scene with the frame time, the bin entries against the expected
-// count, the pixels that differ from the oracle (one tile) or from the
-// nearest triangle (full screen) and the device memory. Times are wall-clock on whatever else the
-// machine runs; the counts are exact.
+// coords renders a band mesh (tests/stability_scenes.h: a shared-edge mesh whose vertices lie `reach` pixels from the
+// viewport's centre) at growing reach with fixed-point and float edge functions, counts cracked pixels (holes and
+// double hits, from the kernels' own coverage) and writes one CSV row per magnitude and method. Reaches past the guard
+// band (fixed.h) are clipped to it. --reach renders one reach only ("guard": the largest inside the guard band), for
+// one-off checks of large viewports. load renders N small triangles inside one tile and M triangles that each cover the
+// whole viewport, and prints one JSON line per scene with the frame time, the bin entries against the expected count,
+// the pixels that differ from the oracle (one tile) or from the nearest triangle (full screen) and the device memory.
+// Times are wall-clock on whatever else the machine runs; the counts are exact.
 #include "cli.h"
 #include "device.h"
 #include "pipeline.h"

@@ -1,23 +1,19 @@
 #!/usr/bin/env bash
-# stability.sh — where the methods fail: the coordinate-magnitude chart and
-# the load cases, on a Debian 12 machine, as root (it installs gnuplot-nox
-# when missing).
+# stability.sh — where the methods fail: the coordinate-magnitude chart and the load cases, on a Debian 12
+# machine, as root (it installs gnuplot-nox when missing).
 #
 #   bash bench/stability.sh [coords] [load]      (both when none is named)
 #
-# coords: clraster_stability coords renders a shared-edge band mesh
-# (tests/stability_scenes.h) at 512x512 with 64 bands and 3 seeds, at reaches
-# from the smallest that covers the viewport to the guard band and on to
-# 2^24 px (clipped), with fixed-point and float edge functions, and counts
-# cracked pixels (holes and double hits). About 10 s. Writes, replacing
-# earlier results:
+# coords: clraster_stability coords renders a shared-edge band mesh (tests/stability_scenes.h) at 512x512 with
+# 64 bands and 3 seeds, at reaches from the smallest that covers the viewport to the guard band and on to 2^24
+# px (clipped), with fixed-point and float edge functions, and counts cracked pixels (holes and double hits).
+# About 10 s. Writes, replacing earlier results:
 #   docs/bench/stability_coords.csv  one row per reach and method
 #   docs/bench/stability_coords.png  cracked pixels against magnitude
-# load: 10 million triangles in one 16x16 tile and 4000 full-screen
-# triangles at 1920x1080; one JSON line each (bin entries against the
-# expected count, pixels differing from the oracle, device bytes, frame time)
-# to docs/bench/stability_load.jsonl. About 45 s and 4 GB of memory.
-# Environment: TRIS (default 10000000), FULLSCREEN (default 4000).
+# load: 10 million triangles in one 16x16 tile and 4000 full-screen triangles at 1920x1080; one JSON line each
+# (bin entries against the expected count, pixels differing from the oracle, device bytes, frame time) to
+# docs/bench/stability_load.jsonl. About 45 s and 4 GB of memory. Environment: TRIS (default 10000000),
+# FULLSCREEN (default 4000).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 parts=("$@")
