@@ -1,5 +1,6 @@
 // main.cpp — the clraster command line: `render` (one camera, or a views
-// file of many, views.h) and `devices`; and `__compile-ahead`, the helper
+// file of many, views.h), `info` (info.h), `devices` and `help` (every
+// command also answers --help); and `__compile-ahead`, the helper
 // process a render starts to compile kernels beside it (compile_ahead.h),
 // which is not for users.
 //
@@ -11,6 +12,7 @@
 #include "device.h"
 #include "frame_writer.h"
 #include "image_io.h"
+#include "info.h"
 #include "pipeline.h"
 #include "quality.h"
 #include "views.h"
@@ -241,7 +243,7 @@ int renderCommand(const std::vector<std::string>& argList)
   const RenderArgs args = parseRenderArgs(argList);
   if (!args.viewsPath.empty()) return renderViewsCommand(args);
   checkCameraArgs(args.camera);
-  checkWritable(args.outPath);
+  if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   std::unique_ptr<ClContext> context;
   const Mesh mesh = loadSceneDuringBuild(args, context);
@@ -284,7 +286,7 @@ int renderCommand(const std::vector<std::string>& argList)
   // Step 4: output.
   std::vector<float> aov;  // --aov: the last frame's visibility buffer (aov.h)
   if (!args.aovPath.empty()) pipeline.aov(), aov = pipeline.readAov();
-  writePng(args.outPath, image.width, image.height, image.pixels);
+  if (!args.outPath.empty()) writePng(args.outPath, image.width, image.height, image.pixels);
   if (!args.aovPath.empty()) writeAovExr(args.aovPath, args.width, args.height, aov);
   if (args.stats) printStats(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames);
   exitAfterOutput();
@@ -300,9 +302,18 @@ int main(int argc, char** argv)
       std::fputs(usageText(), args.empty() ? stderr : stdout);
       return args.empty() ? 1 : 0;
     }
-    if (args[0] == "devices") return listDevicesCommand();
-    if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if ((args[0] == "devices" || args[0] == "render" || args[0] == "info") && wantsHelp(rest)) {
+      std::fputs(usageText(), stdout);
+      return 0;
+    }
+    if (args[0] == "devices") {
+      if (!rest.empty()) throw Error("devices: unexpected argument '" + rest[0] + "'");
+      return listDevicesCommand();
+    }
+    if (args[0] == "render") return renderCommand(rest);
+    if (args[0] == "info") return infoCommand(rest);
     if (args[0] == "__compile-ahead") compileAheadCommand({args.begin() + 1, args.end()});
-    throw Error("unknown command '" + args[0] + "' (render, devices)");
+    throw Error("unknown command '" + args[0] + "' (render, info, devices, help)");
   });
 }
