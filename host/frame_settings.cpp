@@ -50,6 +50,7 @@ FrameSettings makeFrameSettings(const RenderArgs& args, const Camera& camera, ui
   s.wireframe = args.wireframe;
   s.lineMethod = args.lineMethod;
   s.lineWidth = args.lineWidth;
+  s.pointSize = args.pointSize;
   s.keepVisAttributes = !args.aovPath.empty();  // the AOVs read the depth and barycentric planes
   return s;
 }

@@ -1,5 +1,6 @@
 // main.cpp — the clraster command line: `render` (one camera, or a views
-// file of many, views.h) and `devices`.
+// file of many, views.h), `info` (info.h), `devices` and `help` (every
+// command also answers --help).
 //
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
@@ -10,6 +11,7 @@
 #include "frame_settings.h"
 #include "frame_writer.h"
 #include "image_io.h"
+#include "info.h"
 #include "pipeline.h"
 #include "quality.h"
 #include "views.h"
@@ -214,7 +216,7 @@ int renderCommand(const std::vector<std::string>& argList)
   const RenderArgs args = parseRenderArgs(argList);
   if (!args.viewsPath.empty()) return renderViewsCommand(args);
   checkCameraArgs(args.camera);
-  checkWritable(args.outPath);
+  if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   std::unique_ptr<ClContext> context;
   const Mesh mesh = loadSceneDuringBuild(args, context);
@@ -256,7 +258,7 @@ int renderCommand(const std::vector<std::string>& argList)
   // Step 4: output.
   std::vector<float> aov;  // --aov: the last frame's visibility buffer (aov.h)
   if (!args.aovPath.empty()) pipeline.aov(), aov = pipeline.readAov();
-  writePng(args.outPath, image.width, image.height, image.pixels);
+  if (!args.outPath.empty()) writePng(args.outPath, image.width, image.height, image.pixels);
   if (!args.aovPath.empty()) writeAovExr(args.aovPath, args.width, args.height, aov);
   if (args.stats) printStats(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames);
   exitAfterOutput();
@@ -272,8 +274,17 @@ int main(int argc, char** argv)
       std::fputs(usageText(), args.empty() ? stderr : stdout);
       return args.empty() ? 1 : 0;
     }
-    if (args[0] == "devices") return listDevicesCommand();
-    if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
-    throw Error("unknown command '" + args[0] + "' (render, devices)");
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if ((args[0] == "devices" || args[0] == "render" || args[0] == "info") && wantsHelp(rest)) {
+      std::fputs(usageText(), stdout);
+      return 0;
+    }
+    if (args[0] == "devices") {
+      if (!rest.empty()) throw Error("devices: unexpected argument '" + rest[0] + "'");
+      return listDevicesCommand();
+    }
+    if (args[0] == "render") return renderCommand(rest);
+    if (args[0] == "info") return infoCommand(rest);
+    throw Error("unknown command '" + args[0] + "' (render, info, devices, help)");
   });
 }

@@ -192,6 +192,10 @@ void Pipeline::uploadScene(const Mesh& mesh)
     throw Error("scene's triangle materials do not match its triangles");
   for (uint32_t m : mesh.triMaterial)
     if (m >= mesh.materials.size()) throw Error("scene's triangle material " + std::to_string(m) + " out of range");
+  for (uint32_t v : mesh.lines)
+    if (v >= mesh.numVerts()) throw Error("scene's line vertex " + std::to_string(v) + " out of range");
+  for (uint32_t v : mesh.points)
+    if (v >= mesh.numVerts()) throw Error("scene's point vertex " + std::to_string(v) + " out of range");
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
   // Step 2: what every mode reads, now; the rest when a frame reads it.
@@ -316,6 +320,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   unmapImage();  // kernels must not write a mapped buffer
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
   params_.sceneFlags = bindAttributes(settings);
+  if (!scene_.lines.empty() || !scene_.points.empty()) params_.visAttributes = 1;  // their depth test reads it
   params_.clusterMargin = clusterMargin(settings.mvp);
   settings_ = settings;
   events_.clear();
@@ -333,6 +338,7 @@ void Pipeline::runStages(const FrameSettings& settings)
   raster();
   resolve();
   if (settings.wireframe != CLR_WIREFRAME_OFF) lines();
+  if (!scene_.lines.empty() || !scene_.points.empty()) filePrimitives();
 }
 
 FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
