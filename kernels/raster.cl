@@ -144,12 +144,33 @@ CLR_INLINE void raster_depth_test(CLR_RECORD_SPACE const TriSetup* t, uint s, in
  * firstSx + j·ONE, when N − D·j > 0 with N = E(lane 0) + bias and D = dy·ONE:
  * a rising edge (dy > 0) ends the span at floor((N − 1) / D), a falling one
  * starts it at floor(−N / |D|) + 1, a level one holds the row or not
- * (N > 0). u is that numerator, stepped by ±dx·ONE per row. */
+ * (N > 0, as u >= 0 with d = 1). The numerator u changes by ±dx·ONE per
+ * row, so the quotient q = floor(u / d) and remainder r are stepped
+ * exactly, as a DDA: q += floor(step / d), r += step mod d, and a carry
+ * when r reaches d. */
 typedef struct Spans {
-  long4 u, step, d;       // d = |dy|·ONE, 1 for a level edge
+  long4 q, r, d;          // d = |dy|·ONE, 1 for a level edge
+  long4 dq, dr;           // the row step's quotient and remainder
   long4 rising, falling;  // masks
-  float4 inverse;         // 1 / d
 } Spans;
+
+/* q = floor(a / d) and r = a − q·d for d > 0: a float estimate and one
+ * exact correction where the quotient is below 2^20 (the estimate's error
+ * is then below 1), else the integer division. */
+CLR_INLINE void spans_divide(long4 a, long4 d, long4* q, long4* r)
+{
+  const float4 estimate = floor(convert_float4(a) / convert_float4(d));
+  if (any(fabs(estimate) > 0x1p20f)) {
+    *q = a / d;  // truncated: one less below zero where inexact
+    *q += (*q * d != a) & (a < 0);
+  } else {
+    *q = convert_long4(estimate);
+  }
+  *r = a - *q * d;
+  const long4 low = *r < 0, high = *r >= d;  // −1 where the estimate is one too large, too small
+  *q += low - high;
+  *r += (d & low) - (d & high);
+}
 
 CLR_INLINE Spans spans_begin(CLR_RECORD_SPACE const TriSetup* t, int firstSx, int firstSy)
 {
@@ -157,36 +178,38 @@ CLR_INLINE Spans spans_begin(CLR_RECORD_SPACE const TriSetup* t, int firstSx, in
   const int4 bx = (int4)(t->x[2], t->x[0], t->x[1], 0), by = (int4)(t->y[2], t->y[0], t->y[1], 0);
   const int4 dx = bx - ax, dy = by - ay;
   const long4 e = convert_long4(dx) * convert_long4(firstSy - ay) - convert_long4(dy) * convert_long4(firstSx - ax);
-  const long4 n = e - convert_long4(CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by));  // the mask is −1 where it holds
-  const long4 step = convert_long4(dx) * CLR_FIXED_ONE;
+  long4 n = e - convert_long4(CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by));  // the mask is −1 where it holds
+  long4 step = convert_long4(dx) * CLR_FIXED_ONE;
+  n.w = 1;  // lane w: a level edge that holds every row
+  step.w = 0;
   Spans sp;
   sp.rising = convert_long4(dy > 0);
   sp.falling = convert_long4(dy < 0);
   sp.d = select((long4)1, convert_long4(abs(dy)) * CLR_FIXED_ONE, sp.rising | sp.falling);
-  sp.u = select(n - 1, -n, sp.falling);
-  sp.step = select(step, -step, sp.falling);
-  sp.u.w = 0;
-  sp.step.w = 0;
-  sp.inverse = 1.0f / convert_float4(sp.d);
+  const long4 u = select(n - 1, -n, sp.falling), du = select(step, -step, sp.falling);
+  spans_divide(u, sp.d, &sp.q, &sp.r);
+  spans_divide(du, sp.d, &sp.dq, &sp.dr);
   return sp;
 }
 
 /* The span of the current row, (first lane, last lane); empty when
- * first > last. The quotients are wanted only in [−1, CLR_LANES], so u is
- * clamped to [−d, CLR_LANES·d] first; there the float estimate is within 1
- * of floor(u / d) (relative error below 2^-21), and one exact correction
- * each way makes it floor(u / d). */
+ * first > last. */
 CLR_INLINE int2 spans_row(const Spans* sp)
 {
-  const long4 u = clamp(sp->u, -sp->d, sp->d * CLR_LANES);
-  long4 q = convert_long4(floor(convert_float4(u) * sp->inverse));
-  q += q * sp->d > u;         // −1 where too large
-  q -= (q + 1) * sp->d <= u;  // +1 where too small
+  const long4 q = clamp(sp->q, (long4)(-1), (long4)CLR_LANES);
   const long4 first = select((long4)0, q + 1, sp->falling);
   const long4 last = select((long4)(CLR_LANES - 1), q, sp->rising);
-  const long4 none = CLR_NOT(sp->rising | sp->falling) & (sp->u < 0);
+  const long4 none = CLR_NOT(sp->rising | sp->falling) & (sp->q < 0);
   const int lo = (int)max(first.x, max(first.y, first.z)), hi = (int)min(last.x, min(last.y, last.z));
   return (int2)(lo, (none.x | none.y | none.z) != 0 ? -1 : hi);
+}
+
+CLR_INLINE void spans_step(Spans* sp)
+{
+  sp->r += sp->dr;
+  const long4 carry = sp->r >= sp->d;  // −1 where the remainder reached d
+  sp->q += sp->dq - carry;
+  sp->r -= sp->d & carry;
 }
 
 /* The classic edge walk of the notes (spans-float), in float pixel units:
@@ -348,7 +371,7 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
         const int2 span = spans_row(&sp);                                                                        \
         inside = (CLR_LANE_INDEX >= span.x) & (CLR_LANE_INDEX <= span.y);                                        \
         any = span.x <= span.y;                                                                                  \
-        sp.u += sp.step;                                                                                         \
+        spans_step(&sp);                                                                                         \
       } else if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                       \
         inside = walk_inside(&w, sx, firstSy + (row - rowBegin) * CLR_FIXED_ONE);                                \
         any = CLR_ANY(inside);                                                                                   \
