@@ -3,26 +3,19 @@
 #
 #   bash bench/ab.sh [-n PAIRS] DIR_A DIR_B [clraster_bench arguments]
 #
-# DIR_A and DIR_B each hold a built clraster_bench (a build folder, or a copy
-# of one); the arguments name the case as clraster_bench takes them (default:
-# the built-in scene at 1920x1080), and --no-ids --serve are added (so
-# --shade MODE, which only --serve takes, compares another shading mode). Both
-# builds load the case once, in two processes side by side, then take turns
-# (clraster_bench --serve): PAIRS pairs of turns (default 40) in ABBA order
-# (A B, B A, A B, ...), each turn --warmup untimed frames (default 1) and
-# --frames timed ones (default 3) while the other process waits. Turns of a
-# few frames put both builds in the same spell of the shared host, which
-# moves a stage's median by 5-10% from one minute to the next on the 2-core
-# development machine; whole runs alternated (this script before 5aab98c) needed
-# eight or ten pairs for a change of a few per cent. Prints per build the
-# median over its turns of the frame and of each kernel stage, then in how
-# many pairs B's frame, and each stage, was lower. An A/A run (the same
-# folder twice) shows the spread: on that machine medians within 4% and B
-# lower in 40-60% of the pairs. Frames follow the other build's frame rather
-# than their own, so the caches hold less of their data than in
-# clraster_bench's own runs: compare the two builds here, not these times
-# with the suite's. Each build runs from a private copy, with its own PoCL
-# kernel cache, and PoCL's workers pinned (POCL_AFFINITY=1, as bench/run.sh).
+# DIR_A and DIR_B each hold a built clraster_bench (a build folder, or a copy of one); the arguments name the
+# case as clraster_bench takes them (default: the built-in scene at 1920x1080), and --no-ids --serve are added
+# (so --shade MODE, which only --serve takes, compares another shading mode). Both builds load the case once,
+# in two processes side by side, then take turns (clraster_bench --serve): PAIRS pairs of turns (default 40)
+# in ABBA order (A B, B A, A B, ...), each turn --warmup untimed frames (default 1) and --frames timed ones
+# (default 3) while the other process waits. Turns of a few frames put both builds in the same spell of a
+# shared, noisy host, where alternating whole runs needs many more pairs to resolve a change of a few per
+# cent. Prints per build the median over its turns of the frame and of each kernel stage, then in how many
+# pairs B's frame, and each stage, was lower. An A/A run (the same folder twice) shows the host's spread;
+# trust only a difference beyond it. Frames follow the other build's frame rather than their own, so the
+# caches hold less of their data than in clraster_bench's own runs: compare the two builds here, not these
+# times with the suite's. Each build runs from a private copy, with its own PoCL kernel cache, and PoCL's
+# workers pinned (POCL_AFFINITY=1, as bench/run.sh).
 set -euo pipefail
 
 fail() { echo "bench/ab.sh: $*" >&2; exit 1; }

@@ -1,20 +1,18 @@
 #!/usr/bin/env bash
-# accuracy.sh — the speed–accuracy chart, on a Debian 12 machine, as root
-# (it installs gnuplot-nox when missing).
+# accuracy.sh — the speed–accuracy chart, on a Debian 12 machine, as root (it installs gnuplot-nox when
+# missing).
 #
 #   bash bench/accuracy.sh [MESH ...]
 #
-# Builds clraster_accuracy in build/ and runs it on the coverage scene, the
-# built-in scene, Wuson.off (assimp-testmodels) or the MESH files given, and
-# the grazing checker plane, every method at 1280x720 (see
+# Builds clraster_accuracy in build/ and runs it on the coverage scene, the built-in scene, Wuson.off
+# (assimp-testmodels) or the MESH files given, and the grazing checker plane, every method at 1280x720 (see
 # bench/accuracy.cpp), then draws the chart. Writes, replacing earlier results:
 #   docs/bench/accuracy.csv         one row per scene and method
 #   docs/bench/accuracy_pareto.csv  the Pareto front of each scene
 #   docs/bench/accuracy.md          the table
 #   docs/bench/accuracy.png         the chart
-# Environment: FRAMES (default 15) timed frames after WARMUP (default 3),
-# REF_SAMPLES (default 64, per axis) for the reference. Took about 20 s on
-# the 2-core development machine.
+# Environment: FRAMES (default 15) timed frames after WARMUP (default 3), REF_SAMPLES (default 64, per axis)
+# for the reference.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 if ! command -v gnuplot >/dev/null; then

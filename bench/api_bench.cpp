@@ -22,6 +22,7 @@
 // Prints one JSON line with ratio = rasterize_ms / cli_ms and the median
 // device time of each stage of both (OpenCL profiling).
 #include "cli.h"
+#include "frame_settings.h"
 #include "procedural.h"
 
 #include <clraster/clraster.hpp>
@@ -82,7 +83,9 @@ int main(int argc, char** argv)
     rounds = std::min(rounds, frames);
     const bench::BenchScene scene = bench::displacedSphere(triangles);
     const Camera camera = bench::benchCamera(scene, view, width, height);
-    const FrameSettings cliSettings = camera.frameSettings(width, height, CLR_SHADE_ID);
+    RenderArgs idArgs;  // `clraster render --shade id` with the bench's camera
+    idArgs.shadeMode = CLR_SHADE_ID;
+    const FrameSettings cliSettings = makeFrameSettings(idArgs, camera, width, height, meshBounds(scene.mesh));
     const std::vector<float> clip = clipPositions(scene.mesh, cliSettings.mvp);
     const std::vector<int32_t> tri(scene.mesh.indices.begin(), scene.mesh.indices.end());
     const size_t nv = scene.mesh.numVerts(), nt = scene.mesh.numTris(), pixels = size_t(width) * height;
@@ -91,7 +94,7 @@ int main(int argc, char** argv)
     ClContext cliContext(device);
     Pipeline cli(cliContext);
     cli.uploadScene(scene.mesh);
-    ClContext clipContext(device, 0, {}, true);
+    ClContext clipContext(device, 0, true);
     Pipeline raster(clipContext);
     raster.uploadClipScene(clip.data(), nv, scene.mesh.indices.data(), nt);
     FrameSettings rasterSettings;

@@ -1,6 +1,5 @@
-// bench_suite.cpp — clraster_bench: one benchmark case, clraster against
-// Mesa llvmpipe, both shading lambert per pixel (the same image), and
-// llvmpipe again with its fixed-function lighting per vertex.
+// bench_suite.cpp — clraster_bench: one benchmark case, clraster against Mesa llvmpipe, both shading lambert per
+// pixel (the same image), and llvmpipe again with its fixed-function lighting per vertex.
 //
 //   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
@@ -8,63 +7,12 @@
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
 //   clraster_bench [the case's arguments] --serve [--shade MODE]
 //
-// The case: SCENE (a file assimp reads; the built-in scene when absent), or
-// --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
-// optionally --grid N (N x N instanced copies of the scene), seen from the
-// --view "far" (whole scene), "fill" (the scene filling the viewport) or
-// "near" (camera close). A file's materials, textures and vertex colours are
-// set aside, so that both renderers light the built-in grey albedo. Each
-// renderer draws N timed frames, in R rounds (4 unless --rounds; at most N)
-// that take turns between the renderers, each round K warm-up frames then
-// its share of the N, each frame up to an RGBA8 image the host can read
-// where the renderer left it: clraster is Pipeline::render into
-// an ImageView (parameter upload to the image buffer mapped, which on a CPU
-// device is no copy) on the clraster device; llvmpipe is glClear +
-// glDrawElements + glFinish into OSMesa's host buffer, with LP_NUM_THREADS
-// threads (set here to the core count when unset), first with a GLSL program
-// of clraster's lambert (llvm_ms, ratio, shade_mad), then with fixed-function
-// lighting at the vertices (llvm_vertex_ms, ratio_vertex, shade_mad_vertex;
-// llvmpipe_render.h). Then, unless
-// --no-ids, one triangle-ID frame of each is compared as clraster_vs_llvmpipe
-// does. Prints one JSON line on stdout; --csv appends one row (and the
-// header to an empty file); --images writes both lambert images as
-// PREFIX-clraster.png and PREFIX-llvmpipe.png. Definitions of the derived columns:
-//   min_bytes     = 24 B per vertex (position + normal) + 12 B per triangle
-//                   (indices) + 4 B per pixel (the RGBA8 image): what any
-//                   renderer must hold on the device; mem_ratio =
-//                   device_bytes / min_bytes.
-//   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time: the
-//                   nominal edge-function evaluations of the raster kernel;
-//                   raster steps each edge function from row to row with
-//                   one add per lane (32-bit for triangles within 64
-//                   pixels, 64-bit beyond), so edge_frac_lane_ops =
-//                   edge_gevals_s / the device's 32-bit lane operations per
-//                   second (--peak-lane-gops: half the fp32 FLOP peak of
-//                   clraster_peak, one FMA per lane).
-//   rr_gbs        = (12 B per pixel: the visibility sample's setup index
-//                   written and read, 4 + 4 (resolve recomputes the
-//                   barycentrics), image written, 4; plus the 48 B TriSetup
-//                   read per bin entry) / (raster + resolve time); rr_frac_copy =
-//                   rr_gbs / the peak copy bandwidth (read + write bytes).
-//   mesa          = the Mesa release that llvmpipe's GL_VERSION names: the
-//                   library that ran, where the package list may not say.
-//   ratio_round_min, ratio_round_max = the least and greatest of the rounds'
-//                   own ratios (clraster's median frame in a round over
-//                   llvmpipe's in the same round): how far the host's
-//                   spells move the ratio, beside the ratio of all frames.
-// --max-shade-mad M fails the run (after printing) when shade_mad exceeds M:
-// CTest's check that both renderers draw the same lambert image.
-// --serve times clraster alone, in turns that another process drives
-// (bench/ab.sh, which alternates two builds frame by frame): after the
-// scene and the kernels are loaded it prints "ready", then for each line
-// "turn" on stdin renders K untimed and N timed frames and prints one line
-// "frame=MS STAGE=MS ...", the medians over the turn's timed frames; it
-// ends at the end of stdin. It draws no ID frame (any triangle count) and
-// refuses --csv, --images and --max-shade-mad, which it would not honour.
-// --shade MODE (clraster's --shade names; only with --serve, which has no
-// peer to match) shades its frames in another mode than lambert, so that
-// bench/ab.sh can compare two builds' general resolve kernel.
-// Every failure is one line on stderr and exit status 1.
+// The case: SCENE (a file assimp reads; the built-in scene when absent) or --sphere T (procedural.h), optionally
+// --grid N copies, seen from --view far|fill|near; file materials are set aside so both light the built-in grey.
+// Each renderer draws N timed frames to a host-readable RGBA8 image, in R rounds taking turns (K warm-up frames
+// each); unless --no-ids one triangle-ID frame of each is compared as clraster_vs_llvmpipe does. Prints one JSON
+// line; --csv appends a row (columns: columns() below); --images writes both lambert images. --serve: turns driven
+// by bench/ab.sh (serveTurns). Every failure is one line on stderr and exit status 1.
 #include "llvmpipe_render.h"
 #include "procedural.h"
 
@@ -72,6 +20,7 @@
 #include "cli.h"
 #include "cl.h"
 #include "device.h"
+#include "frame_settings.h"
 #include "image_io.h"
 #include "pipeline.h"
 #include "scene.h"
@@ -324,7 +273,22 @@ std::string fraction(double value, const std::optional<double>& peak)
   return peak ? number(value / *peak) : "";
 }
 
-// The columns, in order: header name and value (already formatted).
+// The columns, in order: header name and value (already formatted). Timing: clraster is Pipeline::render into an
+// ImageView (parameter upload to the mapped image: no copy on a CPU device); llvmpipe is glClear + glDrawElements +
+// glFinish into OSMesa's buffer with LP_NUM_THREADS threads (the core count when unset), first with a GLSL program of
+// clraster's lambert (llvm_ms, ratio, shade_mad), then lit per vertex (llvm_vertex_ms, ratio_vertex,
+// shade_mad_vertex; llvmpipe_render.h). Derived columns:
+//   min_bytes     = 24 B per vertex (position + normal) + 12 B per triangle + 4 B per pixel: what any renderer must
+//                   hold on the device; mem_ratio = device_bytes / min_bytes.
+//   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time, the nominal edge evaluations; raster steps each
+//                   with one add per lane, so edge_frac_lane_ops = edge_gevals_s / the device's 32-bit lane ops per
+//                   second (--peak-lane-gops: half clraster_peak's fp32 FLOP peak, one FMA per lane).
+//   rr_gbs        = (12 B per pixel: setup index written and read, image written; plus a 48 B TriSetup per bin
+//                   entry) / (raster + resolve time); rr_frac_copy = rr_gbs / the peak copy bandwidth.
+//   mesa          = the Mesa release llvmpipe's GL_VERSION names (the library that ran).
+//   ratio_round_min, ratio_round_max = the least and greatest rounds' own ratios (clraster's median over
+//                   llvmpipe's in the same round): how far the host's spells move the ratio.
+// --max-shade-mad M fails the run (after printing) when shade_mad exceeds M: CTest's check of the lambert images.
 std::vector<std::pair<std::string, std::string>> columns(const Args& args, const Report& r, const ClrasterRun& clr)
 {
   const FrameStats& s = clr.last;
@@ -425,14 +389,18 @@ void appendCsv(const std::string& path, const std::vector<std::pair<std::string,
   if (std::fclose(file) != 0) throw Error("--csv: cannot write '" + path + "'");
 }
 
-// --serve: clraster's frames in turns, one "turn" line on stdin each, one
-// line of medians on stdout each (header comment).
+// --serve: clraster alone, in turns another process drives (bench/ab.sh): after loading it prints "ready", then per
+// "turn" line on stdin renders K untimed and N timed frames and prints "frame=MS STAGE=MS ...", the turn's medians,
+// until stdin ends. No ID frame; refuses --csv, --images and --max-shade-mad. --shade MODE (only here: no peer to
+// match) shades another mode, so bench/ab.sh can compare the general resolve kernel.
 int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
 {
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode);
+  RenderArgs frameArgs;  // the CLI's defaults, but the shading
+  frameArgs.shadeMode = args.shadeMode;
+  const FrameSettings settings = makeFrameSettings(frameArgs, camera, args.width, args.height, meshBounds(mesh));
   ImageView view;
   pipeline.render(settings, view);  // the first frame: kernel code generation
   std::printf("ready\n");
@@ -479,7 +447,7 @@ int run(const Args& args)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
+  const FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
   ClrasterRun clr;
   clr.device = cl.info.name;

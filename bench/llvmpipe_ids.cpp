@@ -1,19 +1,15 @@
-// llvmpipe_ids.cpp — clraster_vs_llvmpipe: the same triangles, camera and
-// viewport rendered as triangle-ID images by Mesa llvmpipe (OSMesa, legacy
-// GL, depth LESS, flat colour = triangle index + 1) and by clraster
-// (CLR_SHADE_ID), compared pixel by pixel.
+// llvmpipe_ids.cpp — clraster_vs_llvmpipe: the same triangles, camera and viewport rendered as triangle-ID images by
+// Mesa llvmpipe (OSMesa, legacy GL, depth LESS, flat colour = triangle index + 1) and by clraster (CLR_SHADE_ID),
+// compared pixel by pixel.
 //
 //   clraster_vs_llvmpipe [SCENE] [--size WxH] [--device SEL] [--diff OUT.png]
 //                        [--max-diff-fraction F] [--frames N]
 //
-// Ids are triangle index + 1 (0: background) in the low 24 bits, as in
-// CLR_SHADE_ID. Prints one JSON line on stdout. A differing pixel is "near
-// an edge" unless its 3x3 neighbourhood holds a single id in both images;
-// differing pixels that are not near an edge are real disagreements (or
-// exact depth ties of coplanar overlapping triangles), not vertex rounding.
-// With --max-diff-fraction F the exit status is 1 when the differing
-// fraction exceeds F or any differing pixel is not near an edge. Every
-// failure is one line on stderr and exit status 1.
+// Ids are triangle index + 1 (0: background) in the low 24 bits, as in CLR_SHADE_ID. Prints one JSON line on stdout. A
+// differing pixel is "near an edge" unless its 3x3 neighbourhood holds a single id in both images; differing pixels
+// that are not near an edge are real disagreements (or exact depth ties of coplanar overlapping triangles), not vertex
+// rounding. With --max-diff-fraction F the exit status is 1 when the differing fraction exceeds F or any differing
+// pixel is not near an edge. Every failure is one line on stderr and exit status 1.
 #include "camera.h"
 #include "cli.h"
 #include "cl.h"

@@ -1,23 +1,17 @@
-// llvmpipe_render.h — Mesa llvmpipe (OSMesa) as the benchmark's reference
-// renderer, and the triangle-ID comparison of two images.
+// llvmpipe_render.h — Mesa llvmpipe (OSMesa) as the benchmark's reference renderer, and the triangle-ID comparison of
+// two images.
 //
-// renderLlvmpipeLambert draws the mesh (its positions, normals and indices)
-// from GL buffer objects with glDrawElements and the lighting of clraster's
-// lambert shade: one directional light, ambient 0.12 + diffuse 0.88 times the
-// built-in albedo (0.80, 0.78, 0.74), two-sided, no specular. perPixel does it
-// as clraster does, in a GLSL program: the normal interpolated (with the 1/w
-// rule, as GL's smooth varyings are), made unit and lit at each pixel, so the
-// two images differ only by rounding. perVertex uses fixed-function lighting:
-// no global ambient, vertex normals renormalised (GL_NORMALIZE: some files'
-// normals are not unit), lit at the vertices and the colours interpolated
-// (GL_SMOOTH), a different image. Both: 24-bit depth, LESS, and clraster's
-// background colour. A frame is timed from
-// glClear through glDrawElements and glFinish, when the RGBA8 image lies in
-// OSMesa's host buffer; the image is read back once, after the timed frames.
-// renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat
-// colour = triangle index + 1, un-shared vertices). Images come back top row
-// first, R in the low byte. llvmpipe's thread count is LP_NUM_THREADS, read
-// when the first context is created. Failures are clr::Error.
+// renderLlvmpipeLambert draws the mesh (its positions, normals and indices) from GL buffer objects with glDrawElements
+// and the lighting of clraster's lambert shade: one directional light, ambient 0.12 + diffuse 0.88 times the built-in
+// albedo (0.80, 0.78, 0.74), two-sided, no specular. perPixel does it as clraster does, in a GLSL program: the normal
+// interpolated (with the 1/w rule, as GL's smooth varyings are), made unit and lit at each pixel, so the two images
+// differ only by rounding. perVertex uses fixed-function lighting: no global ambient, vertex normals renormalised
+// (GL_NORMALIZE: some files' normals are not unit), lit at the vertices and the colours interpolated (GL_SMOOTH), a
+// different image. Both: 24-bit depth, LESS, and clraster's background colour. A frame is timed from glClear through
+// glDrawElements and glFinish, when the RGBA8 image lies in OSMesa's host buffer; the image is read back once, after
+// the timed frames. renderLlvmpipeIds draws the ID image of clraster_vs_llvmpipe (flat colour = triangle index + 1,
+// un-shared vertices). Images come back top row first, R in the low byte. llvmpipe's thread count is LP_NUM_THREADS,
+// read when the first context is created. Failures are clr::Error.
 #pragma once
 
 #include "scene.h"
@@ -36,11 +30,10 @@ constexpr uint32_t kIdMask = 0xFFFFFFu;  // ID images: low 24 bits = triangle + 
 // llvmpipe's frames are timed at its faster mode in every process. glibc
 // returns the free top of the heap to the system once it exceeds a threshold
 // that it raises as large blocks are freed; llvmpipe frees its per-frame
-// memory at the heap's top, so with the initial threshold every frame gave its
-// pages back and faulted them in again. Measured on yxa_1 filling 1920x1080:
-// 26 ms per frame in a fresh process, 18 ms once clraster's frees (which ran
-// first) had raised the threshold, and a bench case's process landed in either
-// mode; with the threshold fixed, 18 ms from the first frame.
+// memory at the heap's top, so with the initial threshold every frame gives its
+// pages back and faults them in again, and a bench process would land in either
+// mode depending on what clraster freed first. Fixed, every frame runs in the
+// faster mode.
 void fixHeapTrimThreshold();
 
 struct LlvmpipeFrames {

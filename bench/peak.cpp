@@ -1,11 +1,9 @@
-// peak.cpp — clraster_peak: the OpenCL device's peak arithmetic throughput
-// and memory bandwidth, measured through clraster's own OpenCL path
-// (clr::ClContext: same device selection, context and profiling queue).
+// peak.cpp — clraster_peak: the OpenCL device's peak arithmetic throughput and memory bandwidth, measured through
+// clraster's own OpenCL path (clr::ClContext: same device selection, context and profiling queue).
 //
 //   clraster_peak [--device SEL] [--repeats N] [--copy-mib M]
 //
-// Kernels (source inline below), each timed by its profiling event, the best
-// of N runs after one warm-up run:
+// Kernels (source inline below), each timed by its profiling event, the best of N runs after one warm-up run:
 //   fp32_gflops      float16 FMA chains, 8 independent chains per work-item;
 //                    2 flops per lane per FMA
 //   int64_mad_gops   long16 a = a * b + c chains, full 64 x 64-bit multiply
@@ -14,9 +12,8 @@
 //                    function (fixed.h) evaluates per sample
 //   copy_gbs         uint4 copy of M MiB into another M MiB buffer; bytes
 //                    read + bytes written per second (10^9 B)
-// The line also names the device, its platform and its driver version.
-// Prints one JSON line on stdout; every failure is one line on stderr and
-// exit status 1.
+// The line also names the device, its platform and its driver version. Prints one JSON line on stdout; every failure is
+// one line on stderr and exit status 1.
 #include "cl.h"
 #include "cli.h"
 #include "device.h"
@@ -35,8 +32,8 @@ const char* const kPeakSource = R"CLC(
 #define CHAINS8(op) op(0) op(1) op(2) op(3) op(4) op(5) op(6) op(7)
 // Every lane starts from its own value and reaches the output, so that a
 // compiler that scalarises the vectors (NVIDIA's) cannot compute one lane
-// of identical ones, or only the lanes read: when the lanes were equal and
-// four were read, an H100 (fp32 peak about 67 TFLOP/s) reported 179.
+// of identical ones, or only the lanes read, and report more than the
+// hardware's peak.
 #define LANES_F ((float16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) * 1e-3f)
 #define LANES_L ((long16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15) * 977)
 #define SUM8(v) ((v).s0 + (v).s1 + (v).s2 + (v).s3 + (v).s4 + (v).s5 + (v).s6 + (v).s7)

@@ -20,9 +20,7 @@
 #   cold start   wall time of a whole `clraster render` process (built-in
 #                scene, 1920x1080, one frame) with an empty POCL_CACHE_DIR
 #                (median and range of three, each cache new), then warm
-#                (median of three); and cold without the helper process
-#                that compiles kernels ahead (CLRASTER_COMPILE_AHEAD=0,
-#                host/compile_ahead.h), alternated with the others
+#                (median of three)
 # and writes, replacing earlier results:
 #   docs/bench/results.csv          one row per case (columns: bench/bench_suite.cpp)
 #   docs/bench/results.md           the tables, peaks, cold start and definitions
@@ -41,8 +39,8 @@
 # BENCH_COMMIT, when set, is the commit the results name. Each case times
 # llvmpipe twice: lighting per pixel as clraster does (the ratio), and per
 # vertex, the three renderers taking turns in four rounds (bench_suite.cpp).
-# Took 94-105 s on the 2-core development machine (well under the suite's 15-minute
-# budget); do not run it beside other heavy jobs if the numbers matter. Any
+# It stays well under the suite's 15-minute budget; do not run it beside
+# other heavy jobs if the numbers matter. Any
 # failure stops the suite with a message and a non-zero exit, leaving
 # earlier results in place.
 set -euo pipefail
@@ -62,11 +60,9 @@ warmup="${WARMUP:-3}"
 frames="${FRAMES:-20}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
 # PoCL's worker threads pinned one per core (POCL_AFFINITY, unless set):
-# unpinned, in about one process in five the scheduler left both workers on
-# one core for the first frames, and a case's median came out at one core's
-# speed (raster on the IFC house at 1080p 4.1 ms against 2.1; 7 of 36
-# twenty-frame runs, none of 36 pinned). Mesa has no such setting for
-# llvmpipe's threads.
+# unpinned, the scheduler can leave both workers on one core for the first
+# frames, and a case's median then comes out at one core's speed. Mesa has no
+# such setting for llvmpipe's threads.
 export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 export POCL_CACHE_DIR="$PWD/build/pocl-cache"
 out_dir="${BENCH_OUT:-docs/bench}"
@@ -155,20 +151,14 @@ wall() {  # seconds taken by a clraster render with its kernel cache in $1
 }
 echo "bench/run.sh: cold start"
 for i in 1 2 3; do
-  mkdir "$work/pocl-cold$i" "$work/pocl-alone$i"
+  mkdir "$work/pocl-cold$i"
   wall "$work/pocl-cold$i" >>"$work/colds"
   echo >>"$work/colds"
-  CLRASTER_COMPILE_AHEAD=0 wall "$work/pocl-alone$i" >>"$work/alones"
-  echo >>"$work/alones"
 done
 colds=$(sort -n "$work/colds")
 cold_s=$(sed -n 2p <<<"$colds")
 cold_min=$(sed -n 1p <<<"$colds")
 cold_max=$(sed -n 3p <<<"$colds")
-alones=$(sort -n "$work/alones")
-alone_s=$(sed -n 2p <<<"$alones")
-alone_min=$(sed -n 1p <<<"$alones")
-alone_max=$(sed -n 3p <<<"$alones")
 warm_s=$(for i in 1 2 3; do wall "$work/pocl-cold1"; echo; done | sort -n | sed -n 2p)
 
 # Step 6: the Markdown report; awk programs address CSV columns by name.
@@ -274,14 +264,10 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo
   echo "Whole \`build/clraster render -o OUT.png --size 1920x1080\` process (built-in scene, one frame), wall time:"
   echo
-  echo "| empty kernel cache (POCL_CACHE_DIR, CUDA_CACHE_PATH; kernels compiled; median of 3, range) | warm cache (median of 3) | difference | empty cache, no helper (CLRASTER_COMPILE_AHEAD=0; median of 3, range) |"
-  echo "|---|---|---|---|"
+  echo "| empty kernel cache (POCL_CACHE_DIR, CUDA_CACHE_PATH; kernels compiled; median of 3, range) | warm cache (median of 3) | difference |"
+  echo "|---|---|---|"
   awk -v c="$cold_s" -v lo="$cold_min" -v hi="$cold_max" -v w="$warm_s" \
-    -v a="$alone_s" -v alo="$alone_min" -v ahi="$alone_max" \
-    'BEGIN { printf "| %.3f s (%.3f–%.3f) | %.3f s | %.3f s | %.3f s (%.3f–%.3f) |\n", c, lo, hi, w, c - w, a, alo, ahi }'
-  echo
-  echo "A cold render on a PoCL CPU device starts a helper process that compiles the scan and resolve kernels"
-  echo "while the render compiles setup and raster (host/compile_ahead.h); the last column is the same render without it."
+    'BEGIN { printf "| %.3f s (%.3f–%.3f) | %.3f s | %.3f s |\n", c, lo, hi, w, c - w }'
   echo
   echo "## Definitions"
   echo

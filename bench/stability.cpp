@@ -1,13 +1,21 @@
 // stability.cpp — clraster_stability: where the methods fail.
 //
 //   clraster_stability coords [--size WxH] [--bands N] [--seeds N] [--reach PX|guard] [--csv FILE]
+//   clraster_stability walk [--size WxH] [--seeds N] [--csv FILE]
 //   clraster_stability load [--tris N] [--fullscreen N] [--size WxH]
 //
 // coords renders a band mesh (tests/stability_scenes.h: a shared-edge mesh
 // whose vertices lie `reach` pixels from the viewport's centre) at growing
-// reach with fixed-point and float edge functions, counts cracked pixels
-// (holes and double hits, from the kernels' own coverage) and writes one CSV
-// row per magnitude and method. Reaches past the guard band (fixed.h) are
+// reach with each coverage method (fixed-point and float edge functions,
+// exact spans, the float edge walk), counts cracked pixels (holes and
+// double hits, from the kernels' own coverage) and writes one CSV row per
+// magnitude and method. walk counts them, per method, on the cases where
+// the edge walk of span tables fails: slivers (band meshes of more and
+// thinner bands at a fixed reach), flat-top and flat-bottom triangles (a
+// strip mesh whose every triangle has a level edge, some on sample rows),
+// and triangles made degenerate by the split (the same mesh with its rows'
+// vertices moved up and down by a few 1/256 px, so that one half of each
+// triangle is that thin). Reaches past the guard band (fixed.h) are
 // clipped to it. --reach renders one reach only ("guard": the largest
 // inside the guard band), for one-off checks of large viewports. load renders N small triangles inside one tile and M
 // triangles that each cover the whole viewport, and prints one JSON line
@@ -70,8 +78,29 @@ Args parse(int argc, char** argv)
       throw Error("unknown flag " + flag);
   }
   if (a.mode == "load" && !sizeGiven) a.width = 1920, a.height = 1080;
-  if (a.mode != "coords" && a.mode != "load") throw Error("unknown mode '" + a.mode + "' (coords, load)");
+  if (a.mode != "coords" && a.mode != "walk" && a.mode != "load")
+    throw Error("unknown mode '" + a.mode + "' (coords, walk, load)");
   return a;
+}
+
+// The coverage methods compared: name, edge mode, traversal.
+struct Method {
+  const char* name;
+  uint32_t edges, traversal;
+};
+const Method kMethods[] = {{"fixed", CLR_EDGES_FIXED, CLR_TRAVERSAL_BBOX},
+                           {"float", CLR_EDGES_FLOAT, CLR_TRAVERSAL_BBOX},
+                           {"spans", CLR_EDGES_FIXED, CLR_TRAVERSAL_SPANS},
+                           {"spans-float", CLR_EDGES_FIXED, CLR_TRAVERSAL_SPANS_FLOAT}};
+
+FrameSettings methodSettings(const Args& a, const Method& m)
+{
+  FrameSettings s;
+  s.width = a.width;
+  s.height = a.height;
+  s.edgeMode = m.edges;
+  s.traversal = m.traversal;
+  return s;
 }
 
 int coords(const Args& a)
@@ -98,11 +127,8 @@ int coords(const Args& a)
   }
   // Step 2: per reach and method, cracks summed over the seeds.
   for (double reach : reaches)
-    for (uint32_t edges : {CLR_EDGES_FIXED, CLR_EDGES_FLOAT}) {
-      FrameSettings s;
-      s.width = a.width;
-      s.height = a.height;
-      s.edgeMode = edges;
+    for (const Method& m : kMethods) {
+      const FrameSettings s = methodSettings(a, m);
       stab::Cracks sum;
       double magnitude = 0.0;
       for (uint32_t seed = 1; seed <= a.seeds; ++seed) {
@@ -112,10 +138,104 @@ int coords(const Args& a)
         sum.holes += c.holes;
         sum.doubles += c.doubles;
       }
-      const char* method = edges == CLR_EDGES_FIXED ? "fixed" : "float";
       char line[256];
       std::snprintf(line, sizeof line, "%.0f,%.1f,%d,%s,%zu,%zu,%zu,%llu\n", reach, magnitude, reach > guard ? 1 : 0,
-                    method, sum.holes, sum.doubles, sum.total(),
+                    m.name, sum.holes, sum.doubles, sum.total(),
+                    (unsigned long long)(uint64_t(a.width) * a.height * a.seeds));
+      std::fputs(line, stdout);
+      std::fflush(stdout);
+      if (csv) csv << line;
+    }
+  return 0;
+}
+
+// A strip mesh covering the viewport: `rows` level lines from below to
+// above it (every other one on a sample row), `columns` vertices on each at
+// jittered x (on the 1/256 grid) from `reach` px left of the viewport's
+// centre to as far right, and between two lines a zig-zag of
+// triangles with a level edge on one line: flat-bottom or flat-top. With
+// lift > 0 each line's vertices move up and down by lift/256 px in turn, so
+// the triangles are no longer flat: one half after the split is at most
+// 2·lift/256 px tall. Classes: strip parity × triangle index mod 4.
+stab::Scene stripMesh(uint32_t width, uint32_t height, double reach, uint32_t rows, uint32_t columns, int lift,
+                      uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  const double left = std::min(-2.0, 0.5 * width - reach), spacing = (width - 2.0 * left) / columns;
+  std::uniform_real_distribution<double> jitter(-spacing / 4, spacing / 4);
+  stab::Scene s;
+  std::vector<std::vector<uint32_t>> line(rows + 1);
+  for (uint32_t j = 0; j <= rows; ++j) {
+    double y = -2.0 + (height + 4.0) * j / rows;
+    y = j % 2 ? std::floor(y) + 0.5 : std::round(y * 256.0) / 256.0;
+    for (uint32_t i = 0; i <= columns; ++i) {
+      const double x = left + spacing * i + (i == 0 || i == columns ? 0.0 : jitter(rng));
+      const double dy = (i % 2 ? lift : -lift) / 256.0;
+      line[j].push_back(uint32_t(s.positions.size() / 3));
+      stab::addScreenVertex(s, std::round(x * 256.0) / 256.0, y + dy, width, height);
+    }
+  }
+  auto xOf = [&](uint32_t v) { return s.positions[3 * v]; };
+  for (uint32_t j = 0; j < rows; ++j) {
+    const std::vector<uint32_t>&bottom = line[j], &top = line[j + 1];
+    size_t b = 0, t = 0, n = 0;
+    while (b + 1 < bottom.size() || t + 1 < top.size()) {
+      const bool alongBottom = t + 1 >= top.size() || (b + 1 < bottom.size() && xOf(bottom[b + 1]) < xOf(top[t + 1]));
+      if (alongBottom) {
+        s.indices.insert(s.indices.end(), {bottom[b], bottom[b + 1], top[t]});
+        ++b;
+      } else {
+        s.indices.insert(s.indices.end(), {bottom[b], top[t + 1], top[t]});
+        ++t;
+      }
+      s.cls.push_back(uint8_t((j % 2) * 4 + n++ % 4));
+    }
+  }
+  s.numClasses = 8;
+  return s;
+}
+
+int walk(const Args& a)
+{
+  ClContext cl("");
+  std::ofstream csv;
+  if (!a.csv.empty()) {
+    csv.open(a.csv);
+    if (!csv) throw Error(a.csv + ": cannot write");
+    csv << "case,param,reach,aspect,method,holes,doubles,cracked,pixels\n";
+  }
+  struct Case {
+    std::string name;
+    double param, reach;
+  };
+  std::vector<Case> cases;
+  for (double bands : {8, 32, 128, 512, 2048}) cases.push_back({"slivers", bands, 4096});
+  for (double reach : {256, 2048, 16384}) cases.push_back({"flat", 0, reach});
+  for (double reach : {256, 2048, 16384})
+    for (double lift : {1, 4, 16}) cases.push_back({"split", lift, reach});
+  const double angle = 35.0;
+  for (const Case& c : cases)
+    for (const Method& m : kMethods) {
+      stab::Cracks sum;
+      double aspect = 0.0;
+      for (uint32_t seed = 1; seed <= a.seeds; ++seed) {
+        stab::Scene scene;
+        if (c.name == "slivers") {
+          scene = stab::bandMesh(a.width, a.height, c.reach, uint32_t(c.param), angle, seed);
+          const double rad = angle * M_PI / 180.0;  // the band spacing of stability_scenes.cpp's layout
+          const double halfV = 0.5 * a.width * std::fabs(std::sin(rad)) + 0.5 * a.height * std::fabs(std::cos(rad));
+          aspect = 2.0 * c.reach / (2.0 * (halfV + 2.0) / c.param);
+        } else {
+          scene = stripMesh(a.width, a.height, c.reach, 48, 40, int(c.param), seed);
+          aspect = (a.width + 2.0 * c.reach) / 40.0 / ((a.height + 4.0) / 48.0);
+        }
+        const stab::Cracks k = stab::countCracks(stab::coverageCounts(cl, scene, methodSettings(a, m)));
+        sum.holes += k.holes;
+        sum.doubles += k.doubles;
+      }
+      char line[256];
+      std::snprintf(line, sizeof line, "%s,%g,%g,%.0f,%s,%zu,%zu,%zu,%llu\n", c.name.c_str(), c.param, c.reach, aspect,
+                    m.name, sum.holes, sum.doubles, sum.total(),
                     (unsigned long long)(uint64_t(a.width) * a.height * a.seeds));
       std::fputs(line, stdout);
       std::fflush(stdout);
@@ -199,6 +319,6 @@ int main(int argc, char** argv)
 {
   return runProgram("clraster_stability", [&] {
     const Args a = parse(argc, argv);
-    return a.mode == "coords" ? coords(a) : load(a);
+    return a.mode == "coords" ? coords(a) : a.mode == "walk" ? walk(a) : load(a);
   });
 }

@@ -1,18 +1,22 @@
 #!/usr/bin/env bash
-# stability.sh — where the methods fail: the coordinate-magnitude chart and
-# the load cases, on a Debian 12 machine, as root (it installs gnuplot-nox
-# when missing).
+# stability.sh — where the methods fail: the coordinate-magnitude chart and the load cases, on a Debian 12
+# machine, as root (it installs gnuplot-nox when missing).
 #
 #   bash bench/stability.sh [coords] [load]      (both when none is named)
 #
 # coords: clraster_stability coords renders a shared-edge band mesh
 # (tests/stability_scenes.h) at 512x512 with 64 bands and 3 seeds, at reaches
 # from the smallest that covers the viewport to the guard band and on to
-# 2^24 px (clipped), with fixed-point and float edge functions, and counts
-# cracked pixels (holes and double hits). About 10 s. Writes, replacing
-# earlier results:
+# 2^24 px (clipped), with fixed-point and float edge functions, exact spans
+# and the float edge walk, and counts cracked pixels (holes and double
+# hits); then clraster_stability walk counts them on slivers (band meshes
+# of 8 to 2048 bands reaching 4096 px), flat-top and flat-bottom triangles
+# and triangles one of whose halves after the split is 1-16/256 px tall.
+# About 60 s. Writes, replacing earlier results:
 #   docs/bench/stability_coords.csv  one row per reach and method
-#   docs/bench/stability_coords.png  cracked pixels against magnitude
+#   docs/bench/stability_walk.csv    one row per case and method
+#   docs/bench/stability_coords.png  cracked pixels against magnitude and
+#                                    against sliver aspect
 # load: 10 million triangles in one 16x16 tile and 4000 full-screen
 # triangles at 1920x1080; one JSON line each (bin entries against the
 # expected count, pixels differing from the oracle, device bytes, frame time)
@@ -34,8 +38,9 @@ for part in "${parts[@]}"; do
         DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gnuplot-nox
       fi
       ./build/clraster_stability coords --size 512x512 --bands 64 --seeds 3 --csv "$out/stability_coords.csv"
+      ./build/clraster_stability walk --size 512x512 --seeds 3 --csv "$out/stability_walk.csv"
       gnuplot -e "dir='$out'" bench/stability_coords.gnuplot
-      echo "stability.sh: wrote $out/stability_coords.{csv,png}"
+      echo "stability.sh: wrote $out/stability_coords.{csv,png} and $out/stability_walk.csv"
       ;;
     load)
       ./build/clraster_stability load --tris "${TRIS:-10000000}" --fullscreen "${FULLSCREEN:-4000}" \

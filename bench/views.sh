@@ -1,20 +1,16 @@
 #!/usr/bin/env bash
-# views.sh — many views in one `clraster render --views` run against one
-# `clraster render` process per view.
+# views.sh — many views in one `clraster render --views` run against one `clraster render` process per view.
 #
 #   bash bench/views.sh [SCENE]
 #
-# Builds clraster in build/ (configuring it when there is none), writes a
-# views file of VIEWS cameras on a circle around the scene (the built-in
-# scene without SCENE), then times, REPEATS times each and alternating:
+# Builds clraster in build/ (configuring it when there is none), writes a views file of VIEWS cameras on a
+# circle around the scene (the built-in scene without SCENE), then times, REPEATS times each and alternating:
 #   one run     clraster render SCENE --views views.json -o one/out_%04d.png
 #   separate    VIEWS processes clraster render SCENE -o sep/out_NNNN.png
 #               --eye ... --target ..., one after the other
-# Both write every PNG (through the same temp-file + rename writer) and use a
-# warm PoCL kernel cache. It checks that the two sets of images are
-# identical, and prints the median wall time of each, the ratio and the
-# per-view times. Environment: VIEWS (default 100), REPEATS (3), SIZE
-# (1280x720). About a minute on the 2-core development machine.
+# Both write every PNG (through the same temp-file + rename writer) and use a warm PoCL kernel cache. It
+# checks that the two sets of images are identical, and prints the median wall time of each, the ratio and the
+# per-view times. Environment: VIEWS (default 100), REPEATS (3), SIZE (1280x720).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 

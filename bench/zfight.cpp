@@ -1,24 +1,15 @@
-// zfight.cpp — clraster_zfight: z-fighting per depth format, the table
-// behind `--depth auto` (host/depth.h) and docs/limits.md.
+// zfight.cpp — clraster_zfight: z-fighting per depth format, the table behind `--depth auto` (host/depth.h) and
+// docs/limits.md.
 //
 //   clraster_zfight [--size N] [--device SEL] [--csv FILE] [--summary FILE]
 //
-// Scene: two parallel square planes, each two triangles covering the whole
-// N×N view, facing the camera (the eye at the origin looks down −z, fov
-// 60°) but turned 10° about the y axis so that depth varies across the
-// image. The farther plane's centre lies at eye distance d, the nearer one
-// ε·d closer along the planes' normal. Swept: far/near R = 10^1, 10^1.5, … 10^6
-// (near 1, far R), d = R^t for t = 0.25, 0.5, 0.75 and d = far/1.25 (the planes
-// then stay inside [near, far] at every pixel), ε = 10^-2 … 10^-7, both
-// draw orders (farther first, nearer first), each depth format (float32,
-// unorm24, reversed with its reversed projection). A pixel is wrong when
-// it shows the farther plane (or nothing). Ties go to the earlier triangle,
-// so with the nearer plane drawn first a tie is resolved correctly and with
-// it second wrongly: both orders are counted.
-// Writes one CSV row per case (--csv) and the wrong fraction per format,
-// ratio and ε over all distances and both orders (--summary, for the chart
-// of bench/zfight.sh), and prints, per ε, the largest ratio at which each
-// format had no wrong pixel. Deterministic: nothing is timed.
+// Scene: two parallel planes covering the N×N view (eye at the origin looking down −z, fov 60°), turned 10° about
+// y so depth varies; the farther centred at eye distance d, the nearer ε·d closer. Swept: far/near R = 10^1 … 10^6
+// in half decades (near 1), d = R^0.25, R^0.5, R^0.75, far/1.25; ε = 10^-2 … 10^-7; both draw orders; each depth
+// format (float32, unorm24, reversed). A pixel is wrong when it shows the farther plane or nothing; ties go to the
+// earlier triangle, so both orders count. Writes a CSV row per case (--csv), the wrong fraction per format, ratio
+// and ε (--summary, for bench/zfight.sh's chart), and prints per ε the largest clean ratio of each format.
+// Deterministic: nothing is timed.
 #include "camera.h"
 #include "cl.h"
 #include "cli.h"

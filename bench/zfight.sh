@@ -10,8 +10,7 @@
 #   docs/bench/zfight.csv          one row per case
 #   docs/bench/zfight_summary.csv  wrong fraction per format, ε and far/near
 #   docs/bench/zfight.png          the chart
-# Deterministic (nothing is timed); took about 10 s on the 2-core
-# development machine.
+# Deterministic (nothing is timed).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 if ! command -v gnuplot >/dev/null; then

@@ -46,7 +46,7 @@ const DeviceInfo& Context::device() const
 
 clr::Pipeline& Context::Impl::rasterPipeline()
 {
-  if (!clip) clip = std::make_unique<clr::ClContext>(selector, 0, clr::CompileAheadRequest{}, true);
+  if (!clip) clip = std::make_unique<clr::ClContext>(selector, 0, true);
   if (!clipPipeline) clipPipeline = std::make_unique<clr::Pipeline>(*clip);
   return *clipPipeline;
 }

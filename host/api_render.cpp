@@ -3,10 +3,11 @@
 // command's steps as calls. RenderOptions keeps the flags and parses them
 // with the CLI's parser (cli.h), the one place that decides what a flag
 // means; a Renderer frames its camera, chooses the methods and renders as
-// the command does (camera.h, cli.h applyMethods and chooseDepth, quality.h).
+// the command does (camera.h, frame_settings.h, quality.h).
 #include "aov.h"
 #include "api_impl.h"
 #include "camera.h"
+#include "frame_settings.h"
 #include "image_io.h"
 #include "quality.h"
 
@@ -96,6 +97,16 @@ RenderOptions RenderOptions::parse(const std::vector<std::string>& flags)
   });
 }
 
+RenderOptions RenderOptions::parseCommandLine(const std::vector<std::string>& args)
+{
+  return guarded([&] {
+    RenderOptions o;
+    o.impl_->args = clr::parseRenderArgs(args);
+    o.impl_->flags = args;
+    return o;
+  });
+}
+
 RenderOptions& RenderOptions::set(const std::string& flag, const std::string& value)
 {
   return guarded([&]() -> RenderOptions& {
@@ -155,7 +166,6 @@ struct Renderer::Impl {
   explicit Impl(clr::ClContext& cl) : pipeline(cl) {}
   clr::Pipeline pipeline;
   clr::Bounds bounds;
-  float radius = 1.0f;  // half the bounds' diagonal: the point light's default range
   bool aovKept = false;
 };
 
@@ -166,7 +176,6 @@ Renderer::Renderer(Context& ctx, const Scene& scene)
     const clr::Mesh& mesh = scene.impl().mesh;
     impl_->pipeline.uploadScene(mesh);
     impl_->bounds = clr::meshBounds(mesh);
-    if (!impl_->bounds.empty) impl_->radius = 0.5f * glm::length(impl_->bounds.max - impl_->bounds.min);
   });
 }
 Renderer::~Renderer() = default;
@@ -180,11 +189,7 @@ Image Renderer::render(const RenderOptions& options, FrameStats* stats)
     const clr::RenderArgs& args = options.impl().args;
     clr::checkCameraArgs(args.camera);
     const clr::Camera camera = clr::frameCamera(args.camera, impl_->bounds);
-    const clr::DepthChoice depth = clr::chooseDepth(args, camera);
-    clr::FrameSettings settings =
-        camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, depth.mode);
-    clr::applyMethods(args, settings, impl_->radius);
-    settings.keepVisAttributes = !args.aovPath.empty();
+    clr::FrameSettings settings = clr::makeFrameSettings(args, camera, args.width, args.height, impl_->bounds);
     if (args.aa == "auto" || args.qualityAuto)
       clr::chooseAutomatically(impl_->pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
     // Step 2: the frame.

@@ -27,23 +27,6 @@ glm::vec3 Camera::lightDirection() const
   return glm::normalize(back + 0.6f * trueUp + 0.4f * right);
 }
 
-FrameSettings Camera::frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack,
-                                    uint32_t depthMode) const
-{
-  FrameSettings s;
-  s.width = width;
-  s.height = height;
-  s.shadeMode = shadeMode;
-  s.cullBack = cullBack;
-  s.depthMode = depthMode;
-  s.mvp = viewProjection(width, height, depthMode);
-  s.lightDir = lightDirection();
-  s.eye = eye;
-  s.zNear = zNear;
-  s.zFar = zFar;
-  return s;
-}
-
 namespace {
 
 const glm::vec3 kDefaultUp(0.0f, 1.0f, 0.0f);

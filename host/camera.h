@@ -31,9 +31,6 @@ struct Camera {
   glm::mat4 viewProjection(uint32_t width, uint32_t height, uint32_t depthMode = CLR_DEPTH_FLOAT32) const;
   // Towards the light: above, right of and behind the eye.
   glm::vec3 lightDirection() const;
-  // The frame settings of this camera for a viewport and a shading mode.
-  FrameSettings frameSettings(uint32_t width, uint32_t height, uint32_t shadeMode, bool cullBack = false,
-                              uint32_t depthMode = CLR_DEPTH_FLOAT32) const;
 };
 
 // Fills unset fields so the scene's bounding sphere is in view, then

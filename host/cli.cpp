@@ -8,6 +8,7 @@
 #include "../kernels/shared.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cmath>
@@ -15,30 +16,56 @@
 
 namespace clr {
 
+namespace {
+const char* const kTraversalNames[] = {"bbox", "hierarchical", "spans", "spans-float"};  // by CLR_TRAVERSAL_*
+}  // namespace
+
+const char* traversalName(uint32_t traversal)
+{
+  return traversal < 4 ? kTraversalNames[traversal] : "unknown";
+}
+
 const char* usageText()
 {
   return "usage:\n"
-         "  clraster render [SCENE] -o OUT.png [--size WxH] [--eye x,y,z] [--target x,y,z]\n"
-         "                  [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
+         "  clraster render [SCENE] [-o OUT.png] [--aov OUT.exr] [--size WxH] [--eye x,y,z]\n"
+         "                  [--target x,y,z] [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
          "                  [--shade lambert|flat|gouraud|phong|texture|color|normal|depth|uv|checker|id]\n"
          "                  [--filter nearest|bilinear|trilinear] [--light-point x,y,z[,r]]\n"
          "                  [--cull none|back]\n"
          "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
          "                  [--edges fixed|float] [--interp perspective|affine]\n"
-         "                  [--traversal bbox|hierarchical] [--quality auto]\n"
+         "                  [--traversal bbox|hierarchical|spans|spans-float] [--quality auto]\n"
          "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
          "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
-         "                  [--aov PATH.exr] [--device SEL] [--frames N] [--stats]\n"
+         "                  [--point-size PX] [--device SEL] [--frames N] [--stats]\n"
          "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
          "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
          "                  [--device SEL] [--stats]\n"
+         "  clraster info MESH [--fov DEG] [--json]\n"
          "  clraster devices\n"
+         "  clraster help | COMMAND --help\n"
          "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
-         "built-in scene is rendered. SEL is a device index or a name substring.\n"
+         "built-in scene is rendered. A render writes -o (a .png), --aov (a .exr), or both.\n"
+         "`info` prints a mesh's counts, bounds, materials and the default camera's flags.\n"
+         "SEL is a device index or a name substring.\n"
          "VIEWS.json is {\"views\": [{\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z],\n"
          "\"fov\": DEG, \"near\": N, \"far\": F, \"size\": [W,H]}, ...]}, every key optional; the\n"
          "output pattern's one integer conversion is the view's index in the list, and\n"
          "--shard K/N renders the views K, K+N, K+2N, ...\n";
+}
+
+bool wantsHelp(const std::vector<std::string>& args)
+{
+  return std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+void checkExtension(const std::string& flag, const std::string& path, const std::string& extension)
+{
+  std::string tail = path.size() >= extension.size() ? path.substr(path.size() - extension.size()) : "";
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (tail != extension || path.size() == extension.size() || path.back() == '/')
+    throw Error(flag + ": '" + path + "' must be a file name ending in " + extension);
 }
 
 namespace {
@@ -91,36 +118,6 @@ void takeScenePath(const std::string& arg, std::string& scenePath)
   if (!arg.empty() && arg[0] == '-') throw Error("unknown option '" + arg + "'");
   if (!scenePath.empty()) throw Error("unexpected argument '" + arg + "' (only one SCENE)");
   scenePath = arg;
-}
-
-void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius)
-{
-  settings.texFilter = args.texFilter;
-  settings.pointLightOn = args.pointLightOn;
-  settings.pointLight = args.pointLight;
-  settings.pointLightRange = args.pointLightRange.value_or(sceneRadius > 0.0f ? sceneRadius : 1.0f);
-  if (args.aa != "auto") {
-    const AaMode& mode = findAaMode(args.aa.empty() ? "none" : args.aa);
-    settings.samples = mode.samples;
-    settings.shadeEverySample = mode.shadeEverySample;
-  }
-  settings.edgeMode = args.edgeMode;
-  settings.interpMode = args.interpMode;
-  settings.traversal = args.traversal;
-  settings.visibility = args.visibility;
-  settings.wireframe = args.wireframe;
-  settings.lineMethod = args.lineMethod;
-  settings.lineWidth = args.lineWidth;
-}
-
-DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera)
-{
-  // --quality auto chooses the depth format too, unless --depth names one.
-  if (args.depthAuto || (args.qualityAuto && !args.depthGiven)) return chooseDepthFormat(camera.zNear, camera.zFar);
-  DepthChoice c;
-  c.mode = args.depthMode;
-  c.reason = "--depth";
-  return c;
 }
 
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi)
@@ -198,7 +195,8 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--interp") {
       r.interpMode = parseChoice(a, flagValue(args, i), {"perspective", "affine"});
     } else if (a == "--traversal") {
-      r.traversal = parseChoice(a, flagValue(args, i), {"bbox", "hierarchical"});
+      r.traversal = parseChoice(a, flagValue(args, i),
+                                {kTraversalNames[0], kTraversalNames[1], kTraversalNames[2], kTraversalNames[3]});
     } else if (a == "--depth") {
       const uint32_t choice = parseChoice(a, flagValue(args, i), {"float32", "unorm24", "reversed", "auto"});
       r.depthAuto = choice == 3;
@@ -220,6 +218,8 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
     } else if (a == "--line-width") {
       r.lineWidth = parseFloat(a, flagValue(args, i));
       if (!(r.lineWidth > 0.0f && r.lineWidth <= 16.0f)) throw Error("--line-width must lie in (0, 16] pixels");
+    } else if (a == "--point-size") {
+      r.pointSize = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 16));
     } else if (a == "--aov") {
       r.aovPath = flagValue(args, i);
       if (r.aovPath.empty()) throw Error("--aov: empty path");
@@ -245,7 +245,10 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       takeScenePath(a, r.scenePath);
     }
   }
-  if (r.outPath.empty()) throw Error(r.viewsPath.empty() ? "missing -o OUT.png" : "missing -o OUT_%04d.png");
+  if (!r.viewsPath.empty() && r.outPath.empty()) throw Error("missing -o OUT_%04d.png");
+  if (r.outPath.empty() && r.aovPath.empty()) throw Error("missing -o OUT.png (or --aov OUT.exr)");
+  if (!r.outPath.empty()) checkExtension("-o", r.outPath, ".png");
+  if (!r.aovPath.empty()) checkExtension("--aov", r.aovPath, ".exr");
   if (shardGiven && r.viewsPath.empty()) throw Error("--shard needs --views");
   if (framesGiven && !r.viewsPath.empty()) throw Error("--frames cannot be combined with --views");
   if (!r.viewsPath.empty()) checkOutputPattern(r.outPath);

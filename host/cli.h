@@ -44,21 +44,24 @@ struct RenderArgs {
   uint32_t wireframe = CLR_WIREFRAME_OFF;
   uint32_t lineMethod = CLR_LINE_AA;
   float lineWidth = 1.0f;
-  std::string aovPath;  // --aov PATH.exr: the visibility-buffer outputs (aov.h)
+  uint32_t pointSize = 1;  // --point-size: a file's points as squares of this many pixels a side
+  std::string aovPath;     // --aov PATH.exr: the visibility-buffer outputs (aov.h)
 };
-
-// Copies the chosen methods (not "auto"), the texture filter and the point
-// light into a frame's settings. sceneRadius: the point light's range when
-// --light-point gives none.
-void applyMethods(const RenderArgs& args, FrameSettings& settings, float sceneRadius = 1.0f);
-
-// The depth format of a camera: --depth as given, or the auto rule (depth.h).
-DepthChoice chooseDepth(const RenderArgs& args, const Camera& camera);
 
 // args: everything after "render".
 RenderArgs parseRenderArgs(const std::vector<std::string>& args);
 
 const char* usageText();
+
+// The --traversal name of a CLR_TRAVERSAL_* value (for --stats).
+const char* traversalName(uint32_t traversal);
+
+// Whether a command's arguments ask for its usage (--help or -h anywhere).
+bool wantsHelp(const std::vector<std::string>& args);
+
+// A clr::Error naming `flag` unless `path` is a file name ending in
+// `extension` (".png", ".exr"; any case): -o and --aov name their format.
+void checkExtension(const std::string& flag, const std::string& path, const std::string& extension);
 
 // The value after flag args[i], moving i onto it; a clr::Error naming the
 // flag when it is the last argument. Every parse loop of the project uses it.

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdlib>
 #include <sstream>
 
@@ -110,11 +109,8 @@ std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide, bool 
   if (clipInput) options << " -D CLR_CLIP_INPUT=1";
   // Why exactDivide matters: device.h.
   if (exactDivide) options << " -cl-fp32-correctly-rounded-divide-sqrt";
-  // Raster fetches 12 bin entries ahead: measured 10-20% off raster on the
-  // 2-core development machine against no prefetch (Suzanne and a
-  // 1M-triangle sphere at 1080p), and 13-20% more against 4 entries (24 gave
-  // nothing more); resolve_lambert's row-ahead fetches took 40% off its time
-  // on the sphere. Other drivers' compilers need not know the clang builtin.
+  // Raster fetches 12 bin entries ahead (the distance is a bench/ab.sh choice); PoCL only: other drivers'
+  // compilers need not know the clang builtin.
   if (prefetch) options << " -D CLR_PREFETCH=12";
   return options.str();
 }
@@ -154,26 +150,18 @@ int contextLanes(const cl::Device& device, int lanesOverride)
   return lanes;
 }
 
-ClContext::ClContext(const std::string& selector, int lanesOverride, const CompileAheadRequest& ahead,
-                     bool clipInputPrograms)
-    : compileAhead(ahead, selector, lanesOverride), info(selectDevice(selector)), clipInput(clipInputPrograms)
+ClContext::ClContext(const std::string& selector, int lanesOverride, bool clipInputPrograms)
+    : info(selectDevice(selector)), clipInput(clipInputPrograms)
 {
-  // Step 1: the work shape; a helper started for the selector (compileAhead,
-  // before the device was known) stays only where it helps.
+  // Step 1: the work shape, the queue and the frame program.
   lanes = contextLanes(info.device, lanesOverride);
-  compileAhead.deviceChosen(info, lanes);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   prefetch = isPocl(info);
   const bool exactDivide =
       (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide, clipInput);
-  // (A helper compiling kernels ahead repeats the build beside this one, and
-  // learns how long this one took.)
-  const auto buildStart = std::chrono::steady_clock::now();
   program = buildProgram(context, info.device, buildOptions_);
-  compileAhead.programBuilt(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - buildStart).count());
   maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests

@@ -8,7 +8,6 @@
 #pragma once
 
 #include "cl.h"
-#include "compile_ahead.h"
 
 #include <string>
 #include <vector>
@@ -31,8 +30,7 @@ std::vector<DeviceInfo> listDevices();
 DeviceInfo selectDevice(const std::string& selector);
 
 // Whether the device is PoCL's (its platform's name): the compiler takes
-// __builtin_prefetch (kernelBuildOptions), and a helper process can compile
-// kernels into its cache (compile_ahead.h).
+// __builtin_prefetch (kernelBuildOptions).
 bool isPocl(const DeviceInfo& device);
 
 // Pixels per work-item of the raster kernel for a device: 16 (one vector
@@ -44,16 +42,10 @@ int defaultLanes(const cl::Device& device);
 int contextLanes(const cl::Device& device, int lanesOverride);
 
 // The OpenCL context every stage shares. lanes 0 picks the device's default.
-// A non-empty `ahead` starts a helper process that compiles those kernels
-// while this context builds and compiles the first ones (compile_ahead.h).
 struct ClContext {
   // clipInput: the programs take clip-space float4 positions (-D
   // CLR_CLIP_INPUT=1, transform.cl), for the library's rasterize (api.cpp).
-  explicit ClContext(const std::string& selector, int lanes = 0, const CompileAheadRequest& ahead = {},
-                     bool clipInput = false);
-  // The helper of `ahead`, started before anything else (so first here),
-  // awaited before the first launch of each kernel it compiles.
-  CompileAhead compileAhead;
+  explicit ClContext(const std::string& selector, int lanes = 0, bool clipInput = false);
   DeviceInfo info;
   int lanes = 1;           // CLR_LANES the program was built with
   bool prefetch = false;   // the program was built with CLR_PREFETCH (kernelBuildOptions)

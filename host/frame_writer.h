@@ -1,20 +1,14 @@
-// frame_writer.h — overlaps PNG encoding and writing with rendering, and
-// shows progress.
+// frame_writer.h — overlaps PNG encoding and writing with rendering, and shows progress.
 //
-// FrameWriter owns one writer thread and a small bounded queue. The render
-// loop push()es each finished image and goes on with the next frame while
-// the thread encodes and writes the previous ones through writePng (a
-// temporary file renamed into place, image_io.h). push() blocks while the
-// queue is full, so at most capacity + 1 images wait in host memory. The
-// first write failure stops the thread; push() and finish() rethrow it.
-// Destroying a writer that was not finished writes what is queued unless a
-// write failed, and never throws.
+// FrameWriter owns one writer thread and a small bounded queue. The render loop push()es each finished image and goes
+// on with the next frame while the thread encodes and writes the previous ones through writePng (a temporary file
+// renamed into place, image_io.h). push() blocks while the queue is full, so at most capacity + 1 images wait in host
+// memory. The first write failure stops the thread; push() and finish() rethrow it. Destroying a writer that was not
+// finished writes what is queued unless a write failed, and never throws.
 //
-// ProgressBar redraws one line on a terminal ("\r" before each redraw, at
-// most 10 redraws a second): frames done/total, frames per second and the
-// time left. It draws nothing when disabled, i.e. when stderr is not a
-// terminal. finish(), or the destructor, ends the line, so an error message
-// after it starts on a line of its own.
+// ProgressBar redraws one line on a terminal ("\r" before each redraw, at most 10 redraws a second): frames done/total,
+// frames per second and the time left. It draws nothing when disabled, i.e. when stderr is not a terminal. finish(), or
+// the destructor, ends the line, so an error message after it starts on a line of its own.
 #pragma once
 
 #include <chrono>
@@ -79,7 +73,7 @@ class ProgressBar {
   ProgressBar& operator=(const ProgressBar&) = delete;
   // Whether stderr is a terminal (the bar's default).
   static bool stderrIsTerminal();
-  void update(size_t done);  // thread-safe; redraws at most every 100 ms
+  void update(size_t done);  // thread-safe; redraws at most 10 times a second
   void finish();             // final redraw and newline, once drawn
 
  private:

@@ -34,36 +34,43 @@ void Pipeline::lines()
     cl_.queue.enqueueNDRangeKernel(fromSetup, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr, &event);
     record("lines_from_setup", event);
   }
-  drawLineSegments(uint32_t(n));
+  drawLineSegments(uint32_t(n), settingsLinePass());
 }
 
 void Pipeline::lines(const std::vector<LineSeg>& segments)
 {
   if (segments.size() > UINT32_MAX) throw Error("more than 2^32 line segments");
   lineSegs_.upload(segments);
-  drawLineSegments(uint32_t(segments.size()));
+  drawLineSegments(uint32_t(segments.size()), settingsLinePass());
 }
 
-void Pipeline::drawLineSegments(uint32_t n)
+Pipeline::LinePass Pipeline::settingsLinePass() const
 {
-  // Step 1: the line constants. Without a wireframe mode (caller's
-  // segments), lines are drawn over the image.
+  // Without a wireframe mode (caller's segments), lines are drawn over the image.
+  const FrameSettings& s = settings_;
+  const uint32_t mode = s.wireframe == CLR_WIREFRAME_OFF ? CLR_WIREFRAME_OVERLAY : s.wireframe;
+  return {mode, s.lineMethod, s.lineWidth, mode == CLR_WIREFRAME_ONLY ? kOnlyColour : kOverlayColour};
+}
+
+void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
+{
+  // Step 1: the line constants.
   const FrameSettings& s = settings_;
   if (!params_.visAttributes)
     throw Error("lines: the frame has no depth plane to test against (set FrameSettings.keepVisAttributes)");
-  if (s.lineMethod > CLR_LINE_BRESENHAM || s.wireframe > CLR_WIREFRAME_ONLY)
+  if (pass.method > CLR_LINE_BRESENHAM || pass.mode > CLR_WIREFRAME_ONLY)
     throw Error("unknown line method or wireframe mode");
-  if (!(s.lineWidth > 0.0f && s.lineWidth <= 16.0f)) throw Error("line width must lie in (0, 16] pixels");
+  if (!(pass.width > 0.0f && pass.width <= 16.0f)) throw Error("line width must lie in (0, 16] pixels");
   LineParams lp{};
-  lp.mode = s.wireframe == CLR_WIREFRAME_OFF ? CLR_WIREFRAME_OVERLAY : s.wireframe;
-  lp.method = s.lineMethod;
-  lp.width = s.lineWidth;
+  lp.mode = pass.mode;
+  lp.method = pass.method;
+  lp.width = pass.width;
   // Bresenham pixels lie within half a pixel (along the minor axis) of the
   // line between the end pixels' centres; an anti-aliased pixel with any
   // coverage has its centre within half a diagonal of the rectangle.
-  lp.reach = s.lineMethod == CLR_LINE_BRESENHAM ? 0.75f : 0.5f * s.lineWidth + 0.7072f;
+  lp.reach = pass.method == CLR_LINE_BRESENHAM ? 0.75f : 0.5f * pass.width + 0.7072f;
   lp.depthBias = kDepthBias;
-  lp.colour = lp.mode == CLR_WIREFRAME_ONLY ? kOnlyColour : kOverlayColour;
+  lp.colour = pass.colour;
   lp.background = CLR_BACKGROUND(s.shadeMode);  // resolve's, so the mode looks the same without its triangles
   lp.numSegments = n;
   lineParams_.upload({lp});

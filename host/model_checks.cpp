@@ -26,7 +26,8 @@ std::string oneLine(std::string s)
 namespace {
 
 // Assimp 5.2's PLY reader loops forever on some malformed headers (an
-// unknown property type, a missing end_header), and it allocates what an
+// unknown property type, a missing end_header), drops the properties after a
+// line it does not know, and it allocates what an
 // element count asks for before reading any data. PLY headers are short and
 // fully specified, so they are checked here before assimp sees the file: an
 // element of N items needs at least N bytes.
@@ -61,6 +62,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
   };
   bool haveFormat = false, haveElement = false;
+  int elementLine = 0, unknownLine = 0;  // the last element line, the last unknown line
   for (int lineNo = magicLine + 1; std::getline(in, line) && lineNo < 10000; ++lineNo) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
@@ -92,8 +94,12 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
         throw Error(oneLine(where + "element '" + a + "' has " + std::to_string(count) +
                             " items, more than the file's " + std::to_string(fileSize) + " bytes hold"));
       haveElement = true;
+      elementLine = lineNo;
     } else if (key == "property") {
       if (!haveElement) throw Error(oneLine(where + "property before any element"));
+      if (unknownLine > elementLine)
+        throw Error(oneLine(where + "property after the unknown header line " + std::to_string(unknownLine) +
+                            " of its element (assimp would drop it)"));
       words >> a;
       if (a == "list") {
         words >> b >> c;
@@ -102,7 +108,12 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
         throw Error(oneLine(where + "unknown property type '" + a + "'"));
       }
     } else {
-      throw Error(oneLine(where + "unknown keyword '" + key + "'"));
+      // Assimp skips a line it does not know (exporters write such lines:
+      // Blender's "Created by ..."), but one among an element's properties
+      // ends that element's list, and the properties after it would be
+      // dropped, misreading the data: refused then (below).
+      unknownLine = lineNo;
+      continue;
     }
   }
   throw Error(path + ": PLY header has no end_header");

@@ -65,8 +65,10 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
     p.sampleMinY = std::min(p.sampleMinY, p.sampleY[k]);
     p.sampleMaxY = std::max(p.sampleMaxY, p.sampleY[k]);
   }
-  if (s.edgeMode > CLR_EDGES_FLOAT || s.interpMode > CLR_INTERP_AFFINE || s.traversal > CLR_TRAVERSAL_HIERARCHICAL)
+  if (s.edgeMode > CLR_EDGES_FLOAT || s.interpMode > CLR_INTERP_AFFINE || s.traversal > CLR_TRAVERSAL_SPANS_FLOAT)
     throw Error("unknown edge, interpolation or traversal method");
+  if (s.edgeMode == CLR_EDGES_FLOAT && s.traversal >= CLR_TRAVERSAL_SPANS)
+    throw Error("float edges and span traversal each decide coverage: use one of them");
   p.edgeMode = s.edgeMode;
   p.interpMode = s.interpMode;
   p.traversal = s.traversal;
@@ -76,10 +78,12 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.visibility = s.visibility;
   // Tiny triangles that cover no sample are culled in setup only where no
   // reader could tell: one sample (the test knows one sample position),
-  // fixed edges (raster's own integers) and no wireframe (which draws the
-  // setup triangles' edges, covered or not).
-  p.cullSampleFree =
-      s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED && s.wireframe == CLR_WIREFRAME_OFF ? 1u : 0u;
+  // exact coverage (raster's own integers: not float edges or the float
+  // walk) and no wireframe (which draws the setup triangles' edges).
+  p.cullSampleFree = s.cullSampleFree && s.samples == 1 && s.edgeMode == CLR_EDGES_FIXED &&
+                             s.traversal != CLR_TRAVERSAL_SPANS_FLOAT && s.wireframe == CLR_WIREFRAME_OFF
+                         ? 1u
+                         : 0u;
   // The depth and barycentric planes of the visibility buffer, only for the
   // frames whose readers need them (shared.h): lines test against the depth
   // plane, and resolve recomputes only the fixed edges' barycentrics.
@@ -192,6 +196,10 @@ void Pipeline::uploadScene(const Mesh& mesh)
     throw Error("scene's triangle materials do not match its triangles");
   for (uint32_t m : mesh.triMaterial)
     if (m >= mesh.materials.size()) throw Error("scene's triangle material " + std::to_string(m) + " out of range");
+  for (uint32_t v : mesh.lines)
+    if (v >= mesh.numVerts()) throw Error("scene's line vertex " + std::to_string(v) + " out of range");
+  for (uint32_t v : mesh.points)
+    if (v >= mesh.numVerts()) throw Error("scene's point vertex " + std::to_string(v) + " out of range");
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
   // Step 2: what every mode reads, now; the rest when a frame reads it.
@@ -286,9 +294,7 @@ float Pipeline::clusterMargin(const glm::mat4& mvp) const
   // its own, so this only chooses when to run it: when a corner of the
   // scene's box lies behind the eye, or the box's projection covers more
   // than twice the view (NDC area 8), much of the scene may lie beside the
-  // view. Where less can, the test costs more than it saves (the count pass
-  // on yxa_1 filling 1080p, its box reaching just past the view, 1.18 ->
-  // 1.26 ms; six alternated pairs).
+  // view. Where less can, the test costs more than it saves (bench/ab.sh).
   if (sceneMin_.x > sceneMax_.x) return 0.0f;
   bool behind = false;
   glm::vec2 lo(INFINITY), hi(-INFINITY);
@@ -318,6 +324,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   unmapImage();  // kernels must not write a mapped buffer
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
   params_.sceneFlags = bindAttributes(settings);
+  if (!scene_.lines.empty() || !scene_.points.empty()) params_.visAttributes = 1;  // their depth test reads it
   params_.clusterMargin = clusterMargin(settings.mvp);
   settings_ = settings;
   events_.clear();
@@ -335,6 +342,7 @@ void Pipeline::runStages(const FrameSettings& settings)
   raster();
   resolve();
   if (settings.wireframe != CLR_WIREFRAME_OFF) lines();
+  if (!scene_.lines.empty() || !scene_.points.empty()) filePrimitives();
 }
 
 FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)

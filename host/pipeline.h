@@ -38,8 +38,7 @@ ScanChunks scanChunks(uint32_t n);
 cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
 
 // The work shapes of raster and resolve over tilesX × tilesY tiles, as
-// Pipeline launches them (and compileKernelsAhead, compile_ahead.h, whose
-// launches must match them for PoCL to reuse their code): raster one
+// Pipeline launches them: raster one
 // work-item per pixel sample in the GPU shape (lanes 1), per tile and sample
 // index in the CPU shape; resolve one work-item per row of lanes, a tile per
 // work-group, or per tile when a row of lanes spans the tile.
@@ -135,6 +134,8 @@ struct FrameSettings {
   uint32_t wireframe = CLR_WIREFRAME_OFF;
   uint32_t lineMethod = CLR_LINE_AA;
   float lineWidth = 1.0f;
+  // A file's points (Mesh::points): squares of this many pixels a side (points.cpp).
+  uint32_t pointSize = 1;
   // Raster also writes the depth and barycentric planes of the visibility
   // buffer (12 more bytes per sample), for aov() and for the depth and
   // barycentrics of readVis(). Frames with lines or float edges have them
@@ -229,6 +230,10 @@ class Pipeline {
   // the caller's segments, into the image with FrameSettings' line method.
   void lines();
   void lines(const std::vector<LineSeg>& segments);
+  // After resolve (and the wireframe): the scene's own lines and points
+  // (Mesh::lines, Mesh::points), projected and clipped here and drawn by the
+  // lines stage (file_primitives.cpp). runStages calls it when there are any.
+  void filePrimitives();
   // After raster: the visibility-buffer outputs, CLR_AOV_CHANNELS planes of
   // width·height floats, bottom row first (aov.cpp).
   void aov();
@@ -322,8 +327,17 @@ class Pipeline {
     slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
     binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
   }
+  // How one pass of the lines stage draws: CLR_WIREFRAME_* mode, CLR_LINE_*
+  // method, anti-aliased width in pixels, RGBA8 colour (R in the low byte).
+  struct LinePass {
+    uint32_t mode, method;
+    float width;
+    uint32_t colour;
+  };
+  // The pass FrameSettings' wireframe and line flags ask for (lines.cpp).
+  LinePass settingsLinePass() const;
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
-  void drawLineSegments(uint32_t n);
+  void drawLineSegments(uint32_t n, const LinePass& pass);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
   // Sets a kernel's arguments 0, 1, 2, ... in order.
   template <typename... Args>
@@ -367,8 +381,9 @@ class Pipeline {
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
       scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
-      rasterFloatKernel_, resolveKernel_, resolveLambertKernel_, linesFromSetupKernel_, linesBinCountKernel_,
-      linesBinFillKernel_, linesDrawKernel_, aovKernel_, rastOutputsKernel_;
+      rasterFloatKernel_, rasterSpansKernel_, rasterSpansFloatKernel_, resolveKernel_, resolveLambertKernel_,
+      linesFromSetupKernel_, linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_,
+      rastOutputsKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;

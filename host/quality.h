@@ -29,11 +29,9 @@ namespace clr {
 constexpr double kAutoTargetRmse = 0.005;
 
 // Tiles per setup triangle (bounding-box binning) above which --quality auto
-// takes hierarchical traversal. Measured at 1920x1080 (clraster render
-// --traversal bbox|hierarchical --frames 15, README "Methods"): hierarchical
-// was 5–15% slower in bin + raster time at 2.2 to 14.5 tiles per triangle
-// (the built-in scene from five distances) and 2.1–4.1x faster at 762 to
-// 6059 (300 long or large slanted triangles); the threshold sits between.
+// takes hierarchical traversal: below it hierarchical's tile tests cost more than
+// they save, far above it they save most of bin + raster; the threshold sits in the
+// gap (compare `clraster render --stats --traversal bbox|hierarchical`, docs/methods.md).
 constexpr double kHierarchicalTilesPerTriangle = 100.0;
 
 struct EdgeContrast {

@@ -66,18 +66,22 @@ void Pipeline::raster()
     paintOrder_.clear();
     paintRank_.reserve(1);
   }
-  // The method's variant (float edges take the bounding-box scan).
-  // (The default is in the frame program, the others in the extras program.)
-  cl::Kernel& kernel = params_.edgeMode == CLR_EDGES_FLOAT ? extraKernel(rasterFloatKernel_, "raster_float")
-                       : params_.traversal == CLR_TRAVERSAL_HIERARCHICAL
-                           ? extraKernel(rasterHierarchicalKernel_, "raster_hierarchical")
-                           : rasterKernel_;
+  // The method's variant: the default is in the frame program, the others
+  // in the extras program (float edges take the bounding-box scan).
+  cl::Kernel* kernel = &rasterKernel_;
+  if (params_.edgeMode == CLR_EDGES_FLOAT)
+    kernel = &extraKernel(rasterFloatKernel_, "raster_float");
+  else if (params_.traversal == CLR_TRAVERSAL_HIERARCHICAL)
+    kernel = &extraKernel(rasterHierarchicalKernel_, "raster_hierarchical");
+  else if (params_.traversal == CLR_TRAVERSAL_SPANS)
+    kernel = &extraKernel(rasterSpansKernel_, "raster_spans");
+  else if (params_.traversal == CLR_TRAVERSAL_SPANS_FLOAT)
+    kernel = &extraKernel(rasterSpansFloatKernel_, "raster_spans_float");
   cl::Event event;
-  setArgs(kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
+  setArgs(*kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
           binEntries_.get(), visIndex_.get(), visAttr_.get(), paintRank_.get(), tileSlot_.get(), visPlane());
-  cl_.compileAhead.await("raster");  // when a helper compiles it (compile_ahead.h)
   const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
+  cl_.queue.enqueueNDRangeKernel(*kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("raster", event);
 }
 

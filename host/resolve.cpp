@@ -19,8 +19,7 @@ bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t n
   // source word, the input triangle's vertex indices and, where the mode
   // reads them, its vertex normals. Below 2 MB they stay cached; a larger
   // triangle (more tiles) repeats in the rows of its tiles and stays cached
-  // too: prefetching for the engine filling 1080p (6.6 MB, 4.8 bin entries
-  // a triangle) took its resolve 3.16 -> 4.02 ms (bench/ab.sh's turns).
+  // too, where prefetching only costs (bench/ab.sh).
   const uint64_t normalBytes = CLR_NEEDS_NORMALS(params.shadeMode) ? 12 * uint64_t(params.numVerts) : 0;
   const uint64_t gathered = uint64_t(numSetup) * (sizeof(TriSetup) + 4) + 12 * uint64_t(params.numTris) + normalBytes;
   return gathered > (2u << 20) && numBinEntries <= 2 * uint64_t(numSetup);
@@ -53,13 +52,9 @@ void Pipeline::resolve()
   const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
                                                            params_.pointLightOn, params_.sceneFlags);
   leanResolve_ = lean;
-  // Step 2: whether it fetches rows ahead (CPU shape, PoCL), measured per
-  // case because the gain depends on the mesh's order. In alternated turns
-  // (bench/ab.sh, resolve at 1080p) prefetching took yxa_1 far 1.59 -> 1.09
-  // ms and a 400k-triangle sphere far 4.28 -> 3.80 ms, but 100k- and
-  // 200k-triangle spheres far 3.05 -> 3.36 and 3.49 -> 3.98 ms (likely
-  // because their triangles lie in memory in the order of their grids' rows,
-  // which the caches already serve).
+  // Step 2: whether it fetches rows ahead (CPU shape, PoCL), timed per case
+  // (PrefetchChooser) because the gain depends on the mesh's order in memory:
+  // a mesh stored row by row is already served by the caches.
   timedPrefetch_ = cl_.prefetch && cl_.lanes > 1 && resolveMayPrefetch(params_, numSetup_, numBinEntries_);
   const PrefetchChooser::Case frameCase{sceneUploads_,     params_.width,   params_.height,
                                         params_.shadeMode, params_.samples, lean};
@@ -69,7 +64,6 @@ void Pipeline::resolve()
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
           visPlane(), cl_uint(resolvePrefetch_));
-  cl_.compileAhead.await(lean ? "resolve_lambert" : "resolve");  // when a helper compiles it (compile_ahead.h)
   const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("resolve", event);

@@ -6,6 +6,7 @@
 
 #include "cl.h"
 #include "model_checks.h"
+#include "normals.h"
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/DefaultLogger.hpp>
@@ -47,7 +48,7 @@ struct ImportState {
   const std::string& path;
   const aiScene* scene;
   Mesh mesh;
-  bool allHaveNormals = true;
+  bool anyNormals = false;
   bool anyColors = false;
 };
 
@@ -59,7 +60,8 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
   // Step 1: vertices, with the node transform applied.
   aiMatrix3x3 normalMatrix(transform);
   normalMatrix.Inverse().Transpose();
-  if (!src->mNormals) state.allHaveNormals = false;
+  if (src->mNormals) state.anyNormals = true;
+  if (src->mTextureCoords[0]) dst.facts.uvsInFile = true;
   for (unsigned v = 0; v < src->mNumVertices; ++v) {
     // Non-finite or huge coordinates would leave the bounds and the camera
     // framing overflowing; the file is rejected instead.
@@ -91,6 +93,10 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
         throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " face " + std::to_string(f) +
                     " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
                     std::to_string(src->mNumVertices) + " vertices)");
+    // Lines and points (glTF's line and point modes, OBJ's l and p).
+    if (face.mNumIndices == 2)
+      dst.lines.insert(dst.lines.end(), {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[1])});
+    if (face.mNumIndices == 1) dst.points.push_back(uint32_t(base + face.mIndices[0]));
     for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
       dst.indices.insert(dst.indices.end(), {uint32_t(base + face.mIndices[0]), uint32_t(base + face.mIndices[k]),
                                              uint32_t(base + face.mIndices[k + 1])});
@@ -199,6 +205,7 @@ void loadMaterials(ImportState& state)
             // say so, as other renderers do with a missing texture file.
             state.mesh.warnings.push_back(state.path + ": material " + std::to_string(m) + ": " + e.what() +
                                           "; rendered without the texture");
+            state.mesh.facts.missingTextures.push_back(file);
             state.mesh.materials.push_back(out);
             continue;
           }
@@ -316,14 +323,23 @@ Mesh importScene(const std::string& path)
   // Step 2: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
-  if (state.mesh.indices.empty()) throw Error(path + ": no triangles in file");
+  // PLY has no lines or points of its own (assimp does not read edge
+  // elements), but its reader makes a truncated face list into faces of one
+  // or two vertices.
+  std::string extension = path.substr(path.find_last_of("./") == std::string::npos ? 0 : path.find_last_of("./"));
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".ply" && !(state.mesh.lines.empty() && state.mesh.points.empty()))
+    throw Error(path + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
+  if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
+    throw Error(path + ": no triangles, lines or points in file");
   if (!state.anyColors) state.mesh.colors.clear();
   // Step 3: materials and their textures.
   loadMaterials(state);
   for (uint32_t& m : state.mesh.triMaterial)
     if (m >= state.mesh.materials.size()) throw Error(path + ": mesh refers to missing material " + std::to_string(m));
   if (meshBounds(state.mesh).empty) throw Error(path + ": no vertex has finite coordinates");
-  if (!state.allHaveNormals) computeSmoothNormals(state.mesh);
+  repairNormals(state.mesh, path, state.anyNormals);
   return std::move(state.mesh);
 }
 

@@ -18,8 +18,7 @@ void Pipeline::setup()
   // total with one wait (one read of the counters, where the scans copy
   // their totals); if the clip list was too short, grow it and redo.
   // When the previous frame clipped nothing, bin()'s tile scans go before the
-  // wait too, so that a frame without clipping waits once (the two waits
-  // took 63-80 µs each on the 2-core machine); a frame that does clip counts
+  // wait too, so that a frame without clipping waits once; a frame that does clip counts
   // again without them, since setup_clip adds to the tile counts they scan.
   uint32_t clipped = 0;
   cl_ulong total = 0;

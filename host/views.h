@@ -1,21 +1,18 @@
-// views.h — many cameras in one run (`clraster render --views FILE`): the
-// views file, the shard of it one process renders, and the output names.
+// views.h — many cameras in one run (`clraster render --views FILE`): the views file, the shard of it one process
+// renders, and the output names.
 //
-// A views file is one JSON object with one key, "views", a non-empty array
-// of objects; each object is one camera and may hold these keys, all of them
-// optional, and no others:
+// A views file is one JSON object with one key, "views", a non-empty array of objects; each object is one camera and
+// may hold these keys, all of them optional, and no others:
 //   "eye", "target", "up"  arrays of 3 numbers (world space)
 //   "fov"                  vertical field of view in degrees, in (0, 180)
 //   "near", "far"          clip planes, 0 < near < far
 //   "size"                 [W, H], integers in 1..16384
-// A key a view leaves out takes the command line's value (--eye, --size, ...)
-// and, failing that, the framing default of camera.h. Every problem is a
-// clr::Error "FILE: view I: problem" (or "FILE: problem" for the whole file),
-// found before anything is rendered.
+// A key a view leaves out takes the command line's value (--eye, --size, ...) and, failing that, the framing default of
+// camera.h. Every problem is a clr::Error "FILE: view I: problem" (or "FILE: problem" for the whole file), found before
+// anything is rendered.
 //
-// A shard K/N is the views K, K + N, K + 2N, ... of the list; output names
-// come from a printf pattern with one integer conversion, given the view's
-// index in the whole list, so shards never collide.
+// A shard K/N is the views K, K + N, K + 2N, ... of the list; output names come from a printf pattern with one integer
+// conversion, given the view's index in the whole list, so shards never collide.
 #pragma once
 
 #include "camera.h"

@@ -1,27 +1,10 @@
-/* aov.cl — visibility-buffer outputs (arbitrary output variables): what a
- * differentiable-rendering pipeline reads from a rasterizer, as nvdiffrast's
- * rasterize output and PyTorch3D's fragments.
+/* aov.cl — visibility-buffer outputs (AOVs), as nvdiffrast's rasterize output or PyTorch3D's fragments.
  *
- * One work-item per pixel reads sample 0 of the visibility buffer (pixels of
- * tiles that binning left empty are "none" without a read) and writes
- * CLR_AOV_CHANNELS float planes (shared.h), bottom row first:
- *  triangle id: the input triangle index, −1 for none; exact while the index
- *    is below 2^24, rounded to the nearest float above that;
- *  bary (u, v): perspective-correct weights of input vertices 1 and 2
- *    (vertex 0 weighs 1 − u − v), from the screen barycentrics by the 1/w
- *    rule, λ_i = (b_i / w_i) / Σ_j (b_j / w_j), then mapped to the input
- *    triangle as resolve.cl does: through ClipBary for a clipped triangle,
- *    through the swap of vertices 1 and 2 for a back-facing one;
- *  bary_screen (u, v): the screen-space barycentrics b_i mapped the same way
- *    (what --interp affine interpolates): for an unclipped triangle exactly
- *    its screen-space barycentrics, for a clipped one the affine
- *    interpolation of the clip vertices' weights;
- *  z/w: the window depth raster kept ([0, 1], 1 = none);
- *  eye depth: w_clip = 1 / Σ b_i / w_i, the distance along the view axis
- *    (+inf = none);
- *  normal: the input vertex normals interpolated with the perspective-correct
- *    weights and normalised (0 when they cancel; never flipped for back
- *    faces), 0 for none.
+ * One work-item per pixel reads sample 0 of the visibility buffer (empty tiles are "none" unread) and writes the
+ * CLR_AOV_CHANNELS float planes of shared.h. Weights are of the input triangle's vertices 1 and 2, mapped through
+ * ClipBary (clipped) or the 1↔2 swap (back-facing) as resolve.cl does: bary by the 1/w rule
+ * λ_i = (b_i / w_i) / Σ_j (b_j / w_j), bary_screen the screen b_i (--interp affine). Triangle id is exact below 2^24;
+ * eye depth is w_clip = 1 / Σ b_i / w_i; normals are never flipped, 0 when they cancel.
  * Background: id −1, barycentrics 0, z/w 1, eye depth +inf, normal 0.
  */
 #pragma OPENCL FP_CONTRACT OFF
@@ -76,8 +59,7 @@ __kernel void aov(__constant FrameParams* params,
   // Step 4: the interpolated normal.
   float3 n = (float3)(0.0f);
   for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * triId + j], normals);
-  // Not length(): its rounding is the driver's (NVIDIA's differed from
-  // PoCL's by an ulp or two in most pixels); each operation here is IEEE.
+  // Not length(): its rounding is the driver's; each operation here is IEEE, so every device agrees.
   const float len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   n = len > 0.0f ? n / len : (float3)(0.0f);
   // Step 5: write.

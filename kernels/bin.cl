@@ -1,28 +1,12 @@
-/* bin.cl — stage 4: binning screen triangles into CLR_TILE_SIZE² tiles.
+/* bin.cl — stage 4: binning screen triangles into CLR_TILE_SIZE² tiles (helpers riding on setup.cl's passes).
  *
- * Two passes with a scan between them, so memory follows the actual counts
- * and no triangle is ever dropped. The passes ride on setup's (setup.cl):
- * setup_triangles' count pass adds one to every tile an unclipped
- * triangle's pixel bounds touch (bin_count_tiles) while it counts screen
- * triangles, and setup_clip does the same for the sub-triangles it writes;
- * the host scans the tile counts into offsets, sizes binEntries from the
- * total and gives each non-empty tile its block of the visibility buffer
- * (host bin.cpp, shared.h); then the emit pass writes each unclipped
- * triangle's record and its bin entries in one go (bin_fill_tiles), and
- * bin_fill_clipped fills the entries of the clipped triangles' records.
- * Fusing the passes this way saves reading every setup record twice more.
- * Both group their atomic adds where a mesh is coherent: the count pass
- * tallies one- and two-tile triangles for the two tiles it counted last
- * (bin_tally), the emit pass takes one add for a run of one-tile triangles
- * in one tile (bin_fill_run), and both take one add per tile for a run of
- * triangles on one range of several tiles (bin_count_range_run,
- * bin_fill_range_run). The order inside a tile is
- * not deterministic; the raster kernel breaks depth ties by setup index,
- * which is input order. With hierarchical traversal (FrameParams.traversal)
- * a tile of the bounds is skipped when all of it lies strictly outside one
- * edge: the edge function is linear, so its largest value over the tile's
- * rectangle is at a corner, and a negative maximum leaves every sample of
- * the tile outside, whatever the fill rule.
+ * Count, scan, fill, so memory follows the counts and no triangle is dropped: setup's count pass (and setup_clip
+ * for sub-triangles) adds one per tile of a triangle's pixel bounds; the host scans counts into offsets, sizes
+ * binEntries and gives each non-empty tile a visibility-buffer slot (host bin.cpp); the emit pass writes records and
+ * bin entries together (bin_fill_tiles) and bin_fill_clipped bins clipped records. Atomic adds are grouped where a
+ * mesh is coherent (bin_tally, bin_fill_run, bin_*_range_run). Order within a tile is not deterministic: raster
+ * breaks depth ties by setup index (input order). Hierarchical traversal skips a tile strictly outside one edge:
+ * the edge function is linear, so its maximum over the tile is at a corner.
  */
 
 /* Floor and ceiling of a / CLR_FIXED_ONE for signed a. */
@@ -35,11 +19,8 @@ CLR_INLINE int fixed_ceil(int a)
   return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
 }
 
-/* Inclusive pixel range that can hold a sample of the triangle, clamped to
- * the viewport: pixel i's samples lie at i·ONE + HALF + offset with the
- * offset in [sampleMin, sampleMax] (FrameParams), so with one sample at the
- * centre this is the range of pixel centres (i + 0.5) in the bounds. Empty
- * when x0 > x1 or y0 > y1. setup_make computes the same in lane types. */
+/* Inclusive pixel range, clamped to the viewport, that can hold a sample (at i·ONE + HALF + offset, offset in
+ * [sampleMin, sampleMax]); empty when x0 > x1 or y0 > y1. setup_make computes the same in lane types. */
 CLR_INLINE int4 bin_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
 {
   const int4 b = CLR_RECORD_BOUNDS(*t);
@@ -57,10 +38,7 @@ CLR_INLINE long bin_edge_at(int ax, int ay, int bx, int by, int px, int py)
   return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * (long)(px - ax);
 }
 
-/* Where tile (tx, ty)'s rectangle of sample positions lies against the
- * triangle: −1 strictly outside one edge (no sample can be covered), 1
- * inside all three edges by the fill rule (every sample is covered), 0
- * otherwise. */
+/* Tile (tx, ty)'s samples against the triangle: −1 strictly outside one edge, 1 all inside by the fill rule, else 0. */
 CLR_INLINE int bin_tile_class(const TriSetup* t, __constant FrameParams* params, int tx, int ty)
 {
   const int x0 = tx * CLR_TILE_SIZE * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleMinX;
@@ -94,9 +72,7 @@ CLR_INLINE bool bin_hierarchical(__constant FrameParams* params, int4 r)
 }
 
 #if !CLR_EXTRAS /* binning rides on setup (the frame program) */
-/* Pass 1: adds one to the count of each tile of r (the triangle's tile
- * range) that hierarchical traversal does not reject; t is read only when
- * bin_hierarchical(params, r). */
+/* Pass 1: +1 to each tile of range r that hierarchical traversal keeps (t read only if bin_hierarchical). */
 CLR_CALLED void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParams* params, __global uint* tileCount)
 {
   const bool hierarchical = bin_hierarchical(params, r);
@@ -105,22 +81,15 @@ CLR_CALLED void bin_count_tiles(const TriSetup* t, int4 r, __constant FrameParam
       if (!hierarchical || bin_tile_class(t, params, tx, ty) >= 0) atomic_inc(&tileCount[ty * params->tilesX + tx]);
 }
 
-/* True when r (a tile range) is two tiles, side by side or one above the
- * other: a small triangle across a tile edge, which the passes bin without
- * a loop (and without traversal's tile test, which a frame of bbox
- * traversal skips anyway). */
+/* True when range r is two adjacent tiles (a small triangle across a tile edge), binned without a loop. */
 CLR_INLINE bool bin_two_tiles(__constant FrameParams* params, int4 r)
 {
   return params->traversal != CLR_TRAVERSAL_HIERARCHICAL && (r.z - r.x) + (r.w - r.y) == 1;
 }
 
-/* Pass 1's counts for the one- and two-tile triangles of one setup batch
- * (CLR_LANES, setup.cl), held for the two tiles most recently counted: a
- * tile's count takes one atomic add when it leaves the pair or the batch
- * ends. Meshes are coherent: consecutive small triangles fall in one tile,
- * or in the two on either side of a tile edge, where a run of one tile
- * would take an atomic add at every crossing and one per two-tile
- * triangle's tile. Slot `front` holds the more recent tile. */
+/* Pass 1's counts for a batch's one- and two-tile triangles, held for the two most recent tiles (`front` the
+ * newer): one atomic add when a tile leaves the pair or the batch ends. Two tiles, not one, because coherent small
+ * triangles straddle tile edges. */
 typedef struct BinTally {
   uint tile[2], count[2], front;
 } BinTally;
@@ -196,10 +165,8 @@ CLR_INLINE bool bin_same_range(int4 a, int4 b)
   return a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w;
 }
 
-/* Pass 1 for a run of `count` consecutive triangles on one range r of
- * several tiles under bbox traversal: one atomic add per tile for the whole
- * run. Large triangles come in such runs where a mesh is made of quads (the
- * two halves of a wall share their tiles). */
+/* Pass 1 for `count` consecutive triangles on one multi-tile range r (bbox traversal): one add per tile for the run
+ * (the two halves of a quad share their tiles). */
 CLR_CALLED void bin_count_range_run(int4 r, uint count, __constant FrameParams* params, __global uint* tileCount)
 {
   for (int ty = r.y; ty <= r.w; ++ty)
@@ -217,10 +184,8 @@ CLR_CALLED void bin_fill_range_run(int4 r, const uint* setupIndex, uint count, _
       bin_fill_run(ty * params->tilesX + tx, setupIndex, count, tileOffset, tileCursor, binEntries);
 }
 
-/* Pass 2's run of consecutive triangles (setup indices, at most one batch)
- * on one tile range: one tile (bin_fill_run), or several under bbox
- * traversal (bin_fill_range_run). bin_run_add writes the run out when the
- * next triangle's range differs; bin_run_end writes what is left. */
+/* Pass 2's run of consecutive setup indices (<= one batch) on one tile range; bin_run_add flushes it when the next
+ * range differs, bin_run_end flushes the rest. */
 typedef struct BinRun {
   int4 range;
   uint length, setupIndex[CLR_LANES];
@@ -246,10 +211,8 @@ CLR_INLINE void bin_run_add(BinRun* run, int4 r, uint s, __constant FrameParams*
   run->setupIndex[run->length++] = s;
 }
 
-/* Pass 2 for clipped triangles: their records lie in CLR_MAX_SUBTRIS
- * reserved slots from clipList[i] (setup_clip put the first record's index
- * there); one work-item per slot. Each writes its record's source word,
- * its ClipBary slot, and bins it unless the slot is padding. */
+/* Pass 2 for clipped triangles, one work-item per reserved slot from clipList[i]: writes the record's source word
+ * (its ClipBary slot) and bins it unless it is padding. */
 __kernel void bin_fill_clipped(__constant FrameParams* params, __global const TriSetup* setup,
                                __global const ClipBary* clipBary,  // CLR_MAX_SUBTRIS · numClipped
                                __global uint* source,              // numSetup: the records' source words

@@ -1,25 +1,15 @@
 /* clip.cl — stage 2: homogeneous clipping (helpers used by setup.cl).
  *
- * Contract: a triangle with a non-finite clip coordinate, or with all three
- * vertices outside one viewport plane (or behind the near plane), is culled.
- * A triangle with a vertex behind the near plane or outside the
- * guard band (|x| > g_x·w, |y| > g_y·w, see fixed.h) is clipped in
- * homogeneous space by Sutherland–Hodgman, never divided by w <= 0. The near
- * plane follows the depth mode (shared.h): z >= −w is inside in the GL
- * convention (CLR_DEPTH_FLOAT32, CLR_DEPTH_UNORM24), z <= w with the
- * reversed projection of CLR_DEPTH_REVERSED. The far plane is not clipped:
- * fragments beyond it fail the depth test (GL LESS against a buffer cleared
- * to 1, or GREATER against 0 when reversed). Intersections are always computed from the
- * inside vertex towards the outside one, so an edge shared by two triangles
- * is cut at the same point from both sides (no seams); they are placed
- * exactly on the plane and stay finite for any finite vertices (provided
- * g·w does not overflow), so a triangle with vertices at 1e20 or 3e38 still
- * covers what it should (docs/limits.md).
+ * Culled: a non-finite clip coordinate, or all three vertices outside one viewport plane or the near plane.
+ * Clipped (Sutherland–Hodgman in homogeneous space, never dividing by w <= 0): a vertex behind the near plane or
+ * outside the guard band (|x| > g_x·w, |y| > g_y·w, fixed.h). Near is z >= −w (GL), z <= w with CLR_DEPTH_REVERSED;
+ * far is not clipped (the depth test drops it). Crossings go from the inside vertex outwards, so a shared edge is cut
+ * at the same point from both sides (no seams), and land exactly on the plane, finite for any finite vertices
+ * (docs/limits.md).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-/* A polygon vertex during clipping: its clip position and its barycentric
- * weights with respect to the input triangle. */
+/* A polygon vertex during clipping: clip position and barycentrics in the input triangle. */
 typedef struct ClipVertex {
   float4 pos;
   float3 bary;
@@ -31,9 +21,7 @@ CLR_INLINE float clip_near_sign(uint depthMode)
   return depthMode == CLR_DEPTH_REVERSED ? -1.0f : 1.0f;
 }
 
-/* Signed distance to clip plane `plane` (>= 0 is inside). Planes: 0 near,
- * 1 left, 2 right, 3 bottom, 4 top (the last four are the guard band).
- * nearSign from clip_near_sign; multiplying by ±1 is exact. */
+/* Signed distance to `plane` (>= 0 inside): 0 near, 1-4 guard band left, right, bottom, top. ×nearSign is exact. */
 CLR_INLINE float clip_distance(float4 c, int plane, float gx, float gy, float nearSign)
 {
   switch (plane) {
@@ -45,13 +33,10 @@ CLR_INLINE float clip_distance(float4 c, int plane, float gx, float gy, float ne
   }
 }
 
-/* Outcode bits of one vertex: 0-4 as clip_distance planes < 0, 5-8 outside
- * the viewport planes x < −w, x > w, y < −w, y > w, 9 beyond far (z > w,
- * or z < 0 when reversed). */
+/* Outcode bits: 0-4 clip_distance < 0; 5-8 x < −w, x > w, y < −w, y > w; 9 beyond far (z > w, reversed z < 0). */
 CLR_INLINE uint clip_outcode(float4 c, float gx, float gy, float nearSign)
 {
-  // Written without branches or a loop (same expressions as clip_distance),
-  // so setup's common path stays vectorisable.
+  // Branch- and loop-free (clip_distance's expressions), so setup's common path stays vectorisable.
   const bool beyondFar = nearSign < 0.0f ? c.z < 0.0f : c.z > c.w;
   return (nearSign * c.z + c.w < 0.0f ? 1u : 0u) | (c.x + gx * c.w < 0.0f ? 2u : 0u) |
          (gx * c.w - c.x < 0.0f ? 4u : 0u) | (c.y + gy * c.w < 0.0f ? 8u : 0u) | (gy * c.w - c.y < 0.0f ? 16u : 0u) |
@@ -63,8 +48,7 @@ CLR_INLINE uint clip_outcode(float4 c, float gx, float gy, float nearSign)
 CLR_INLINE void clip_intersect(const ClipVertex* inside, const ClipVertex* outside, int plane, float gx, float gy,
                                float nearSign, ClipVertex* out)
 {
-  // Step 1: the crossing. Near FLT_MAX a difference overflows; then it is
-  // taken of halved values (exact, so the same result where both work).
+  // Step 1: the crossing; near FLT_MAX a difference overflows, so halve (exact: same result where both work).
   const float dIn = clip_distance(inside->pos, plane, gx, gy, nearSign);
   const float dOut = clip_distance(outside->pos, plane, gx, gy, nearSign);
   const float denom = dIn - dOut;
@@ -73,9 +57,7 @@ CLR_INLINE void clip_intersect(const ClipVertex* inside, const ClipVertex* outsi
   out->pos = all(isfinite(d)) ? inside->pos + t * d
                               : 2.0f * (0.5f * inside->pos + t * (0.5f * outside->pos - 0.5f * inside->pos));
   out->bary = inside->bary + t * (outside->bary - inside->bary);
-  // Step 2: the point exactly on the plane. The interpolation rounds by up
-  // to |coordinate|·2^-24, far more than the guard band when vertices lie
-  // at 1e20: a triangle covering the band would lose half of it.
+  // Step 2: exactly on the plane: interpolation rounds by |coordinate|·2^-24, more than the band for huge vertices.
   switch (plane) {
     case 0: out->pos.z = -nearSign * out->pos.w; break;
     case 1: out->pos.x = -(gx * out->pos.w); break;
@@ -85,8 +67,7 @@ CLR_INLINE void clip_intersect(const ClipVertex* inside, const ClipVertex* outsi
   }
 }
 
-/* Clips the polygon poly[0..n) against the planes in `planeMask`, in place.
- * Returns the new vertex count (0 when nothing is left). */
+/* Clips poly[0..n) against the planes in `planeMask` in place; returns the new vertex count (0: nothing left). */
 CLR_INLINE int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, float gy, float nearSign)
 {
   ClipVertex scratch[CLR_MAX_CLIP_VERTS];

@@ -1,15 +1,10 @@
-/* lanes.h — the kernels' lane types: how many items one work-item handles.
+/* lanes.h — the kernels' lane types: how many items one work-item handles. OpenCL only (after shared.h).
  *
- * Chosen per device with -D CLR_LANES. On a GPU (1) a work-item handles one
- * item (a pixel, a triangle) in scalar types. On a CPU (16) it handles 16 in
- * explicit vector types, which PoCL compiles to AVX-512; PoCL does not
- * vectorise across work-items anything but the simplest kernels. Code is
- * written once against these names; comparisons yield masks (1 or −1 for
- * true), combined with & | and CLR_NOT and consumed by select(), which
- * reads them correctly in both widths. Two habits keep the code portable
- * to Oclgrind, which gets both wrong for vectors: negate masks with CLR_NOT,
- * never '!', and give min/max/clamp vector arguments, never a scalar.
- * OpenCL only (follows shared.h).
+ * -D CLR_LANES per device: 1 on a GPU (scalar types, one pixel or triangle per work-item); 16 on a CPU (explicit
+ * vectors, AVX-512 under PoCL, which vectorises across work-items only the simplest kernels). Comparisons yield
+ * masks (1 or −1 for true), combined with & | CLR_NOT and consumed by select(), correct in both widths. For
+ * Oclgrind, which gets both wrong for vectors: negate masks with CLR_NOT, never '!', and give min/max/clamp vector
+ * arguments, never a scalar.
  */
 
 /* Logical not of a mask, in either width. */
@@ -53,8 +48,7 @@ typedef int16 intL;
 typedef uint16 uintL;
 typedef float16 floatL;
 #define CLR_LANE_INDEX ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-/* True when any lane of a mask is set. An OR tree over halves, rather than
- * the any() builtin, which PoCL compiles to a test and branch per lane. */
+/* True when any lane of a mask is set: an OR tree over halves (PoCL's any() branches per lane). */
 CLR_INLINE bool clr_any16(int16 mask)
 {
   const int8 a = mask.lo | mask.hi;
@@ -63,8 +57,7 @@ CLR_INLINE bool clr_any16(int16 mask)
   return (c.x | c.y) != 0;
 }
 #define CLR_ANY(mask) clr_any16(as_int16(mask))
-/* The bits set in every lane, and the largest lane (max()'s rule for NaN):
- * trees over halves, as clr_any16. */
+/* The bits set in every lane, and the largest lane (max()'s NaN rule): trees over halves, as clr_any16. */
 CLR_INLINE uint clr_and_lanes(uint16 v)
 {
   const uint8 a = v.lo & v.hi;
@@ -95,12 +88,9 @@ CLR_INLINE float clr_max_lanes(float16 v)
 #error "CLR_LANES must be 1 or 16"
 #endif
 
-/* Rounds to the nearest integer, ties to even, exactly as rint() and the
- * _rte conversions do: adding 2^23 with x's sign leaves no fraction bits
- * when |x| < 2^23, and larger floats are integers already. Three vector
- * instructions, where PoCL emulates rint() and convert_*_rte with a dozen
- * (the sign of a zero result may differ, which conversions to integers
- * ignore). */
+/* Round to nearest even, exactly as rint() and _rte conversions: adding 2^23 with x's sign leaves no fraction bits
+ * when |x| < 2^23; larger floats are integers. Three vector instructions where PoCL emulates rint() with a dozen
+ * (a zero's sign may differ, which integer conversions ignore). */
 CLR_INLINE floatL clr_rint(floatL x)
 {
   const floatL big = 8388608.0f;  // 2^23
@@ -108,9 +98,7 @@ CLR_INLINE floatL clr_rint(floatL x)
   return select((x + magic) - magic, x, fabs(x) >= big);
 }
 
-/* The exact doubled signed area of each lane's triangle (fixed-point
- * vertices, 64 bits: fixed.h), and 1 / that, the lane-type twins of
- * clr_inv_area2 (shared.h) with its operations, so the same floats. */
+/* Each lane's exact doubled signed area (64 bits, fixed.h) and 1 / that: clr_inv_area2's operations, same floats. */
 CLR_INLINE longL clr_area2L(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2)
 {
   return convert_longL(x1 - x0) * convert_longL(y2 - y0) - convert_longL(x2 - x0) * convert_longL(y1 - y0);
@@ -120,17 +108,10 @@ CLR_INLINE floatL clr_inv_area2L(intL x0, intL y0, intL x1, intL y1, intL x2, in
   return 1.0f / convert_floatL(clr_area2L(x0, y0, x1, y1, x2, y2));
 }
 
-/* A row of CLR_LANES values stored around the caches (a non-temporal
- * store), where the compiler is clang targeting x86 with 16 lanes (PoCL's
- * CPU device): the image is written once per frame and read by the host
- * afterwards, and a plain store first reads each line it fills. The
- * pointer must be aligned to the row (64 bytes). Streamed stores are weakly
- * ordered; the device signals a kernel's end to the host through locked
- * instructions (PoCL's mutexes and atomics), and a LOCK instruction drains
- * the write-combining buffers they go through (Intel SDM vol. 3, 11.3.1),
- * so the host sees them. An sfence per tile instead made an empty
- * 3840×2160 frame's resolve twice as slow as plain stores. Elsewhere a
- * plain store. */
+/* A row of CLR_LANES values stored non-temporally on clang/x86 with 16 lanes (PoCL CPU), a plain store elsewhere:
+ * the image is written once and read by the host, and a plain store first reads each line. The pointer must be
+ * 64-byte aligned. Ordering: PoCL signals a kernel's end with LOCK-prefixed instructions, which drain the
+ * write-combining buffers (Intel SDM vol. 3, 11.3.1), so no sfence is needed. */
 #if CLR_LANES == 16 && defined(__clang__) && defined(__SSE2__)
 #define CLR_STREAMS 1
 #define CLR_STREAM_STORE(value, pointer) __builtin_nontemporal_store((value), (pointer))

@@ -1,53 +1,23 @@
-/* lines.cl — the line stage: wireframe edges and line segments, binned into
- * the triangles' CLR_TILE_SIZE² tiles and drawn tile by tile after resolve.
+/* lines.cl — wireframe edges and line segments, binned into the triangles' tiles and drawn per tile after resolve.
  *
- * Segments (LineSeg, shared.h) come from the setup records (lines_from_setup:
- * the three edges of every screen triangle) or from the host. Binning is the
- * triangles' two passes: lines_bin_count adds one to every tile whose pixel
- * centres may lie within LineParams.reach of the segment, the host scans the
- * counts, lines_bin_fill writes segment indices. lines_draw runs one
- * work-item per tile in both work shapes; Bresenham steps pixel by pixel,
- * anti-aliased lines evaluate CLR_LANES pixels of a row at once (lanes.h).
- * Per pixel it keeps the largest coverage of any segment that passes the
- * depth test, so a segment drawn twice (an edge shared by two triangles)
- * draws it once.
- *
- * Two methods (LineParams.method), as the notes' line-drawing slides:
- *  Bresenham: endpoints are the pixels that hold them, (x >> 8, y >> 8);
- *    both are drawn. The major axis is x when |dx| >= |dy|. The integer
- *    decision variable d = 2·a·(i + 1) − b − 2·b·k (a = |minor delta|,
- *    b = |major delta|, k = minor steps taken before step i) starts in closed
- *    form at the tile's first column and is then updated incrementally
- *    (+2a per step, −2b per minor step). A tie (the ideal line exactly
- *    between two pixels) goes to the lower minor coordinate, so a segment
- *    draws the same pixels in either direction. Coverage is 1.
- *  Anti-aliased: the segment is a rectangle of width LineParams.width (butt
- *    ends at the endpoints, no caps). From the perpendicular distance d of
- *    a pixel centre to the line and its position s along it, coverage is
- *      cover = [F(w/2 − d) − F(−w/2 − d)] · [F(L − s) − F(−s)]
- *    where F(t) is the area of the pixel square on the side u <= t of a
- *    line with the segment's direction (a trapezoidal profile, exact). The
- *    first factor is the exact area of the pixel inside the infinite strip;
- *    the product is exact wherever the second factor is 1 (pixels away from
- *    the ends) and an approximation within a pixel of the ends.
- * Depth: a line pixel's window depth is interpolated linearly in screen
- * space (window depth is affine there): at step i / b (Bresenham) or at the
- * pixel centre's projection onto the segment (anti-aliased). It is drawn
- * when depth <= visible depth + depthBias + (|dz/dx| + |dz/dy|)·(reach +
- * 0.75), the visible depth and slopes being those of sample 0 of the
- * visibility buffer (the triangle there, or 1 for background). The slope
- * term covers the distance between the pixel centre and the point whose
- * depth the line uses, so the edges of visible triangles pass and edges
- * hidden by a nearer surface fail.
+ * Segments (LineSeg) come from setup records (lines_from_setup) or the host; lines_bin_count / scan /
+ * lines_bin_fill bin every tile with pixel centres within LineParams.reach. lines_draw: one work-item per tile; per
+ * pixel the largest coverage of any segment passing the depth test, so a shared edge draws once.
+ *  Bresenham: end pixels (x >> 8, y >> 8), both drawn; decision d = 2a(i + 1) − b − 2bk (a = |minor delta|,
+ *    b = |major delta|, k = minor steps before step i), closed form at the tile's first column, then +2a, −2b.
+ *    Ties go to the lower minor coordinate, so both directions draw the same pixels. Coverage 1.
+ *  Anti-aliased: a butt-ended rectangle of width w; with distance d across and s along,
+ *    cover = [F(w/2 − d) − F(−w/2 − d)] · [F(L − s) − F(−s)], F the pixel square's area on one side of a line
+ *    (exact trapezoid): exact away from the ends, approximate within a pixel of them.
+ * Depth is affine in screen space; a pixel draws when depth <= visible depth + depthBias + (|dz/dx| + |dz/dy|)·
+ * (reach + 0.75) against sample 0 (1 for background): the slope term spans pixel centre to the line's depth point,
+ * so visible edges pass and hidden ones fail.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
-/* Emits the three edges of every setup record. Edges of a clipped
- * sub-triangle are kept only where they lie on an edge of the input
- * triangle (both ends weigh the same input vertex exactly zero; clipping
- * interpolates such a zero exactly), so fan diagonals and the near-plane
- * cut are not drawn. Dead records emit skipped segments. */
+/* The three edges of every setup record. A clipped sub-triangle keeps only edges on an input edge (both ends weigh
+ * one input vertex exactly zero, which clipping preserves): no fan diagonals or near cuts. Dead records skip. */
 __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
                                __global const uint* source,        // numSetup: source words
                                __global const ClipBary* clipBary,  // clip slots
@@ -82,9 +52,7 @@ __kernel void lines_from_setup(__global const TriSetup* setup, uint numSetup,
   }
 }
 
-/* The segment's ends in pixel units: the pixel centres of the end pixels
- * (Bresenham) or the exact ends (anti-aliased). Exact in float: |x| <= 2^24
- * fixed units (fixed.h). */
+/* The ends in pixel units: end pixel centres (Bresenham) or exact ends; exact in float (|x| <= 2^24, fixed.h). */
 CLR_INLINE float4 line_ends(const LineSeg* s, __constant LineParams* lp)
 {
   const float k = 1.0f / CLR_FIXED_ONE;
@@ -111,10 +79,8 @@ CLR_INLINE int4 line_tile_range(float4 e, float reach, __constant FrameParams* p
   return (int4)(x0, y0, x1, y1) / CLR_TILE_SIZE;
 }
 
-/* Whether tile (tx, ty)'s pixel centres may lie within `reach` of the line
- * through the ends: the distance from the tile's centre to the line, less
- * the tile's half extent along the normal. Conservative by half a pixel for
- * float rounding (coordinates up to 2^17 pixels). */
+/* Whether tile (tx, ty)'s centres may lie within `reach` of the line: centre distance less the tile's half extent
+ * along the normal, half a pixel conservative for float rounding (coordinates up to 2^17 px). */
 CLR_INLINE bool line_touches_tile(float4 e, float reach, int tx, int ty)
 {
   const float extent = 0.5f * (CLR_TILE_SIZE - 1);
@@ -204,9 +170,7 @@ CLR_INLINE void line_bresenham(const LineSeg* s, LineTile* tile)
   iBegin = max(iBegin, 0L);
   iEnd = min(iEnd, b);
   if (iBegin > iEnd) return;
-  // Step 3: the decision variable at iBegin in closed form (k = minor steps
-  // so far, a·i/b rounded half down, or half up when ties step), then the
-  // incremental loop.
+  // Step 3: d at iBegin in closed form (k = a·i/b rounded half down, half up when ties step), then incremental.
   long k = b == 0 ? 0 : (2 * a * iBegin + b - (tieSteps ? 0 : 1)) / (2 * b);
   long d = 2 * a * (iBegin + 1) - b - 2 * b * k;
   for (long i = iBegin; i <= iEnd; ++i) {
@@ -223,13 +187,9 @@ CLR_INLINE void line_bresenham(const LineSeg* s, LineTile* tile)
   }
 }
 
-/* Area of the unit pixel square on the side u <= t of a line through its
- * centre whose unit normal has components of magnitudes p >= q: the
- * distribution function of u = p·X + q·Y for X, Y uniform on [−1/2, 1/2]
- * (a trapezoid: quadratic ramps of width q, a linear middle of slope 1/p).
- * The profile carries lo = (p − q)/2, hi = (p + q)/2, 1/p and 1/(2pq) (used
- * only on the ramps, which are empty when q = 0). Evaluated for CLR_LANES
- * offsets at once, without branches. */
+/* Area of the unit pixel on the side u <= t of a line with unit normal magnitudes p >= q: the CDF of p·X + q·Y,
+ * X, Y uniform on [−1/2, 1/2] (quadratic ramps of width q, linear middle of slope 1/p). The profile holds
+ * lo = (p − q)/2, hi = (p + q)/2, 1/p, 1/(2pq) (ramps only; empty when q = 0). CLR_LANES offsets, branch-free. */
 typedef struct SquareProfile {
   float lo, hi, invP, inv2pq;
 } SquareProfile;
@@ -245,8 +205,7 @@ CLR_INLINE floatL line_square_cdf(floatL t, const SquareProfile* f)
   return select(r, (floatL)1.0f, t >= f->hi);
 }
 
-/* Anti-aliased: the tile's rows near the segment, CLR_LANES pixels of a row
- * at a time, as raster.cl's rows. */
+/* Anti-aliased: the tile's rows near the segment, CLR_LANES pixels at a time. */
 CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTile* tile)
 {
   // Step 1: direction, length, the square's profile across and along it.
@@ -261,8 +220,7 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTi
   f.invP = 1.0f / p;
   f.inv2pq = q > 0.0f ? 1.0f / (2.0f * p * q) : 0.0f;
   const float halfWidth = 0.5f * width;
-  // A pixel overlaps the rectangle only when its centre lies within
-  // w/2 + hi of the line (hi: the square's half extent across it).
+  // A pixel overlaps the rectangle only if its centre is within w/2 + hi (its half extent across) of the line.
   const float reach = halfWidth + f.hi;
   // Step 2: the tile's rows and columns within reach of the ends' bounds.
   const float y0 = (float)tile->y0, x0 = (float)tile->x0;
@@ -273,8 +231,7 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTi
   const int colEnd =
       min(CLR_TILE_SIZE - 1, (int)floor(min(max(e.x, e.z) + reach, x0 + CLR_TILE_SIZE + 1.0f) - 0.5f) - tile->x0);
   for (int row = rowBegin; row <= rowEnd; ++row) {
-    // Step 3: the row's columns within reach across the line (all of them
-    // for a horizontal line), one pixel wider for rounding.
+    // Step 3: the row's columns within reach across the line (all if horizontal), one pixel wider for rounding.
     const float ry = y0 + (float)row + 0.5f - e.y;
     int first = colBegin, last = colEnd;
     if (fabs(ty) > 1e-3f) {
@@ -291,8 +248,7 @@ CLR_INLINE void line_antialiased(const LineSeg* s, float4 e, float width, LineTi
       const floatL coverAlong = line_square_cdf(len - along, &f) - line_square_cdf(-along, &f);
       const floatL c = coverAcross * coverAlong;
       if (!CLR_ANY(c > 0.0f)) continue;
-      // Step 5: depth at the centre's projection onto the segment; keep the
-      // larger coverage where the depth test passes.
+      // Step 5: depth at the centre's projection; keep the larger coverage where the depth test passes.
       const floatL at = clamp(along / len, (floatL)0.0f, (floatL)1.0f);
       const floatL z = s->z[0] + (s->z[1] - s->z[0]) * at;
       const floatL cover = CLR_LOAD_LANES(&tile->cover[row][col]);
@@ -313,8 +269,7 @@ CLR_INLINE uint line_blend(uint base, uint line, float t)
   return out;
 }
 
-/* One work-item per tile: depth limits from sample 0 of the visibility
- * buffer, every binned segment, then the blend into the image. */
+/* One work-item per tile: depth limits from sample 0, every binned segment, then the blend into the image. */
 __kernel __attribute__((reqd_work_group_size(1, 1, 1))) void lines_draw(
     __constant FrameParams* params, __constant LineParams* lp, __global const LineSeg* segs,
     __global const uint* lineTileOffset,  // tiles + 1

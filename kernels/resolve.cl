@@ -1,49 +1,17 @@
-/* resolve.cl — stage 6: attribute resolve, shading and the sample filter.
+/* resolve.cl — stage 6: attribute resolve, shading and the sample filter, in rows of CLR_LANES pixels (lanes.h).
  *
- * Rows of CLR_LANES pixels (lanes.h), shaded together in lane types after
- * the per-pixel gathers: a work-item resolves a whole tile row by row on a
- * CPU, one row on a GPU (the kernels at the end). Pixels of a tile that
- * binning left empty are background, without a visibility read. Per
- * covered sample it reads the visible triangle, recomputes its screen-space
- * barycentrics b_i from the setup record at the sample as raster computed
- * them (or reads them from the barycentric planes when the frame has them,
- * shared.h),
- * turns them into perspective-correct ones with the 1/w rule of the notes,
- * λ_i = (b_i / w_i) / Σ_j (b_j / w_j) (or keeps λ_i = b_i with
- * CLR_INTERP_AFFINE, the weaker method), maps them to the input triangle's
- * vertices (through ClipBary when the triangle was clipped, through the
- * vertex swap when it was back-facing), interpolates what the shading reads
- * (only that: FrameParams.sceneFlags says what the host bound) and shades
- * (lighting and albedo in shade.cl, textures in texture.cl):
- *   lambert: albedo · (ambient + diffuse), two-sided (back faces use the
- *            flipped normal), per pixel
- *   flat:    Blinn-Phong with the face normal, lit at the centroid: one
- *            light value per triangle
- *   gouraud: Blinn-Phong at the three vertices, diffuse and specular
- *            interpolated with the 1/w rule like any attribute
- *   phong:   Blinn-Phong per pixel with the interpolated (renormalised)
- *            normal and world position
- *   texture: the unlit albedo (base colour factor × texture × vertex colour)
- *   color:   the interpolated vertex colour (white without one)
- *   normal:  the interpolated world normal mapped from [−1, 1] to [0, 1]
- *   depth:   1 − (eye depth − near) / (far − near), eye depth = 1 / Σ b_i/w_i
- *   uv:      (u, v) as red and green, wrapped to [0, 1)
- *   checker: white and grey squares of 1/8 in u and v
- *   id:      input triangle index + 1 as 24-bit RGB, background black
- * The albedo of the lit modes is the material's base colour (the built-in
- * grey without materials). For trilinear texture filtering the screen
- * derivatives of (u, v) are analytic: with screen barycentrics b_i (affine
- * in x, y: ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area)), q_i = 1/w_i, w = 1 / Σ b_j q_j
- * and a_i an attribute at setup vertex i, a = Σ b_i q_i a_i · w, so
- *   ∂a/∂x = w · Σ_i (∂b_i/∂x) · q_i · (a_i − a),   likewise for y.
- * Anti-aliasing (FrameParams.samples > 1): every sample's colour, clamped to
- * [0, 1], is averaged with equal weights (the box filter of the notes) and
- * rounded to RGBA8 (R in the low byte), top row first. With MSAA
- * (shadeEverySample = 0) a pixel shades each covering triangle once, at the
- * first of its samples that the triangle covers, and the triangle's other
- * samples reuse that colour; SSAA shades every sample. The id mode is not
- * filtered: a pixel shows the triangle (or background) that holds most of
- * its samples, ties to the lower sample index, so the encoding stays exact.
+ * A work-item resolves a tile row by row (CPU) or one row (GPU); empty tiles are background, unread. Per covered
+ * sample: the screen barycentrics b_i (recomputed as raster did, or read from the planes), the 1/w rule
+ * λ_i = (b_i / w_i) / Σ_j (b_j / w_j) (λ_i = b_i with CLR_INTERP_AFFINE), mapped to the input vertices (ClipBary,
+ * or the back-face swap), then only the attributes the mode reads are interpolated and shaded (shade.cl,
+ * texture.cl). Modes: lambert (two-sided, per pixel), flat (face normal, lit at the centroid), gouraud (lit per
+ * vertex, interpolated), phong (per pixel), texture (unlit albedo), color, normal ([−1, 1] to [0, 1]), depth
+ * (1 − (eye − near) / (far − near)), uv, checker (1/8 squares), id (index + 1 as 24-bit RGB).
+ * Trilinear derivatives are analytic: with q_i = 1/w_i, w = 1 / Σ b_j q_j and ∂b_i/∂x = (y_{i+1} − y_{i+2}) /
+ * (2·area), ∂a/∂x = w · Σ_i (∂b_i/∂x) · q_i · (a_i − a), likewise for y.
+ * Samples > 1: clamped colours averaged (box filter), rounded to RGBA8. MSAA shades a triangle once per pixel, at
+ * its first covered sample; SSAA every sample. The id mode is not filtered: the majority triangle, ties to the
+ * lower sample index.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
@@ -52,24 +20,16 @@
 CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 {
   const floatL lo = 0.0f, hi = 1.0f, big = 8388608.0f;  // 2^23
-  // Round to nearest even as convert_uint_sat_rte would (the clamp makes
-  // saturation moot), then an exact conversion. The clamped channel times
-  // 255 lies in [0, 255], where adding 2^23 leaves no fraction bits, so the
-  // sum is rounded as rint rounds, and subtracting 2^23 again is exact:
-  // clr_rint (lanes.h) without the selects that negative and large values
-  // need (two instructions instead of seven per channel).
+  // Round to nearest even as convert_uint_sat_rte: the clamped channel ×255 is in [0, 255], where adding 2^23 leaves
+  // no fraction bits and subtracting it is exact (clr_rint without its selects for negative and large values).
   const uintL qr = convert_uintL((clamp(r, lo, hi) * 255.0f + big) - big);
   const uintL qg = convert_uintL((clamp(g, lo, hi) * 255.0f + big) - big);
   const uintL qb = convert_uintL((clamp(b, lo, hi) * 255.0f + big) - big);
   return qr | (qg << 8) | (qb << 16) | 0xFF000000u;
 }
 
-/* What resolve needs of the CLR_LANES pixels' fragments, in lane types: the
- * visible triangles' source words (the back face, the clip slot), their
- * 1/w at the setup vertices, the screen barycentrics' gradients and the
- * input vertices' attributes that the shading reads (the need flags: the
- * others hold nothing). Lanes that show no triangle hold some triangle's
- * values; the background replaces them. */
+/* The lanes' fragments: source words, 1/w at the setup vertices, barycentric gradients and the attributes the
+ * need flags select. Uncovered lanes hold some triangle's values; the background replaces them. */
 #define CLR_RESOLVE_MAX_RUNS 8 /* the most runs of lanes a row reads run by run */
 typedef struct ResolveLanes {
   bool needNormals, needUvs, needColours, needPositions, needGradients, needMaterial;
@@ -84,9 +44,8 @@ typedef struct ResolveLanes {
   floatL grad[3][2];    // [setup vertex][d/dx, d/dy]: screen barycentric per pixel
 } ResolveLanes;
 
-/* The gradients of setup record t's screen barycentrics per pixel, from its
- * edge functions b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
- * ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), in pixels (× CLR_FIXED_ONE). */
+/* Per-pixel gradients of b_i = E_i / (2·area): ∂b_i/∂x = (y_{i+1} − y_{i+2}) / (2·area),
+ * ∂b_i/∂y = (x_{i+2} − x_{i+1}) / (2·area), × CLR_FIXED_ONE. */
 CLR_INLINE float resolve_gradient(__global const TriSetup* t, int i, int d)
 {
   const int a = (i + 1) % 3, b = (i + 2) % 3;
@@ -94,15 +53,8 @@ CLR_INLINE float resolve_gradient(__global const TriSetup* t, int i, int d)
   return (d == 0 ? (float)(t->y[a] - t->y[b]) : (float)(t->x[b] - t->x[a])) * scale;
 }
 
-/* Reads what the shading reads of setup record s (its record and source
- * word, then its vertex indices and material, then their attributes) into
- * the lanes of `in`, by a select: into every lane when `in` is all lanes.
- * The values stay in registers, where the per-lane arrays and permutes
- * that this replaced went through memory: with bench/ab.sh --shade at
- * 1080p, resolve of yxa_1 filling the screen with phong 3.92 -> 3.06 ms
- * (lower in 30 of 30 pairs), SuzanneSubdiv filling it with normal 10.5 ->
- * 8.4 ms (19 of 20), the 1M-triangle sphere far with phong 10.6 -> 8.9 ms
- * (18 of 20), the IFC house filling it with phong 3.45 -> 3.09 ms (15). */
+/* Reads what the shading needs of setup record s (record, source, indices, material, attributes) into the lanes
+ * of `in` by a select (every lane when `in` is all lanes), keeping values in registers (bench/ab.sh --shade). */
 CLR_HOT void resolve_take(__global const TriSetup* setup, __global const uint* source,
                           __global const ClipBary* clipBary, __global const uint* indices,
                           __global const float* positions, __global const float* normals, __global const float* uvs,
@@ -127,8 +79,7 @@ CLR_HOT void resolve_take(__global const TriSetup* setup, __global const uint* s
 #undef CLR_TAKE
 }
 
-/* One attribute of `components` floats per vertex, of the lanes' three
- * input vertices, into out[j · components + k] (vertex j, component k). */
+/* One attribute of `components` floats of the lanes' three input vertices, into out[j · components + k]. */
 CLR_INLINE void resolve_gather_attribute(__global const float* values, uint components, const uint vertex[3][CLR_LANES],
                                          floatL* out)
 {
@@ -141,10 +92,8 @@ CLR_INLINE void resolve_gather_attribute(__global const float* values, uint comp
   }
 }
 
-/* Step 1 of the gathers lane by lane (resolve_gather_lanes, and
- * resolve_lambert_gather in resolve_lambert.cl): lane `lane`'s setup record
- * (record 0 where the lane shows none: a tile with a bin has one), its
- * source word, input triangle and 1/w into the per-lane arrays. */
+/* Step 1 of the lane-by-lane gathers (also resolve_lambert_gather): lane `lane`'s record (0 if uncovered: a tile
+ * with a bin has one), source word, input triangle and 1/w into the per-lane arrays. */
 CLR_HOT __global const TriSetup* resolve_lane_record(__global const TriSetup* setup, __global const uint* source,
                                                      __global const ClipBary* clipBary, const uint* index, uint lane,
                                                      uint* from, uint* tri, float invW[3][CLR_LANES])
@@ -156,12 +105,8 @@ CLR_HOT __global const TriSetup* resolve_lane_record(__global const TriSetup* se
   return &setup[s];
 }
 
-/* resolve_take for every lane at once, for rows of many runs (tiny
- * triangles): gathers lane by lane in stages, each a loop whose loads do
- * not depend on each other (so the CPU overlaps their cache misses): the
- * setup records and source words, then vertex indices and materials, then
- * the attributes. Uncovered lanes read record 0 (a tile with a bin has
- * one). */
+/* resolve_take for every lane, for rows of many runs: staged gathers with independent loads (their cache misses
+ * overlap): records and sources, then indices and materials, then attributes. Uncovered lanes read record 0. */
 CLR_HOT void resolve_gather_lanes(__global const TriSetup* setup, __global const uint* source,
                                   __global const ClipBary* clipBary, __global const uint* indices,
                                   __global const float* positions, __global const float* normals,
@@ -196,15 +141,9 @@ CLR_HOT void resolve_gather_lanes(__global const TriSetup* setup, __global const
   }
 }
 
-/* The lanes' fragments of a row with at least one covered lane (index: the
- * lanes' setup indices, CLR_NONE past the viewport's edge; indexLanes the
- * same as a vector). Neighbouring pixels mostly show the same triangle, in
- * runs of lanes: a row of at most CLR_RESOLVE_MAX_RUNS covered runs (a
- * uniform row is one) reads them one run at a time (resolve_take), the
- * first covered run's into every lane, then each later run's into its
- * lanes; a row of more gathers lane by lane (resolve_gather_lanes). What
- * to gather follows the shading mode and what the host bound
- * (FrameParams.sceneFlags). */
+/* The fragments of a row with a covered lane (index: setup indices, CLR_NONE past the viewport; indexLanes as a
+ * vector). Up to CLR_RESOLVE_MAX_RUNS runs: run by run (resolve_take), the first into every lane; more runs:
+ * resolve_gather_lanes. What to gather follows the mode and sceneFlags. */
 CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* index, uintL indexLanes,
                                __global const TriSetup* setup, __global const uint* source,
                                __global const ClipBary* clipBary, __global const uint* indices,
@@ -242,11 +181,8 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* index
   }
 }
 
-/* The weights mu_j of the input vertices in the lanes of `clippedL`, clipped
- * triangles: mu_j = Σ_i λ_i · w_ij over the ClipBary slot's weights (in this
- * order, the floats of the general sum), whether each is a back face, and
- * with `uvs` the setup vertices' texture coordinates, Σ_j w_ij · uv_j. Both
- * resolve kernels call it for their few clipped lanes. */
+/* For the clipped lanes (`clippedL`): mu_j = Σ_i λ_i · w_ij over the ClipBary weights (the general sum's order),
+ * back faces, and with `uvs` the setup vertices' uv = Σ_j w_ij · uv_j. Both resolve kernels call it. */
 CLR_INLINE void resolve_clipped_lanes(__global const ClipBary* clipBary, uintL sourceL, intL clippedL,
                                       const floatL lambda[3], floatL mu[3], intL* backL, bool uvs,
                                       const floatL uv[3][2], floatL uvAt[3][2])
@@ -286,13 +222,9 @@ CLR_INLINE void resolve_clipped_lanes(__global const ClipBary* clipBary, uintL s
   *backL = *backL | CLR_LOAD_LANES(clippedBack);
 }
 
-/* The weights mu_j of the input vertices: lambda itself, with vertices 1
- * and 2 swapped for a back face, or through ClipBary for a clipped triangle
- * (resolve_clipped_lanes). (Summing λ_i · w_ij over an identity or swap
- * matrix gives the same floats.) A back face's normal flips: an unclipped
- * one's source word says so (it is also the swap), a clipped one's ClipBary
- * slot; *backL says which lanes. With `uvs`, also the setup vertices'
- * texture coordinates uvAt (the input vertices' uv through the same map). */
+/* The input vertices' weights mu_j: lambda, with 1 and 2 swapped for a back face, or through ClipBary when clipped
+ * (the same floats as summing over an identity or swap matrix). *backL: lanes whose normal flips (source word or
+ * ClipBary flag). With `uvs`, the setup vertices' uv through the same map into uvAt. */
 CLR_INLINE void resolve_vertex_weights(__global const ClipBary* clipBary, uintL sourceL, intL covered,
                                        const floatL lambda[3], floatL mu[3], intL* backL, bool uvs,
                                        const floatL uv[3][2], floatL uvAt[3][2])
@@ -323,8 +255,7 @@ CLR_INLINE ColourL colour_make(floatL r, floatL g, floatL b)
   return c;
 }
 
-/* Every lane the colour of an RGBA8 value (R in the low byte, pack_rgba's
- * layout), such as the background. */
+/* Every lane the colour of an RGBA8 value (pack_rgba's layout), such as the background. */
 CLR_INLINE ColourL colour_unpack(uint rgba)
 {
   ColourL c = {(floatL)((rgba & 0xFFu) / 255.0f), (floatL)(((rgba >> 8) & 0xFFu) / 255.0f),
@@ -357,19 +288,13 @@ CLR_INLINE int resolve_sample_y(__constant FrameParams* params, uint py, uint k)
   return (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
 }
 
-/* The lanes' screen barycentrics at sample k, recomputed from the setup
- * records (vis_barycentrics, raster.cl), the same floats raster kept. A row
- * shows few triangles, in runs: each run's record is read once and its
- * values are selected into the lanes that show it (cheaper than a scalar
- * gather per lane). A lane with CLR_NONE reads record 0 (a covered tile
- * has one); its value is discarded. */
+/* The lanes' screen barycentrics at sample k recomputed from the records (vis_barycentrics, raster.cl): raster's
+ * floats. Each run's record is read once and selected into its lanes; CLR_NONE lanes read record 0, discarded. */
 CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, __global const TriSetup* setup,
                                                const uint* index, uintL lanes, uint firstX, uint py, uint k, floatL* b1,
                                                floatL* b2)
 {
-  // Step 1: the first run's record in every lane, then each later run's
-  // selected into its lanes (none when the row shows one triangle). lanes:
-  // index as a vector.
+  // Step 1: the first run's record in every lane, later runs selected into theirs (lanes: index as a vector).
   __global const TriSetup* t = &setup[index[0] != CLR_NONE ? index[0] : 0];
   intL x0 = t->x[0], y0 = t->y[0], x1 = t->x[1], y1 = t->y[1], x2 = t->x[2], y2 = t->y[2];
   floatL scale = CLR_RECORD_INV_AREA2(*t);
@@ -393,9 +318,7 @@ CLR_INLINE void resolve_recompute_barycentrics(__constant FrameParams* params, _
                    resolve_sample_y(params, py, k), b1, b2);
 }
 
-/* Reads the lanes' screen barycentrics at sample k from the barycentric
- * planes when the frame has them (shared.h); returns false, reading
- * nothing, when it does not. */
+/* Reads the lanes' barycentrics at sample k from the planes if the frame has them; else returns false. */
 CLR_INLINE bool resolve_read_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
                                           uint p, uint count, uint k, floatL* b1, floatL* b2)
 {
@@ -405,8 +328,7 @@ CLR_INLINE bool resolve_read_barycentrics(__constant FrameParams* params, __glob
   return true;
 }
 
-/* The lanes' screen barycentrics at sample k: read from the barycentric
- * planes when raster wrote them, else recomputed. */
+/* The lanes' screen barycentrics at sample k: read from the planes when raster wrote them, else recomputed. */
 CLR_INLINE void resolve_barycentrics(__constant FrameParams* params, __global const float* visAttr, uint visPlane,
                                      uint p, uint count, uint k, __global const TriSetup* setup, const uint* index,
                                      uintL indexLanes, uint firstX, uint py, floatL* b1, floatL* b2)
@@ -415,11 +337,8 @@ CLR_INLINE void resolve_barycentrics(__constant FrameParams* params, __global co
     resolve_recompute_barycentrics(params, setup, index, indexLanes, firstX, py, k, b1, b2);
 }
 
-/* Stores the first `count` lanes of a row of RGBA8 pixels (the row may end
- * at the viewport's edge). A whole row aligned to its size (the viewport's
- * width a multiple of CLR_LANES) streams past the caches (CLR_STREAM_STORE,
- * lanes.h): resolve on yxa_1 filling 1080p 8% faster, an empty 3840×2160
- * frame's twice as fast. */
+/* Stores the first `count` lanes of an RGBA8 row (it may end at the viewport edge); a whole aligned row streams
+ * past the caches (CLR_STREAM_STORE, lanes.h). */
 CLR_INLINE void store_row(uintL colour, uint count, __global uint* out)
 {
   if (count == CLR_LANES) {
@@ -434,8 +353,7 @@ CLR_INLINE void store_row(uintL colour, uint count, __global uint* out)
   for (uint lane = 0; lane < count; ++lane) out[lane] = result[lane];
 }
 
-/* The unit normal of the lanes (two-sided: back faces flip it); a zero
- * normal becomes the one facing the eye in window space. */
+/* The lanes' unit normal (back faces flip it); a zero normal becomes the one facing the eye in window space. */
 CLR_INLINE void resolve_unit_normal(floatL n[3], floatL sign)
 {
   const floatL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -458,8 +376,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
                                  const ResolveLanes* g, const ShadeInputs* in, floatL b1, floatL b2)
 {
   const uint mode = params->shadeMode;
-  // Step 1: barycentrics of the setup vertices: the 1/w rule, or affine.
-  // Afterwards q_i holds q_i·w with q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
+  // Step 1: the 1/w rule or affine; then q_i holds q_i·w, q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL q[3], lambda[3], eyeDepth;
   for (int i = 0; i < 3; ++i) q[i] = g->invW[i];
@@ -480,8 +397,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
     const floatL grey = 1.0f - (eyeDepth - params->zNear) / (params->zFar - params->zNear);
     return colour_make(grey, grey, grey);
   }
-  // Step 2: weights of the input vertices (and, for the derivatives, the
-  // setup vertices' texture coordinates), and an attribute's value.
+  // Step 2: input vertex weights (and setup vertices' uv for the derivatives), and an attribute's value.
   floatL mu[3], uvAt[3][2];
   intL backL;
   resolve_vertex_weights(clipBary, g->source, g->covered, lambda, mu, &backL, g->needGradients, g->uv, uvAt);
@@ -490,10 +406,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
     (out)[k] = 0.0f;                                                \
     for (int j = 0; j < 3; ++j) (out)[k] += mu[j] * g->array[j][k]; \
   }
-  // Step 3: texture coordinates and, for trilinear filtering, their screen
-  // derivatives: with a_i the setup vertices' values and a the pixel's,
-  // ∂a/∂x = Σ_i ∂b_i/∂x · q_i · w · (a_i − a) (the derivative of the 1/w
-  // rule; affine: Σ_i ∂b_i/∂x · a_i), likewise for y.
+  // Step 3: uv and, for trilinear, their derivatives (file contract; affine: Σ_i ∂b_i/∂x · a_i).
   floatL uv[2] = {0.0f, 0.0f}, duvdx[2] = {0.0f, 0.0f}, duvdy[2] = {0.0f, 0.0f};
   if (g->needUvs) {
     CLR_INTERPOLATE(uv, uv, 2)
@@ -522,8 +435,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
     for (int k = 0; k < 3; ++k) albedo[k] *= colour[k];
   }
   if (mode == CLR_SHADE_TEXTURE) return colour_make(albedo[0], albedo[1], albedo[2]);
-  // Step 5: the normal and the point: interpolated, or the face's for flat.
-  // Two-sided: back faces use the flipped normal.
+  // Step 5: the normal and the point: interpolated, or the face's for flat; back faces flip the normal.
   const floatL sign = select((floatL)1.0f, (floatL)-1.0f, backL);
   floatL n[3], p[3] = {0.0f, 0.0f, 0.0f}, diffuse, specular;
   if (mode == CLR_SHADE_FLAT) {
@@ -596,17 +508,7 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
-/* The resolve kernel's parameters:
- *   params; visIndex (samples · visPlane), visAttr (3 · samples · visPlane:
- *   depth, b1, b2; read only with FrameParams.visAttributes), the
- *   visibility-buffer planes of the non-empty tiles;
- *   tileOffset (tiles + 1); setup, source (numSetup) and clipBary;
- *   indices (3·numTris);
- *   positions (3·numVerts); normals (3·numVerts), uvs (2·numVerts),
- *   colours (4·numVerts), triMaterial (numTris), materials, texDescs and
- *   texels (every level of every texture), each a 1-element dummy when the
- *   mode does not read it; image (width · height); tileSlot (tiles + 1),
- *   visPlane (see shared.h) and prefetchRows (resolve_prefetch below). */
+/* The resolve kernels' parameters: the buffers of shared.h, and prefetchRows (resolve_prefetch). */
 #define CLR_RESOLVE_PARAMS                                                                                        \
   __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,                   \
       __global const uint *tileOffset, __global const TriSetup *setup, __global const uint *source,               \
@@ -620,28 +522,11 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
       triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows
 
 #ifdef CLR_PREFETCH
-/* Scattered setup records are resolve's cache misses when the frame's
- * records outgrow the caches and a tile holds many small triangles (more
- * than 128 binned). The host asks for this (prefetchRows) where a frame of
- * small triangles gathers more than 2 MB and prefetching measures faster
- * in the case's first frames (resolveMayPrefetch, PrefetchChooser:
- * resolve.cpp): it pays or not with the mesh's order in memory, not only
- * its size. While row p (row rowInTile of its tile) is gathered, this
- * fetches, once per run of lanes with one triangle, the setup records and
- * source words of the tile's third row ahead, the vertex indices of the
- * second row ahead (whose source words the row before fetched) and the
- * vertex normals of the next row (whose indices it fetched). In a tile of
- * fewer entries the records stay cached and prefetching costs more than it
- * saves (measured in resolve_lambert: with the bound at 32 binned instead
- * of 128, 1.1 ms on the close 1M-triangle sphere, about 70 per tile). In
- * the general kernel it took phong on the 252k-triangle Suzanne at 1080p
- * from 6.4–7.2 to 4.9–5.4 ms. The normals' stage (records and source words
- * two rows ahead, indices one, before it), in resolve_lambert at 1080p,
- * turns of bench/ab.sh: Suzanne far 3.82 -> 3.29 ms (lower in 28 of 30
- * pairs), the 1M-triangle sphere far 3.93 -> 3.82 ms (17 of 20), the 10M
- * one 8.23 -> 8.00 ms (10 of 12), the close 1M sphere level. Called, not
- * inlined, so that the common path compiles as it does without it;
- * resolve_prefetch_rows below checks prefetchRows and the tile's size. */
+/* Prefetch for tiles of many small triangles (> 128 binned), whose scattered records miss the caches. The host asks
+ * for it (prefetchRows) when a frame gathers > 2 MB and it pays in the first frames (PrefetchChooser, resolve.cpp):
+ * that depends on the mesh's memory order, not only its size. While row p is gathered it fetches, once per run,
+ * the records and sources three rows ahead, indices two ahead, normals one ahead. Smaller tiles stay cached, where
+ * prefetching costs more than it saves (bench/ab.sh). Called, not inlined, so the common path compiles unchanged. */
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* source,
                                  __global const ClipBary* clipBary, __global const uint* indices,
@@ -677,10 +562,8 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
 }
 #endif
 
-/* resolve_prefetch for row p (image row py) of tile `tile`, when the frame
- * asks for it (prefetchRows, Pipeline::resolve) and the tile holds more
- * than 128 entries (above); nothing without CLR_PREFETCH. Both resolve
- * kernels call it. */
+/* resolve_prefetch for row p (image row py) of `tile` when prefetchRows asks and the tile holds > 128 entries;
+ * nothing without CLR_PREFETCH. Both resolve kernels call it. */
 CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefetchRows,
                                       __global const uint* tileOffset, uint tile, __global const uint* visIndex, uint p,
                                       uint py, __global const TriSetup* setup, __global const uint* source,
@@ -693,10 +576,8 @@ CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefe
 #endif
 }
 
-/* The row of CLR_LANES pixels from (firstX, py). (A variant specialised
- * to one sample, with the sample count a compile-time 1, computed wrong
- * pixels under Oclgrind's 16-lane interpretation while PoCL was right; one
- * kernel serves both.) */
+/* The row of CLR_LANES pixels from (firstX, py). No one-sample specialisation: Oclgrind's 16-lane interpretation
+ * mis-computes it. */
 CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
 {
   if (py >= params->height || firstX >= params->width) return;
@@ -736,8 +617,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     }
     colour = pack_rgba(c.r, c.g, c.b);
   } else {
-    // Step 2b: each sample plane's colour; MSAA reuses a triangle's colour
-    // from the first sample of the pixel that it covers.
+    // Step 2b: each sample plane's colour; MSAA reuses a triangle's colour from its first covered sample.
     uintL sampleIndex[CLR_MAX_SAMPLES];
     ColourL sampleColour[CLR_MAX_SAMPLES];
     ColourL sum = {0.0f, 0.0f, 0.0f};
@@ -774,26 +654,12 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   store_row(colour, count, out);
 }
 
-/* The resolve kernels (resolve, here; resolve_lambert, resolve_lambert.cl),
- * in the work shape the host launches (resolve.cpp). With
- * a row of lanes as wide as a tile (the CPU shape) a work-item resolves a
- * whole tile, row by row, in a work-group of one: PoCL then holds one set
- * of the row's private arrays. With the tile's 16 rows as 16 work-items of
- * a group it held 16 sets, 50 KB of stack, more than the L1 cache. Measured
- * on the 2-core development machine at 1080p (medians of five alternated
- * runs), this shape took resolve_lambert from 6.0 to 5.2 ms on a close
- * 10k-triangle sphere and from 3.9 to 3.3 ms on yxa_1 filling the screen.
- * The tile's loop is the kernel's body, one called function
- * (CLR_KERNEL_BODY, shared.h). Otherwise (a GPU's single lanes) a work-item
- * resolves one row of CLR_LANES pixels and a work-group one tile. */
+/* The resolve kernels (resolve; resolve_lambert in resolve_lambert.cl) in the host's work shape (resolve.cpp). CPU
+ * (a row as wide as a tile): a work-item resolves a whole tile in a group of one, so PoCL keeps one set of the
+ * row's private arrays, not 16 (which overflow L1); the loop is a CLR_KERNEL_BODY. GPU: a work-item per row. */
 #if CLR_LANES == CLR_TILE_SIZE
-/* Fills tile (tileX, tileY) with the background if raster left it empty
- * (no bin entries) and says whether it did: one test and 16 row stores for
- * the tile, where the row functions test each row and reach their stores
- * through their own set-up. Measured with bench/ab.sh on the 2-core
- * development machine (40 pairs of alternated turns), resolve_lambert on
- * yxa_1 at 1920x1080: far away (98% of the tiles empty) 1.011 -> 0.946 ms
- * (lower in 31 pairs), filling the screen 2.349 -> 2.171 ms (27). */
+/* Fills tile (tileX, tileY) with the background if it has no bin entries, and says whether it did: one test and
+ * 16 row stores, without the row functions' set-up. */
 CLR_INLINE bool resolve_empty_tile(__constant FrameParams* params, __global const uint* tileOffset,
                                    __global uint* image, uint tileX, uint tileY)
 {

@@ -1,12 +1,7 @@
-/* resolve_lambert.cl — stage 6's lean kernel: resolve_lambert, the
- * default frame's resolve (lambert shading, one sample, perspective-correct
- * interpolation, no point light, textures or vertex colours; host
- * resolve.cpp picks it), with the general kernel's pixels bit for bit (a
- * test holds them so). It builds the lanes' values directly in vector
- * types: the rows of a tile's few triangles run by run, selected into the
- * lanes, rows of many triangles lane by lane. Its shared pieces (the row
- * store, the prefetch, the background, the kernel shape) are resolve.cl's,
- * which the program puts before this file.
+/* resolve_lambert.cl — stage 6's lean kernel for the default frame (lambert, one sample, perspective-correct, no
+ * point light, textures or vertex colours; host resolve.cpp picks it): the general kernel's pixels bit for bit
+ * (tested). Lane values are built in vector types: rows of few triangles run by run, rows of many lane by lane.
+ * Row store, prefetch, background and kernel shape come from resolve.cl, which precedes this file.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
@@ -21,11 +16,8 @@ typedef struct LambertLanes {
   floatL scale;     // clr_inv_area2, likewise
 } LambertLanes;
 
-/* Reads what resolve_lambert needs of setup record s (its record and source
- * word, then its vertex indices and material, then their normals and base
- * colour) into
- * the lanes of `in`: into every lane, without a select, when `in` is the
- * constant all-lanes mask of the first run. */
+/* Reads what lambert needs of setup record s (record, source, indices, material, normals, base colour) into the
+ * lanes of `in`; into every lane without a select when `in` is the first run's constant all-lanes mask. */
 CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
                                   __global const uint* source, __global const ClipBary* clipBary,
                                   __global const uint* indices, __global const float* normals,
@@ -57,15 +49,10 @@ CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const
 #undef CLR_TAKE
 }
 
-/* resolve_lambert_take for every lane at once, for rows of many runs:
- * gathers in stages, each a branch-free loop over the lanes whose loads
- * do not depend on each other (so the CPU overlaps their cache misses):
- * the setup records, then vertex indices and materials, then normals and
- * base colours. Uncovered lanes read record 0 (a tile with a bin has one).
- * With `vertices` it also recomputes the barycentrics, from the records'
- * vertices gathered with them. The base colour is three statements,
- * not a loop over an array of the greys: that compiled to an inner loop
- * per lane and cost resolve 9% on a 10M-triangle sphere. */
+/* resolve_lambert_take for every lane, for rows of many runs: staged branch-free gathers with independent loads
+ * (their cache misses overlap): records, then indices and materials, then normals and base colours. Uncovered
+ * lanes read record 0. With `vertices` it recomputes the barycentrics from the gathered vertices. The base colour
+ * is three statements: a loop over the greys compiles to an inner loop per lane. */
 CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
                                     __global const uint* source, __global const ClipBary* clipBary,
                                     __global const uint* indices, __global const float* normals,
@@ -105,12 +92,7 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
     albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
   }
   if (vertices) {
-    // From the vertices gathered with the records, all lanes at once
-    // (clr_inv_area2L, lanes.h), not run by run as resolve_recompute_barycentrics
-    // does, with a division and seven selects per run: resolve_lambert on
-    // the 1M-triangle sphere seen from afar at 1080p 4.7-6.1 -> 4.1-5.0 ms
-    // (three sets of four to six alternated runs), level where rows hold
-    // fewer triangles (yxa_1 filling the screen, the 100k sphere).
+    // All lanes at once (clr_inv_area2L), not run by run with a division and seven selects per run.
     const intL x0 = CLR_LOAD_LANES(vx[0]), x1 = CLR_LOAD_LANES(vx[1]), x2 = CLR_LOAD_LANES(vx[2]);
     const intL y0 = CLR_LOAD_LANES(vy[0]), y1 = CLR_LOAD_LANES(vy[1]), y2 = CLR_LOAD_LANES(vy[2]);
     vis_barycentrics(x0, y0, x1, y1, x2, y2, clr_inv_area2L(x0, y0, x1, y1, x2, y2), indexLanes != CLR_NONE,
@@ -124,10 +106,8 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
   }
 }
 
-/* Step 2 of resolve_lambert_row, from the lanes' values `f` and screen
- * barycentrics: resolve_shade's lambert path in lane types, the same
- * operations in the same order. Returns the packed colours, the background
- * where not `covered`. */
+/* Step 2 of resolve_lambert_row: resolve_shade's lambert path in lane types, same operations in the same order.
+ * Returns the packed colours, the background where not `covered`. */
 CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global const ClipBary* clipBary,
                                      const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
 {
@@ -158,15 +138,9 @@ CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global co
   return pack_rgba(c.r, c.g, c.b);
 }
 
-/* The common case, lean: lambert at one sample per pixel with the 1/w rule,
- * the directional light only, and no textures or vertex colours (materials
- * give each triangle a flat base colour). The host launches this kernel
- * instead of resolve when a frame is such a case (Pipeline::resolve). It
- * gathers only the per-lane values lambert reads and computes them with the
- * same operations in the same order as resolve_shade, so both kernels give
- * bit-identical pixels (a test holds them to that); it is a separate kernel
- * because the general one's gathers and branches cost twice the time and
- * most of a cold start's compile. */
+/* The lean common case (see the file contract; Pipeline::resolve launches it): gathers only what lambert reads,
+ * computing as resolve_shade does, so pixels are bit-identical (tested). A separate kernel because the general
+ * one's gathers and branches cost frame and compile time (bench/ab.sh). */
 CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
 {
   if (py >= params->height || firstX >= params->width) return;
@@ -186,24 +160,15 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
-    // Step 1: the values of the row's triangles and the screen barycentrics
-    // (as raster computed them, unless the frame has the planes). A row of
-    // at most CLR_RESOLVE_MAX_RUNS runs of lanes on one triangle (a covered
-    // run starts at each bit of `starts`; a uniform row is one run) reads
-    // them one run at a time (resolve_lambert_take): the first covered
-    // run's in every lane, then each later run's selected into the lanes
-    // that show its triangle. A row of more runs (tiny triangles) gathers
-    // lane by lane in stages (resolve_lambert_gather), which overlaps more
-    // cache misses: run by run, resolve of a 10M-triangle sphere took 9.6
-    // ms instead of 6.0. Uncovered lanes hold some triangle's values and
-    // are replaced by the background at the end.
+    // Step 1: the row's triangle values and screen barycentrics. Up to CLR_RESOLVE_MAX_RUNS runs (a run starts at
+    // each bit of `starts`): run by run (resolve_lambert_take), the first into every lane, later ones selected. More
+    // runs (tiny triangles): staged lane gathers (resolve_lambert_gather), overlapping more cache misses.
+    // Uncovered lanes hold some triangle's values until the background replaces them.
     floatL b1, b2;
     // Without the barycentric planes, the records' vertices recompute them.
     const bool vertices = !resolve_read_barycentrics(params, visAttr, plane, p, count, 0, &b1, &b2);
     if (!CLR_ANY(indexLanes != index[0])) {  // a vector compare, not a branch per lane
-      // A uniform row (most rows of large triangles) has its own copy of
-      // the steps, with its own LambertLanes: taken whole, it stays in
-      // registers, where the runs' copy goes through memory.
+      // A uniform row has its own copy of the steps: its LambertLanes stays in registers, the runs' goes to memory.
       LambertLanes one;
       resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[0],
                            (intL)(-1), vertices, &one);

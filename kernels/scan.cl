@@ -1,27 +1,11 @@
-/* scan.cl — exclusive prefix sum of a uint array.
+/* scan.cl — exclusive prefix sum of a uint array (setup counts per triangle, bin counts per tile).
  *
- * Used over per-triangle setup counts and per-tile bin counts. src and dst
- * have n + 1 elements and may be the same buffer; on return dst[i] is the
- * sum of the first i values and dst[n] the total. With alsoNonZero the same
- * pass also scans the count of non-zero values into `second` (n + 1
- * elements; over the tile counts, the visibility buffer's tile slots), with
- * its chunk sums after the values' in `partials`. Sums are accumulated in
- * 64 bits and a 64-bit total is left in partials[numChunks] (the non-zero
- * count's after it), and also in counters[totalAt], [totalAt + 1] (low and
- * high words; shared.h, CLR_COUNTER_*) unless totalAt is CLR_SCAN_NO_TOTAL
- * (likewise nonZeroTotalAt), so the host can detect a total that does not
- * fit in 32 bits and fail loudly instead of wrapping, and read the totals of
- * several scans and setup's counters with one read. One kernel, scan_chunks,
- * launched three times with its phase: CLR_SCAN_REDUCE (a sum per chunk),
- * CLR_SCAN_PARTIALS (one work-group scans the chunk sums) and
- * CLR_SCAN_APPLY (each chunk rescanned from its offset). One kernel means
- * one compile at a cold start (about 70 ms each for PoCL on the 2-core
- * development machine). Over the setup counts the apply phase also lists
- * the input triangle behind each setup record (listSources; shared.h,
- * setupSource), which saves the emit pass a kernel of its own. Those
- * counts are bytes (byteCounts: 0, 1 or CLR_MAX_SUBTRIS per input
- * triangle) and are not turned into offsets: the listing is the only
- * output, and setup_clip finds a clipped triangle's records in it.
+ * src and dst have n + 1 elements (may alias): dst[i] = sum of the first i values, dst[n] the total. alsoNonZero
+ * also scans the non-zero count into `second` (the tile slots), its chunk sums after the values' in `partials`.
+ * Sums are 64-bit; totals land in partials[numChunks] and, unless CLR_SCAN_NO_TOTAL, counters[totalAt..+1] (low,
+ * high), so the host fails loudly on a total over 32 bits and reads all totals at once. One kernel, scan_chunks,
+ * runs three phases (CLR_SCAN_REDUCE, _PARTIALS, _APPLY): one compile. With listSources the apply phase over the
+ * byte counts (0, 1 or CLR_MAX_SUBTRIS) lists each setup record's input triangle (setupSource) instead of offsets.
  */
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
@@ -33,12 +17,8 @@ CLR_INLINE void scan_store_total(__global uint* counters, uint totalAt, ulong to
   counters[totalAt + 1] = (uint)(total >> 32);
 }
 
-/* CLR_SCAN_PARTIALS: the exclusive scan of partials[0 .. numChunks), the
- * total into partials[numChunks]. On a GPU one work-group shares it out
- * (with barriers). On a CPU (CLR_LANES > 1) one work-item scans the at
- * most 4096 sums in a few microseconds, so the kernel has no barrier: with
- * one, PoCL took twice as long to compile it (measured: 182 against 81 ms
- * of code generation). */
+/* CLR_SCAN_PARTIALS: exclusive scan of partials[0 .. numChunks), total into partials[numChunks]. GPU: one
+ * work-group with barriers. CPU: one work-item scans the <= 4096 sums, no barrier (barriers slow PoCL's compile). */
 #if CLR_LANES == 1
 CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums,
                               __global uint* counters, uint totalAt)
@@ -88,18 +68,10 @@ CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __global
 #endif
 
 #if CLR_LANES == 1
-/* GPU shape of the reduce and apply phases: one work-group per chunk, its
- * CLR_SCAN_GROUP(1) work-items reading consecutive values (one coalesced
- * load per step), a step's values scanned in local memory
- * (scan_group_inclusive, Hillis and Steele's scan). When each work-item
- * walked a chunk of its own, as in the CPU shape, the 4096 work-items'
- * loads lay far apart and were too few to hide their latency: the setup
- * counts' scans of 10M triangles took 0.64 ms on an H100. Each value
- * enters the scan as (v << 8) | (v != 0), so that one scan gives both the
- * sum (64 uints sum below 2^38) and the count of non-zero values (at most
- * 64). Both phases walk the chunk the same way, with the same barriers:
- * PoCL mishandled a version whose reduce phase had its own loop and
- * barriers under a branch (its totals came out as garbage). */
+/* GPU shape of reduce and apply: one work-group per chunk, its work-items reading consecutive values (coalesced),
+ * each step scanned in local memory (Hillis–Steele); a chunk per work-item leaves too few loads to hide latency.
+ * Values enter as (v << 8) | (v != 0): one scan gives the sum (64 uints < 2^38) and the non-zero count (<= 64).
+ * Both phases walk the chunk with the same loop and barriers: PoCL mis-compiles barriers under a branch. */
 CLR_INLINE ulong scan_group_inclusive(ulong packed, __local ulong* steps)
 {
   const uint lid = get_local_id(0);
@@ -130,8 +102,7 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
   const uint g = get_group_id(0), lid = get_local_id(0);
   const uint begin = g * chunk, end = min(begin + chunk, n);
   const bool apply = phase == CLR_SCAN_APPLY;
-  // The chunk a step of CLR_SCAN_GROUP(1) values at a time: the reduce
-  // phase sums the steps, the apply phase also writes each value's offset.
+  // A step of CLR_SCAN_GROUP(1) values at a time: reduce sums the steps, apply also writes each offset.
   ulong running = apply ? partials[g] : 0, runningNonZero = apply && alsoNonZero ? nonZeroPartials[g] : 0;
   for (uint first = begin; first < end; first += CLR_SCAN_GROUP(1)) {
     const uint i = first + lid, v = scan_value(src, byteCounts, listSources, i, end);
@@ -140,8 +111,7 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
     const ulong stepTotal = steps[CLR_SCAN_GROUP(1) - 1];
     if (apply && i < end) {
       if (listSources) {
-        // (A culled triangle stores nothing: the CPU shape's spare entry
-        // would be a store by many work-items at once here.)
+        // A culled triangle stores nothing: a shared spare entry would take many work-items' stores at once.
         const ulong record = running + (exclusive >> 8);
         if (v == 1) second[record] = i;
         for (uint k = 0; v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) second[record + k] = CLR_SOURCE_CLIPPED | i;
@@ -163,15 +133,9 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
   }
 }
 #else
-/* CLR_SCAN_APPLY over the setup counts of input triangles [begin, end),
- * whose first record is `running`: lists the input triangle behind each
- * record. An unclipped survivor (1) owns its record; a clipped triangle's
- * CLR_MAX_SUBTRIS reserved records get CLR_SOURCE_CLIPPED | its index, so
- * the listing stays sorted by input triangle and setup_clip finds them by
- * binary search (clip_first_record); a culled one (0) owns none, and its
- * store goes to the chunk's spare entry past the records instead of behind a
- * branch (survivors and culled triangles alternate unpredictably on a dense
- * mesh seen from afar). */
+/* CLR_SCAN_APPLY listing input triangles [begin, end) from record `running`: a survivor (1) owns its record; a
+ * clipped one's CLR_MAX_SUBTRIS records get CLR_SOURCE_CLIPPED | its index (sorted, for clip_first_record's binary
+ * search); a culled one (0) stores to the chunk's spare entry instead of branching (culls are unpredictable). */
 CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint end, ulong running, ulong spare,
                                   __global uint* sources)
 {
@@ -183,8 +147,7 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
   }
 }
 
-/* CPU shape of the reduce and apply phases: work-item g walks chunk g
- * alone (one work-item per chunk). */
+/* CPU shape of reduce and apply: work-item g walks chunk g alone. */
 CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
                                 __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
                                 __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources)

@@ -1,31 +1,13 @@
 /* setup.cl — stage 3: triangle setup: count, scan, emit.
  *
- * Per input triangle: transform its vertices (transform.cl; a frame keeps
- * no clip positions), cull non-finite and trivially outside triangles,
- * clip those that cross the near plane or the guard band (clip.cl), apply
- * the viewport matrix of the notes (x_s = x_ndc·W/2 + W/2, y up), snap to
- * the CLR_SUBPIXEL_BITS grid, compute the exact 64-bit doubled area, cull
- * zero-area, back-facing (when asked) and sample-free triangles, and orient
- * the survivors counter-clockwise.
- *
- * setup_triangles runs twice, as two passes of one kernel so that a device
- * compiles the setup arithmetic once. Pass 1 (setup_count in profiles)
- * writes how many screen triangles each input triangle yields: 0 or 1 when
- * no clipping is needed, and a reservation of CLR_MAX_SUBTRIS when it is
- * (such triangles are also listed for setup_clip). An exclusive scan
- * (scan.cl) lists the input triangle behind each record (setupSource);
- * setup_clip clips the listed ones into their reserved records, whose
- * unused ones it flags CLR_FLAG_DEAD for binning to skip; and pass 2
- * (setup_emit) sets up the unclipped survivors again, 16 consecutive
- * records at a time, and writes them and their winding (the source word,
- * shared.h) at their places: it runs
- * over the records, not the input, which matters when most triangles are
- * culled (a 10M-triangle sphere keeps 1.5M). Output order is input order,
- * whatever the scheduling. Both passes handle CLR_LANES triangles per
- * work-item (lanes.h): 16 in vector types on a CPU. The rare clipping path
- * runs in its own, scalar kernel. Binning (bin.cl) rides on these passes:
- * pass 1 and setup_clip count each triangle's tiles, and pass 2 writes the
- * unclipped triangles' bin entries.
+ * Per input triangle: transform (transform.cl), cull non-finite and trivially outside, clip near-plane and
+ * guard-band crossers (clip.cl), viewport (x_s = x_ndc·W/2 + W/2, y up), snap to CLR_SUBPIXEL_BITS, exact 64-bit
+ * doubled area, cull zero-area, back-facing (if asked) and sample-free, orient counter-clockwise.
+ * setup_triangles is one kernel run as two passes (one compile). Pass 1 (count) writes 0 or 1 screen triangles per
+ * input, or reserves CLR_MAX_SUBTRIS and lists it for setup_clip. The scan lists each record's input triangle
+ * (setupSource); setup_clip fills reserved records (unused ones CLR_FLAG_DEAD); pass 2 (emit) redoes the unclipped
+ * survivors over the records, not the input, writing records and winding in input order whatever the scheduling.
+ * CLR_LANES triangles per work-item (lanes.h); clipping is its own scalar kernel. Binning (bin.cl) rides along.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
@@ -56,20 +38,14 @@ typedef struct SetupLanes {
 #define CLR_SETUP_SIMPLE 1u
 #define CLR_SETUP_CLIP 2u
 
-/* Loads the positions of the triangles tri[0 .. CLR_LANES − 1] and
- * transforms them to clip space (transform.cl). With 16 lanes the 16
- * positions of a vertex are transposed by swizzles, which the compiler
- * turns into a few permutes. PoCL still passes the loaded positions
- * through the stack, and a wide load of narrow stores still in flight
- * stalls the CPU; so all three vertices' 48 loads come first (count pass on
- * yxa_1 filling 1080p 0.958 -> 0.942 ms, the 1M sphere far 6.21 -> 6.06 ms,
- * medians of eight and six alternated runs). */
+/* Loads and transforms (transform.cl) triangles tri[0 .. CLR_LANES − 1]; with 16 lanes swizzles transpose each
+ * vertex's positions. All 48 loads come first: PoCL passes them through the stack, and a wide load of narrow stores
+ * still in flight stalls the CPU. */
 CLR_INLINE void setup_load_batch(const uint* tri, __constant FrameParams* params, __global const float* positions,
                                  __global const uint* indices, ClipBatch* c)
 {
 #if CLR_LANES > 1
-  // One 16-byte load per vertex: x, y, z and the next vertex's x (unused;
-  // the host pads the buffer by one float for the last vertex).
+  // One 16-byte load per vertex: x, y, z and the next x (unused; the host pads the buffer by one float).
   float4 loaded[3][CLR_LANES];
   for (int v = 0; v < 3; ++v)
     for (int lane = 0; lane < CLR_LANES; ++lane)
@@ -128,18 +104,11 @@ CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx,
 }
 
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
-/* Whether the cluster with bounds b (CLR_CLUSTER_TRIS, shared.h) lies wholly
- * outside one plane that setup_classify culls by: behind the near plane,
- * beyond an edge of the viewport, or beyond the far plane. Then so is every
- * triangle of the cluster, whose vertices lie in the bounds, and the count
- * pass skips its batches without loading them. Clip coordinates are affine
- * in the position, so over the box each lies between its values at the
- * corners (the 8 corners in lanes 0-7, again in 8-15). A corner counts as
- * outside only by FrameParams.clusterMargin, 2^-16 M with M the largest sum
- * of the magnitudes of the terms of a scene vertex's four clip coordinates
- * (Pipeline::clusterMargin): the float rounding of a corner's or a vertex's
- * transform is below 2^-21 M, so a vertex that classification would keep
- * is never in a cluster skipped. A NaN bound skips nothing. */
+/* Whether cluster bounds b (CLR_CLUSTER_TRIS) lie wholly outside one plane setup_classify culls by (near, a
+ * viewport edge, far); then every triangle in it is culled and the count pass skips it unloaded. Clip coordinates
+ * are affine, so the box's extremes are at its 8 corners (lanes 0-7, again 8-15). Margin: clusterMargin = 2^-16 M,
+ * M the largest sum of term magnitudes of a vertex's clip coordinates; transform rounding is below 2^-21 M, so a
+ * vertex classification keeps is never skipped. A NaN bound skips nothing. */
 CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global const float* b)
 {
   // Step 1: the corners' clip coordinates.
@@ -149,8 +118,7 @@ CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global c
   const floatL pz = select((floatL)b[2], (floatL)b[5], (lane & 4) != 0);
   const floatL x = transform_lanes(params, 0, px, py, pz), y = transform_lanes(params, 1, px, py, pz);
   const floatL z = transform_lanes(params, 2, px, py, pz), w = transform_lanes(params, 3, px, py, pz);
-  // Step 2: each corner's planes it lies outside of by the margin, as bits
-  // (setup_outcode's planes; NaN sets none); a bit in every lane culls.
+  // Step 2: each corner's outside-by-margin planes as bits (NaN sets none); a bit in every lane culls.
   const float margin = params->clusterMargin, nearSign = clip_near_sign(params->depthMode);
   const uintL zero = 0;
   const intL beyondFar = nearSign < 0.0f ? (z < -margin) : (z - w > margin);
@@ -161,9 +129,7 @@ CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global c
 }
 #endif
 
-/* Classifies each lane's triangle: CLR_SETUP_CULLED (non-finite, or wholly
- * outside one viewport plane or behind the near plane), CLR_SETUP_CLIP, or
- * CLR_SETUP_SIMPLE. */
+/* Each lane: CLR_SETUP_CULLED (non-finite, outside one viewport plane or the near plane), _CLIP or _SIMPLE. */
 CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* params)
 {
   intL finite = isfinite(c->w[0]);
@@ -180,40 +146,26 @@ CLR_INLINE uintL setup_classify(const ClipBatch* c, __constant FrameParams* para
   return select(kind, (uintL)CLR_SETUP_CULLED, culled);
 }
 
-/* Whether each lane's (oriented) triangle covers a pixel centre, tested only
- * for small ones: at most 2×2 centres in its pixel bounds x0..xEnd,
- * y0..yEnd, and vertices less than 4 pixels apart each way; a larger one
- * counts as covering. The test is raster's: the integer edge functions at
- * the sample position (one sample: FrameParams.cullSampleFree) and the fill
- * rule, so a culled triangle is one that raster would find inside no
- * sample. In 32 bits, exact for the small ones: a centre tested lies inside
- * the vertex bounds, so every factor is below 4·CLR_FIXED_ONE = 2^10 and
- * |E| < 2^21 (the other lanes may wrap, in unsigned arithmetic, and are
- * discarded). Tiny triangles that fall between pixel centres are most of a
- * dense mesh seen from afar (on a 1M-triangle sphere at 1080p, 40% of the
- * setup records): culling them here saves their records, bin entries and
- * raster work. Called, not inlined: inlined (with its centres in loops
- * then) it added about 40 ms to the setup kernel's compile at a cold
- * start, called about 25. */
+/* Whether each lane's oriented triangle covers a pixel centre; tested only for small ones (<= 2×2 centres in
+ * x0..xEnd, y0..yEnd, vertices < 4 px apart), larger ones count as covering. Raster's test (integer edge functions,
+ * fill rule, one sample: cullSampleFree), so a culled triangle is one raster would find in no sample. 32 bits are
+ * exact here: tested centres lie in the vertex bounds, factors < 4·CLR_FIXED_ONE = 2^10, |E| < 2^21 (other lanes may
+ * wrap, unsigned, and are discarded). Tiny triangles between centres are much of a distant dense mesh; culling
+ * saves their records, bins and raster work. Called, not inlined, to keep setup's compile short. */
 CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX, intL minY, intL maxY, intL x0, intL y0,
                                       intL xEnd, intL yEnd, __constant FrameParams* params)
 {
-  // (Both masks are comparisons, not one the negation of the other: Oclgrind
-  // reads a negated mask of this shape as 1, not −1, which select() rejects.)
+  // Both masks are comparisons: Oclgrind reads a negated mask of this shape as 1, not −1, which select() rejects.
   const intL small =
       (xEnd - x0 <= 1) & (yEnd - y0 <= 1) & (maxX - minX < 4 * CLR_FIXED_ONE) & (maxY - minY < 4 * CLR_FIXED_ONE);
   const intL large =
       (xEnd - x0 > 1) | (yEnd - y0 > 1) | (maxX - minX >= 4 * CLR_FIXED_ONE) | (maxY - minY >= 4 * CLR_FIXED_ONE);
   if (!CLR_ANY(small)) return large;
-  // Step 1: which of the up to four centres (x0 + col, y0 + row) lie in
-  // the bounds.
+  // Step 1: which of the up to four centres (x0 + col, y0 + row) lie in the bounds.
   intL in00 = (x0 <= xEnd) & (y0 <= yEnd), in10 = in00 & (x0 + 1 <= xEnd);
   intL in01 = in00 & (y0 + 1 <= yEnd), in11 = in10 & in01;
-  // Step 2: each edge a→b (edge i runs from vertex i + 1 to i + 2, as in
-  // raster) at the first centre, E = dx·(py − ay) − dy·(px − ax), and at
-  // the others by its steps, −dy·ONE a column and dx·ONE a row (the same
-  // integers modulo 2^32, so the same ints); a centre is inside where
-  // E > low, low = −1 when a centre on the edge is inside (the fill rule).
+  // Step 2: edge i (vertex i + 1 to i + 2, as raster) E = dx·(py − ay) − dy·(px − ax) at the first centre, then
+  // stepped by −dy·ONE a column, dx·ONE a row (same ints mod 2^32); inside where E > low (−1 if the fill rule holds).
   const intL px = x0 * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[0]);
   const intL py = y0 * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[0]);
   for (int i = 0; i < 3; ++i) {
@@ -230,16 +182,11 @@ CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX,
   return large | in00 | in10 | in01 | in11;
 }
 
-/* Builds each lane's screen triangle: viewport transform, snapping, exact
- * doubled area, orientation, pixel bounds. Returns the mask of lanes that
- * survive (w > 0, non-zero area, not culled as a back face, a pixel centre
- * inside the bounds, and with testCoverage a small one covering one:
- * setup_covers_a_sample). */
+/* Each lane's screen triangle: viewport, snap, exact doubled area, orientation, pixel bounds. Returns the survivors
+ * (w > 0, non-zero area, not back-face culled, a centre in the bounds, with testCoverage setup_covers_a_sample). */
 CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out, bool testCoverage)
 {
-  // Step 1: viewport transform of the notes and snapping. Window depth is
-  // z_ndc/2 + 1/2 (GL), or z_ndc itself with the reversed projection, whose
-  // clip z already spans [0, w].
+  // Step 1: viewport and snapping. Window depth z_ndc/2 + 1/2 (GL), or z_ndc when reversed (clip z spans [0, w]).
   intL valid = (c->w[0] > 0.0f) & (c->w[1] > 0.0f) & (c->w[2] > 0.0f);
   const bool reversed = params->depthMode == CLR_DEPTH_REVERSED;
   for (int v = 0; v < 3; ++v) {
@@ -247,7 +194,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
     const floatL xs = c->x[v] * invW * params->halfWidth + params->halfWidth;
     const floatL ys = c->y[v] * invW * params->halfHeight + params->halfHeight;
     out->z[v] = reversed ? c->z[v] * invW : c->z[v] * invW * 0.5f + 0.5f;
-    out->x[v] = convert_intL(clr_rint(xs * (float)CLR_FIXED_ONE));  // = convert_intL_rte, faster (lanes.h)
+    out->x[v] = convert_intL(clr_rint(xs * (float)CLR_FIXED_ONE));  // = convert_intL_rte, cheaper (lanes.h)
     out->y[v] = convert_intL(clr_rint(ys * (float)CLR_FIXED_ONE));
     out->invW[v] = invW;
   }
@@ -267,8 +214,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->invW[1] = select(w1, out->invW[2], back);
   out->invW[2] = select(out->invW[2], w1, back);
   out->back = back;
-  // Step 4: cull triangles whose bounds hold no sample (as bin_pixel_bounds),
-  // and keep the bounds' tiles for binning.
+  // Step 4: cull bounds holding no sample (as bin_pixel_bounds); keep the bounds' tiles for binning.
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
   const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
   const intL x0 = max((minX - (CLR_FIXED_HALF + params->sampleMaxX) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
@@ -303,10 +249,8 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
   CLR_STORE_LANES(b->tileY1, l->tileY1);
 }
 
-/* One lane as a TriSetup record, field by field into *t, in private or
- * global memory. (Not a returned struct: Oclgrind cannot run the noalias
- * marker an inlined struct return leaves behind; and not a private record
- * copied whole: the CPU stalls loading it wide right after narrow stores.) */
+/* One lane as a TriSetup, field by field into *t: a returned struct leaves a marker Oclgrind cannot run, and a
+ * private record copied whole stalls the CPU (wide load after narrow stores). */
 #define CLR_SETUP_LANE(l, lane, t)       \
   do {                                   \
     for (int v = 0; v < 3; ++v) {        \
@@ -331,15 +275,9 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
   return (int4)(l->tileX0[lane], l->tileY0[lane], l->tileX1[lane], l->tileY1[lane]);
 }
 
-/* Pass 1 for CLR_LANES triangles from `first`: how many screen triangles
- * each yields (into triCount), and the unclipped ones' tiles counted.
- * One- and two-tile triangles (most of a dense mesh) are tallied for the
- * two tiles last counted, which take one atomic add each as they leave
- * (bin_tally; a run of one tile before: the count pass on yxa_1 filling
- * 1080p 0.95 -> 0.85 ms). Returns the clipped lanes as bits of
- * *clipMask. (The culled ones are not counted here: the host derives their
- * number from the scan's total, which saves an atomic add per batch on one
- * counter that both cores share.) */
+/* Pass 1 for CLR_LANES triangles from `first`: screen triangles each yields (triCount) and the unclipped ones'
+ * tiles (one- and two-tile ones tallied by bin_tally). Returns clipped lanes as bits of *clipMask. Culls are not
+ * counted here: the host derives them from the scan total, sparing a shared atomic counter. */
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
                                   __global uchar* triCount, __global uint* tileCount, uint* clipMask)
 {
@@ -350,9 +288,7 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
     *clipMask |= (counts[lane] == CLR_MAX_SUBTRIS ? 1u : 0u) << lane;
     survivors |= (counts[lane] == 1 ? 1u : 0u) << lane;
   }
-  // Step 2: the survivors' tiles, visited by their bits: where culled and
-  // kept triangles alternate unpredictably (a dense mesh seen from afar), a
-  // branch per lane on survival costs more than the counting.
+  // Step 2: the survivors' tiles, visited by their bits: culls are unpredictable, so a branch per lane costs more.
   BinTally tally;
   bin_tally_init(&tally);
   int4 rangeRun = (int4)(0);
@@ -385,24 +321,14 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
   bin_tally_end(&tally, tileCount);
 }
 
-/* Pass 1 for CLR_LANES triangles from `first` of which none yields a
- * screen triangle: zero counts, and no tiles. Measured (medians of three
- * alternated runs, 1080p): on the 1M-triangle sphere seen from inside
- * (near) the count pass took 4.5 instead of 5.5 ms, on the near view of
- * the 16 × 16 grid 3.9 instead of 5.4 ms; where the view holds the whole
- * scene it changes nothing (yxa_1 filling the screen). */
+/* Pass 1 for CLR_LANES triangles from `first` none of which yields a screen triangle: zero counts, no tiles. */
 CLR_INLINE void setup_count_none(__constant FrameParams* params, uint first, __global uchar* triCount)
 {
   for (uint lane = 0; lane < CLR_LANES && first + lane < params->numTris; ++lane) triCount[first + lane] = 0;
 }
 
-/* Pass 2 for the same lanes: writes the unclipped screen triangles (the
- * `write` lanes) at their places, with their winding in their source
- * words, and each into its tiles' bins; runs of one-tile triangles in one
- * tile take their entries with one atomic add, runs on one range of several
- * tiles one per tile (BinRun, bin.cl), a two-tile triangle one per tile.
- * (Pass 1's two-tile tally, holding the setup indices until a tile leaves,
- * measured no faster here.) */
+/* Pass 2 for the same lanes: writes the `write` lanes' records, their winding into the source words, and their bin
+ * entries; runs on one tile range take one atomic add per tile (BinRun, bin.cl), two-tile triangles one per tile. */
 CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
                                  const SetupLanes* l, __global TriSetup* setup, __global uint* source,
                                  __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
@@ -431,13 +357,8 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
   bin_run_end(&range, params, tileOffset, tileCursor, binEntries);
 }
 
-/* Passes 1 and 2 are one kernel, launched twice with `pass`
- * CLR_SETUP_PASS_COUNT, then (after the scans) CLR_SETUP_PASS_EMIT, so a
- * device compiles the shared triangle setup once. Pass 1 writes triCount
- * (listed by the scan into `source`) and tileCount, which pass 2 reads
- * scanned into offsets. The kernel's body
- * is this function, for the CLR_LANES triangles of work-item `item`
- * (CLR_KERNEL_BODY, shared.h); the buffers are the kernel's, below. */
+/* Body of setup_triangles for work-item `item`'s CLR_LANES triangles, `pass` CLR_SETUP_PASS_COUNT then (after the
+ * scans) CLR_SETUP_PASS_EMIT. Pass 1 writes triCount and tileCount; pass 2 reads them scanned. */
 CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __global const float* positions,
                                           __global const uint* indices, __global uchar* triCount,
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
@@ -445,9 +366,8 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
                                           __global const float* clusterBounds, uint item)
 {
-  // Step 1: the CLR_LANES triangles: in pass 1 input triangles from
-  // `first`; in pass 2 the sources of setup records from `first` (lanes of
-  // clipped triangles' records and past the end are not written).
+  // Step 1: pass 1 input triangles from `first`; pass 2 the sources of records from `first` (lanes of clipped
+  // records and past the end are not written).
   const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
   if (first >= (emit ? numSetup : params->numTris)) return;
@@ -470,13 +390,9 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   }
   ClipBatch c;
   setup_load_batch(tri, params, positions, indices, &c);
-  // (Pass 2 does not classify again: its sources are the simple survivors
-  // of pass 1, whose classification the same arithmetic would repeat, and
-  // clipped triangles' records, which it does not write.)
+  // Pass 2 does not classify again: its sources are pass 1's simple survivors, or clipped records it skips.
   const uintL kind = emit ? (uintL)CLR_SETUP_SIMPLE : setup_classify(&c, params);
-  // (Pass 1 stops early for a batch that yields no record, before setup_make
-  // when every lane is culled here: a batch beside the view, which is much
-  // of a scene seen from inside or close up.)
+  // Pass 1 stops early, before setup_make, when every lane is culled (a batch beside the view).
   if (!emit && !CLR_ANY(kind != CLR_SETUP_CULLED)) {
     setup_count_none(params, first, triCount);
     return;
@@ -490,8 +406,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   }
   SetupLanes l;
   setup_unpack(&b, &l);
-  // Step 2 (pass 2): emit; a source's recomputed setup is the one pass 1
-  // counted (same arithmetic), so every valid lane is a simple survivor.
+  // Step 2 (pass 2): emit; the same arithmetic as pass 1, so every valid lane is a simple survivor.
   if (emit) {
     int write[CLR_LANES];
     CLR_STORE_LANES(simple, write);
@@ -499,8 +414,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     setup_emit_lanes(params, first, tri, write, &l, setup, source, tileCount, tileCursor, binEntries);
     return;
   }
-  // Step 2 (pass 1): count; then the counters and the clip list (whose
-  // order follows the scheduling; setup_clip's output places do not).
+  // Step 2 (pass 1): count; then the counters and the clip list (scheduling order; its output places are not).
   const uintL count = select(select((uintL)0u, (uintL)1u, simple), (uintL)CLR_MAX_SUBTRIS, kind == CLR_SETUP_CLIP);
   uint counts[CLR_LANES], clipMask = 0;
   CLR_STORE_LANES(count, counts);
@@ -534,11 +448,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
                        tileCursor, binEntries, source, numSetup, pass, clusterBounds, get_global_id(0));
 }
 
-/* The first of clipped input triangle `tri`'s reserved records: the
- * lowest s with source[s] == CLR_SOURCE_CLIPPED | tri. The listing is
- * sorted by input triangle once that bit is masked off (scan.cl), so a
- * binary search over its numSetup entries finds it in log2(numSetup)
- * steps. */
+/* The lowest s with source[s] == CLR_SOURCE_CLIPPED | tri: binary search, the listing being sorted by triangle. */
 CLR_INLINE uint clip_first_record(__global const uint* source, uint numSetup, uint tri)
 {
   uint lo = 0, hi = numSetup;
@@ -552,13 +462,9 @@ CLR_INLINE uint clip_first_record(__global const uint* source, uint numSetup, ui
   return lo;
 }
 
-/* Pass 3 (before the tile scan): clips the listed triangles, fills their
- * reserved records and ClipBary slots (clipList entry i owns slots
- * i·CLR_MAX_SUBTRIS + k) and counts the sub-triangles' tiles
- * (bin_fill_clipped fills their bins after the scan, from the first
- * record's index that replaces the triangle in clipList, and writes their
- * source words: not this kernel, whose work-items search the listing
- * meanwhile). */
+/* Pass 3 (before the tile scan): clips the listed triangles into their reserved records and ClipBary slots (entry i
+ * owns slots i·CLR_MAX_SUBTRIS + k), counts their tiles and puts the first record's index in clipList. Source words
+ * are bin_fill_clipped's, after the scan: this kernel's work-items are still searching the listing. */
 __kernel void setup_clip(__constant FrameParams* params,
                          __global const float* positions,  // 3·numVerts
                          __global const uint* indices,     // 3·numTris

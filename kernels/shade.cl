@@ -1,19 +1,10 @@
-/* shade.cl — lighting and base colour for resolve, in lane types.
+/* shade.cl — lighting and base colour for resolve, in lane types (after texture.cl, before resolve.cl).
  *
- * Blinn-Phong with one directional light (FrameParams.lightDir, intensity
- * 1) and an optional point light at FrameParams.pointLight.xyz whose
- * intensity falls off as 1 / (1 + (d / r)²), d the distance to the shaded
- * point, r = pointLight.w. For a unit normal n, a point p and the unit view
- * vector v = (eye − p) / |eye − p|, each light with unit direction l and
- * attenuation a adds
- *   diffuse  D += a · max(n·l, 0)
- *   specular S += a · max(n·h, 0)^CLR_SHININESS, h = (l + v) / |l + v|,
- *                 only where n·l > 0
- * and a lit colour is albedo · (CLR_AMBIENT + CLR_DIFFUSE · D) + CLR_SPECULAR · S
- * (lambert: S = 0). The albedo is the material's base colour factor times its
- * texture sample (texture.cl) times the interpolated vertex colour; without
- * materials it is the built-in grey CLR_GREY_*. OpenCL only (follows
- * texture.cl, precedes resolve.cl).
+ * Blinn-Phong: a directional light (lightDir, intensity 1) and an optional point light at pointLight.xyz with
+ * attenuation 1 / (1 + (d / pointLight.w)²). With unit normal n and view v = (eye − p) / |eye − p|, each light
+ * (direction l, attenuation a) adds D += a·max(n·l, 0) and, where n·l > 0, S += a·max(n·h, 0)^CLR_SHININESS with
+ * h = (l + v) / |l + v|. Lit colour = albedo·(CLR_AMBIENT + CLR_DIFFUSE·D) + CLR_SPECULAR·S (lambert: S = 0);
+ * albedo = material factor × texture × vertex colour, or CLR_GREY_* without materials.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
@@ -73,9 +64,7 @@ CLR_INLINE void shade_lights(__constant FrameParams* params, const floatL n[3], 
   }
 }
 
-/* The base colour of each lane: material factor × texture × vertex colour
- * (the latter multiplied by the caller). material: the lanes' materials;
- * uv and its screen derivatives per lane. */
+/* Each lane's material factor × texture at uv (with its screen derivatives); the caller multiplies vertex colour. */
 CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Material* materials,
                              __global const TextureDesc* texDescs, __global const uint* texels, uintL materialL,
                              const floatL uv[2], const floatL duvdx[2], const floatL duvdy[2], floatL albedo[3])
@@ -87,9 +76,7 @@ CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Mate
   const bool textured = (params->sceneFlags & CLR_SCENE_TEXTURES) != 0;
   uint material[CLR_LANES];
   CLR_STORE_LANES(materialL, material);
-  // Step 0: one material for the whole row: its factor, once, times its
-  // texture sampled in lane types (tex_sample_lanes: the floats of the
-  // lane-by-lane loop below, several times faster).
+  // Step 0: one material for the whole row: sample in lane types (tex_sample_lanes: the loop's floats).
   if (!CLR_ANY(materialL != material[0])) {
     const Material m = materials[material[0]];
     albedo[0] = m.baseColor[0];

@@ -1,25 +1,14 @@
-/* texture.cl — base-colour texture sampling for resolve: one lane at a time
- * (tex_sample), or a row's lanes on one texture at once in lane types
- * (tex_sample_lanes), with the same floats.
+/* texture.cl — base-colour sampling for resolve: per lane (tex_sample) or a row's lanes on one texture in lane
+ * types (tex_sample_lanes), with the same floats. OpenCL only (after lanes.h).
  *
- * Textures live in one texel buffer described by TextureDesc records
- * (shared.h, filled by host/texture.cpp): RGBA8, rows bottom first, so a
- * texture coordinate (u, v) maps to texel space (u·w, v·h) of a level of
- * w × h texels, texel (i, j) centred at (i + 0.5, j + 0.5). Integer texel
- * indices wrap per axis as the file says: repeat (i mod n), clamp to
- * [0, n − 1], or mirror (period 2n, the second half reversed).
- *   nearest:   the texel containing (u·w, v·h) of level 0
- *   bilinear:  the four texels around (u·w − 0.5, v·h − 0.5) of level 0,
- *              weighted by the fractional parts
- *   trilinear: bilinear in levels ⌊λ⌋ and ⌊λ⌋ + 1, mixed by λ − ⌊λ⌋, with
- *              λ = log2 ρ clamped to [0, levels − 1] and
- *              ρ = max(|(∂u/∂x·w, ∂v/∂x·h)|, |(∂u/∂y·w, ∂v/∂y·h)|)
- *              from the screen-space derivatives resolve computes (w, h of
- *              level 0). Level l is max(1, w >> l) × max(1, h >> l).
- * Texel values are returned in [0, 1] as stored (no sRGB decoding), t / 255
- * correctly rounded, so an 8-bit texel written back unchanged is exact.
- * Texel coordinates are clamped to ±2^24 first, so NaN or huge (u, v) stay
- * inside the texture. OpenCL only (follows lanes.h).
+ * Texels: one buffer described by TextureDesc (shared.h), RGBA8, rows bottom first; (u, v) maps to (u·w, v·h) of a
+ * w × h level, texel (i, j) centred at (i + 0.5, j + 0.5); indices wrap per axis: repeat, clamp, mirror (period 2n).
+ *   nearest:   the level-0 texel containing (u·w, v·h)
+ *   bilinear:  the four level-0 texels around (u·w − 0.5, v·h − 0.5), weighted by the fractional parts
+ *   trilinear: bilinear in levels ⌊λ⌋, ⌊λ⌋ + 1 mixed by λ − ⌊λ⌋; λ = log2 ρ clamped to [0, levels − 1],
+ *              ρ = max(|(∂u/∂x·w, ∂v/∂x·h)|, |(∂u/∂y·w, ∂v/∂y·h)|) from resolve's screen derivatives (level 0)
+ * Values are t / 255 correctly rounded (no sRGB decoding), so an 8-bit texel round-trips exactly. Texel
+ * coordinates are clamped to ±2^24 first, so NaN or huge (u, v) stay inside the texture.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
@@ -95,11 +84,9 @@ CLR_CALLED float4 tex_sample(__global const TextureDesc* d, __global const uint*
   return t > 0.0f ? a * (1.0f - t) + tex_bilinear(d, texels, l1, u, v) * t : a;
 }
 
-/* tex_wrap in lane types, without integer division (which no vector unit
- * here has): i mod p from a float quotient, off by at most one period
- * (the division's rounding, and i's above 2^24), then corrected. At the
- * clamp (tex_coord) the bilinear corner i = 2^24 + 1 takes such a
- * correction; its weight is 0 there, but the load must stay in its level. */
+/* tex_wrap in lane types without integer division (no vector unit has it): i mod p from a float quotient, off by
+ * at most one period (rounding; i above 2^24), then corrected. The clamped corner i = 2^24 + 1 needs it: weight 0,
+ * but its load must stay in the level. */
 CLR_INLINE intL tex_wrap_lanes(intL i, intL n, uint mode)
 {
   if (mode == CLR_WRAP_CLAMP) return clamp(i, (intL)0, n - 1);
@@ -110,11 +97,8 @@ CLR_INLINE intL tex_wrap_lanes(intL i, intL n, uint mode)
   return mode == CLR_WRAP_MIRROR ? select(m, period - 1 - m, m >= n) : m;
 }
 
-/* The lanes' texels (x, y) of the level at `offset` (per lane) of `width`
- * (per lane) as RGB in [0, 1] into rgb (what the albedo reads of them):
- * one load per lane, then tex_fetch's conversion. (The lane functions
- * return through arrays, not structs: inlining a struct's return left an
- * intrinsic that Oclgrind cannot run.) */
+/* The lanes' texels (x, y) of the level at `offset` of `width` (per lane), RGB in [0, 1] as tex_fetch converts.
+ * Lane functions return through arrays: an inlined struct return leaves an intrinsic Oclgrind cannot run. */
 CLR_INLINE void tex_fetch_lanes(__global const uint* texels, uintL offset, uintL width, intL x, intL y, floatL rgb[3])
 {
   uint at[CLR_LANES], value[CLR_LANES];
@@ -130,8 +114,7 @@ CLR_INLINE floatL tex_coord_lanes(floatL t, uintL size)
   return fmin(fmax(t * convert_floatL(size), -16777216.0f), 16777216.0f);
 }
 
-/* a · (1 − t) + b · t per channel into out, as tex_bilinear and
- * tex_sample weigh (out may be a). */
+/* a · (1 − t) + b · t per channel into out, as tex_bilinear and tex_sample weigh (out may be a). */
 CLR_INLINE void tex_mix_lanes(const floatL a[3], const floatL b[3], floatL t, floatL out[3])
 {
   for (int k = 0; k < 3; ++k) out[k] = a[k] * (1.0f - t) + b[k] * t;
@@ -164,10 +147,8 @@ CLR_INLINE void tex_bilinear_lanes(__global const TextureDesc* d, __global const
   tex_mix_lanes(bottom, top, ay, rgb);
 }
 
-/* tex_sample for a row's lanes on one texture, in lane types: the same
- * floats lane by lane (a test holds them so). The level of detail's log2
- * stays scalar, as tex_lod computes it: a vector log2 need not round as
- * the scalar one does. */
+/* tex_sample for a row's lanes on one texture, in lane types: the same floats (tested). The LOD's log2 stays
+ * scalar, as tex_lod: a vector log2 need not round as the scalar one does. */
 CLR_CALLED void tex_sample_lanes(__global const TextureDesc* d, __global const uint* texels, uint filter, floatL u,
                                  floatL v, floatL dudx, floatL dvdx, floatL dudy, floatL dvdy, floatL rgb[3])
 {

@@ -1,24 +1,16 @@
-/* transform.cl — stage 1: vertex transform.
+/* transform.cl — stage 1: vertex transform, clip = mvp · (x, y, z, 1).
  *
- * clip = mvp · (x, y, z, 1), each sum evaluated in a fixed order with
- * contraction off, so the test oracle can reproduce it bit for bit. A frame
- * transforms the vertices where setup reads them (transform_vertex and
- * transform_lanes, called by setup.cl): nothing holds the clip positions
- * between the stages, which saves 16 bytes per vertex. The kernel
- * transform_vertices writes them all, one work-item per vertex, for the
- * painter's algorithm's host sort and for tests; it computes the same
- * floats.
+ * Sums run in a fixed order with contraction off, so the test oracle reproduces them bit for bit. Frames transform
+ * where setup reads (transform_vertex, transform_lanes), so no buffer holds clip positions; the kernel
+ * transform_vertices writes them (one work-item per vertex) for the painter's sort and tests: the same floats.
  *
- * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api.cpp) the
- * positions are clip-space float4 already, 4 floats per vertex, and
+ * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api.cpp) positions are clip-space float4 already and
  * transform_vertex reads them unchanged: every later stage is the frame's.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-/* Clip coordinate `row` (0 x, 1 y, 2 z, 3 w) of the position (x, y, z):
- * row `row` of the column-major mvp times (x, y, z, 1), summed left to
- * right. The one formula of both functions below, which must agree bit for
- * bit (the painter's sort and tests read the kernel's; frames use setup's). */
+/* Clip coordinate `row` (0 x .. 3 w): row of the column-major mvp times (x, y, z, 1), summed left to right. The
+ * one formula of both functions below, which must agree bit for bit. */
 #define CLR_TRANSFORM_ROW(m, row, x, y, z) \
   ((m)[row] * (x) + (m)[4 + (row)] * (y) + (m)[8 + (row)] * (z) + (m)[12 + (row)])
 
@@ -41,8 +33,7 @@ CLR_INLINE float4 transform_vertex(__constant FrameParams* params, __global cons
 #endif
 }
 
-/* Clip coordinate `row` of the lanes' positions (px, py, pz): the same
- * operations as transform_vertex, in lane types. */
+/* Clip coordinate `row` of the lanes' positions: transform_vertex's operations in lane types. */
 CLR_INLINE floatL transform_lanes(__constant FrameParams* params, int row, floatL px, floatL py, floatL pz)
 {
   return CLR_TRANSFORM_ROW(params->mvp, row, px, py, pz);

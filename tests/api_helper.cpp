@@ -11,6 +11,7 @@
 // Errors: one line on stderr, exit status 1 (runProgram).
 #include "camera.h"
 #include "cli.h"
+#include "frame_settings.h"
 #include "reference_raster.h"
 #include "scene.h"
 
@@ -61,8 +62,7 @@ int sceneDump(const std::string& outPath, const std::vector<std::string>& flags)
   const RenderArgs args = parseRenderArgs(flags);
   const Mesh mesh = args.scenePath.empty() ? defaultScene() : loadScene(args.scenePath);
   const Camera camera = frameCamera(args.camera, meshBounds(mesh));
-  const FrameSettings s =
-      camera.frameSettings(args.width, args.height, args.shadeMode, args.cullBack, chooseDepth(args, camera).mode);
+  const FrameSettings s = makeFrameSettings(args, camera, args.width, args.height, meshBounds(mesh));
   std::ofstream out(outPath, std::ios::binary);
   const uint32_t counts[2] = {uint32_t(mesh.numVerts()), uint32_t(mesh.numTris())};
   write(out, counts, 2);

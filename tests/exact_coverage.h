@@ -14,15 +14,6 @@
 // and the sum is clamped to [0, 1], so the result is exact only when the
 // caller's triangles do not overlap (a mesh, or disjoint triangles). For
 // scenes with occlusion use supersample_reference.h.
-//
-// Precision: everything is in double. Vertices are first translated to the
-// pixel's corner, so the clipping and the shoelace sum work on coordinates of
-// magnitude <= max(1, triangle extent); the error of one pixel's area is a
-// few ulps of that magnitude, about 1e-15 for triangles of a few pixels and
-// below 1e-12 relative for triangles up to ~1000 pixels across. Intersections
-// with a pixel boundary land exactly on it (the clipped coordinate is set,
-// not computed), and a triangle whose vertices lie on pixel corners or on a
-// dyadic grid (1/256 pixel) is clipped and measured exactly.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -35,6 +26,15 @@ namespace oracle {
 // Unsigned area of the triangle abc, in square pixels.
 double triangleArea(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c);
 
+// Precision: everything is in double. Vertices are first translated to the
+// pixel's corner, so the clipping and the shoelace sum work on coordinates of
+// magnitude <= max(1, triangle extent); the error of one pixel's area is a
+// few ulps of that magnitude, about 1e-15 for triangles of a few pixels and
+// below 1e-12 relative for triangles up to ~1000 pixels across. Intersections
+// with a pixel boundary land exactly on it (the clipped coordinate is set,
+// not computed), and a triangle whose vertices lie on pixel corners or on a
+// dyadic grid (1/256 pixel) is clipped and measured exactly.
+//
 // Per pixel (bottom row first, index y·width + x), the covered fraction of the
 // pixel's area, summed over the triangles (3 screen-space vertices each, in
 // pixels) and clamped to [0, 1]. The triangles must not overlap. Triangles and

@@ -1,20 +1,17 @@
 #!/usr/bin/env bash
-# fuzz.sh — builds tests/fuzz_load.cpp (libFuzzer, AddressSanitizer,
-# UndefinedBehaviorSanitizer) with clang in a build folder of its own and
-# runs the model loading path on hostile input. A crash, a sanitizer
-# report, a leak, an input slower than 10 s or one that takes over 2 GiB
-# fails the run; libFuzzer leaves the input in BUILD_DIR/artifacts.
+# fuzz.sh — builds tests/fuzz_load.cpp (libFuzzer, AddressSanitizer, UndefinedBehaviorSanitizer) with clang in
+# a build folder of its own and runs the model loading path on hostile input. A crash, a sanitizer report, a
+# leak, an input slower than 10 s or one that takes over 2 GiB fails the run; libFuzzer leaves the input in
+# BUILD_DIR/artifacts.
 #
 #   tests/fuzz.sh SOURCE_DIR BUILD_DIR [SECONDS]
 #
-# SECONDS 0 (what CTest runs) replays tests/fuzz_corpus once: the seeds and
-# every input that ever crashed or hung, a deterministic regression test.
-# SECONDS > 0 fuzzes from there for that long (default 60), with the random
-# seed FUZZ_SEED when set: run it by hand to look for new problems, then
-# guard them and add the inputs to the corpus. (CTest once fuzzed for 60 s;
-# libFuzzer runs are not reproducible, and memory errors inside assimp that
-# no single input reproduces made that test fail about every other run.)
-# New inputs go to BUILD_DIR/corpus, which starts empty on every run.
+# SECONDS 0 (what CTest runs) replays tests/fuzz_corpus once: the seeds and every input that ever crashed or
+# hung, a deterministic regression test. SECONDS > 0 fuzzes from there for that long (default 60), with the
+# random seed FUZZ_SEED when set: run it by hand to look for new problems, then guard them and add the inputs
+# to the corpus. CTest only replays: libFuzzer runs are not reproducible, and memory errors inside assimp that
+# no single input reproduces would make a fuzzing test flaky. New inputs go to BUILD_DIR/corpus, which starts
+# empty on every run.
 set -euo pipefail
 source_dir="$1"
 build_dir="$2"

@@ -1,46 +1,15 @@
-// supersample_reference.h — a very-high-sample reference renderer for scenes
-// with occlusion: the ground truth an anti-aliased image (coverage and shaded
-// colour per pixel) is compared with where exact_coverage.h does not apply
-// because triangles overlap.
+// supersample_reference.h — a very-high-sample reference renderer: the ground truth for anti-aliased images
+// (coverage and shaded colour per pixel) where triangles overlap and exact_coverage.h does not apply.
 //
-// Input is screen space, after clipping and the viewport transform: per
-// vertex (x, y) in pixels (origin bottom-left, y up, pixel (i, j) is the
-// square [i, i+1] × [j, j+1]), window depth z and 1/w (w > 0); triangles in
-// input order. Every pixel holds S×S samples, the centres of an S×S sub-grid
-// (sample (sx, sy) of pixel (i, j) at (i + (sx+0.5)/S, j + (sy+0.5)/S)), or,
-// jittered, one uniformly random point per sub-cell from a hash of the seed
-// and the sample's index (deterministic, independent of the thread count).
-//
-// Per sample, all in double: coverage by edge functions with clraster's fill
-// rule (each triangle is first oriented counter-clockwise, y up; a sample
-// exactly on an edge belongs to the triangle when the edge is a left edge or
-// a horizontal bottom edge), window depth interpolated from screen
-// barycentrics, depth test LESS against a cleared depth of 1.0, so a tie keeps
-// the earlier triangle. An edge is always evaluated from the same endpoint
-// whichever triangle owns it, so the two triangles sharing an edge get exactly
-// opposite values: a sample on a shared edge belongs to exactly one. With
-// vertices on a dyadic grid (e.g. clraster's 1/256-pixel snapping) and S a
-// power of two the edge functions are exact. The visible triangle's
-// perspective-correct barycentrics λ (of its vertices in input order,
-// λ_i = (b_i/w_i) / Σ_j (b_j/w_j), b the screen barycentrics) go to the
-// caller's shading function; uncovered samples take the background colour.
-// Each pixel's colour is the mean over its samples, its coverage the fraction
-// of samples covered.
-//
-// Accuracy against the exact area (exact_coverage.h): with S×S stratified
-// samples, plain or jittered, a straight edge crosses at most 2S − 1 of a
-// pixel's S² sub-cells, and only a sample of a crossed cell can disagree with
-// its cell's covered area, so one edge through a pixel changes its coverage
-// error by at most (2S − 1)/S² < 2/S (0.031 at S = 64); k edges through a
-// pixel, at most 2k/S. Edges shared by two triangles of a mesh cancel.
-//
-// Cost: triangles are binned into cache-sized tiles (a run of pixels in one
-// row), and each sample row of a triangle is restricted to the triangle's
-// horizontal extent, so the work is proportional to the covered samples,
-// plus one shading call per sample. 200×200 pixels, 64×64 samples and 2000
-// triangles (depth complexity ~1.3) take about 1.7 s on one core and 0.9 s
-// with threads = 2, with a trivial shading function (test_oracle.cpp,
-// [oracle-perf]; Release, the 2-core development machine).
+// Input is screen space after clipping: per vertex (x, y) in pixels (y up, pixel (i, j) = [i, i+1] × [j, j+1]),
+// window depth z and 1/w (w > 0), triangles in input order. Each pixel has S×S samples at sub-cell centres
+// (i + (sx+0.5)/S, j + (sy+0.5)/S) or, jittered, one hashed random point per sub-cell (independent of threads).
+// Per sample, in double: clraster's fill rule on counter-clockwise triangles (left and horizontal bottom edges
+// inclusive), depth interpolated from screen barycentrics, LESS against a clear of 1.0 (a tie keeps the earlier
+// triangle). An edge is evaluated from the same endpoint whichever triangle owns it, so a shared-edge sample
+// belongs to exactly one; on a dyadic grid with S a power of two the edge functions are exact. The visible
+// triangle's perspective-correct λ_i = (b_i/w_i) / Σ_j (b_j/w_j) goes to the caller's shading function;
+// uncovered samples take the background. A pixel's colour is its samples' mean, its coverage the covered fraction.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -78,6 +47,18 @@ struct SupersampleResult {
 // called concurrently and must be thread-safe.
 using ShadeFn = std::function<glm::dvec3(uint32_t triangle, glm::dvec3 lambda)>;
 
+// Accuracy against the exact area (exact_coverage.h): with S×S stratified
+// samples, plain or jittered, a straight edge crosses at most 2S − 1 of a
+// pixel's S² sub-cells, and only a sample of a crossed cell can disagree with
+// its cell's covered area, so one edge through a pixel changes its coverage
+// error by at most (2S − 1)/S² < 2/S (0.031 at S = 64); k edges through a
+// pixel, at most 2k/S. Edges shared by two triangles of a mesh cancel.
+//
+// Cost: triangles are binned into cache-sized tiles (a run of pixels in one
+// row), and each sample row of a triangle is restricted to the triangle's
+// horizontal extent, so the work is proportional to the covered samples,
+// plus one shading call per sample; `threads` splits the rows.
+//
 // Renders the triangles (3 vertices each). Degenerate and non-finite
 // triangles are skipped. Throws std::invalid_argument on samplesPerAxis = 0.
 SupersampleResult supersampleRender(const std::vector<ScreenVertex>& verts, const ShadeFn& shade,

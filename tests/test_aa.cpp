@@ -156,7 +156,7 @@ TEST_CASE("aa: hierarchical traversal gives the bounding-box scan's pixels with 
   CHECK(test::countDifferences(hierImage, bboxImage) == 0);
 }
 
-TEST_CASE("aa: perspective-correct interpolation matches the analytic (u, v); affine does not", "[aa][resolve]")
+TEST_CASE("aa: perspective-correct interpolation matches the analytic (u, v) and affine does not", "[aa][resolve]")
 {
   // A textured ground plane seen at a grazing angle: u runs across, v away
   // from the eye; (u, v) are affine in world space, as a texture is.
@@ -345,7 +345,7 @@ TEST_CASE("raster: small MSAA, hierarchical and float-edge frames match the orac
   pipeline.uploadScene(g.mesh());
   const uint32_t W = 48, H = 40;
   for (uint32_t samples : {1u, 4u})
-    for (uint32_t traversal : {CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_HIERARCHICAL}) {
+    for (uint32_t traversal : {CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_HIERARCHICAL, CLR_TRAVERSAL_SPANS}) {
       clr::FrameSettings settings = test::idSettings(W, H);
       settings.samples = samples;
       settings.traversal = traversal;

@@ -1,7 +1,10 @@
 // test_differential.cpp — thousands of random triangles, slivers and
 // shared-edge meshes through the kernels and through the scalar oracle:
-// the triangle-ID images must be identical.
+// the triangle-ID images must be identical, with the bounding-box scan and
+// with exact span tables (both exact methods of coverage).
 #include "test_support.h"
+
+#include "cli.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -20,14 +23,30 @@ glm::mat4 camera()
          glm::lookAt(glm::vec3(0.3f, 0.8f, 6.0f), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
 }
 
-void compare(const test::Geometry& g, bool cullBack = false)
+// The exact traversals, one per GENERATE run of a test case.
+uint32_t exactTraversal()
+{
+  return GENERATE(CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_SPANS);
+}
+
+clr::FrameSettings settingsFor(uint32_t traversal, uint32_t width, uint32_t height,
+                               const glm::mat4& mvp = glm::mat4(1.0f), bool cullBack = false)
+{
+  clr::FrameSettings s = test::idSettings(width, height, mvp, cullBack);
+  s.traversal = traversal;
+  return s;
+}
+
+void compare(const test::Geometry& g, uint32_t traversal, bool cullBack = false)
 {
   const glm::mat4 mvp = camera();
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
-  const clr::FrameStats stats = pipeline.render(test::idSettings(kWidth, kHeight, mvp, cullBack), rgba);
-  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(kWidth, kHeight, mvp, cullBack));
+  const clr::FrameSettings settings = settingsFor(traversal, kWidth, kHeight, mvp, cullBack);
+  const clr::FrameStats stats = pipeline.render(settings, rgba);
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, settings);
+  INFO("traversal " << clr::traversalName(traversal));
   const ref::Result expected = ref::rasterize(g.positions, g.indices, mvp, {kWidth, kHeight, cullBack});
   size_t covered = 0;
   for (uint32_t id : expected.triId) covered += id != ref::kNone;
@@ -43,6 +62,7 @@ void compare(const test::Geometry& g, bool cullBack = false)
 
 TEST_CASE("differential: random overlapping triangles, some through the near plane", "[differential]")
 {
+  const uint32_t traversal = exactTraversal();
   const unsigned seed = GENERATE(1u, 2u, 3u);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> centre(-4.0f, 4.0f), depth(-8.0f, 7.0f), size(0.02f, 3.0f), unit(-1, 1);
@@ -54,12 +74,13 @@ TEST_CASE("differential: random overlapping triangles, some through the near pla
                   c + s * glm::vec3(unit(rng), unit(rng), unit(rng)),
                   c + s * glm::vec3(unit(rng), unit(rng), unit(rng)));
   }
-  compare(g);
-  compare(g, true);
+  compare(g, traversal);
+  compare(g, traversal, true);
 }
 
 TEST_CASE("differential: more near-plane crossings than the initial clip list holds", "[differential][clip]")
 {
+  const uint32_t traversal = exactTraversal();
   // 3000 triangles straddling the eye's plane: the clip list (1024 at first)
   // must grow and the frame be recounted, with nothing lost.
   std::mt19937 rng(12);
@@ -68,11 +89,12 @@ TEST_CASE("differential: more near-plane crossings than the initial clip list ho
   for (int t = 0; t < 3000; ++t)
     g.addTriangle({coord(rng), coord(rng), behind(rng)}, {coord(rng), coord(rng), ahead(rng)},
                   {coord(rng), coord(rng), ahead(rng)});
-  compare(g);
+  compare(g, traversal);
 }
 
 TEST_CASE("differential: slivers thinner than a subpixel", "[differential]")
 {
+  const uint32_t traversal = exactTraversal();
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> coord(-3.0f, 3.0f), depth(-3.0f, 3.0f), tiny(-2e-4f, 2e-4f);
   test::Geometry g;
@@ -81,11 +103,12 @@ TEST_CASE("differential: slivers thinner than a subpixel", "[differential]")
     const glm::vec3 mid = 0.5f * (a + b) + glm::vec3(tiny(rng), tiny(rng), tiny(rng));
     g.addTriangle(a, b, mid);
   }
-  compare(g);
+  compare(g, traversal);
 }
 
 TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)", "[differential]")
 {
+  const uint32_t traversal = exactTraversal();
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> jitter(-0.3f, 0.3f);
   test::Geometry g;
@@ -102,11 +125,12 @@ TEST_CASE("differential: shared-edge meshes (jittered grids at several depths)",
         g.indices.insert(g.indices.end(), {v, r, ur, v, ur, u});
       }
   }
-  compare(g);
+  compare(g, traversal);
 }
 
 TEST_CASE("differential: setup skips clusters beside the view and keeps those partly in it", "[differential][setup]")
 {
+  const uint32_t traversal = exactTraversal();
   // A field of 9 x 9 patches of 16 x 8 quads: 256 triangles each, one of
   // setup's clusters (CLR_CLUSTER_TRIS) per patch, wider than the view, so
   // that the count pass skips the patches wholly beside it, unloaded
@@ -127,12 +151,13 @@ TEST_CASE("differential: setup skips clusters beside the view and keeps those pa
         }
     }
   REQUIRE(g.numTris() == 81 * CLR_CLUSTER_TRIS);
-  compare(g);
-  compare(g, true);
+  compare(g, traversal);
+  compare(g, traversal, true);
 }
 
 TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[differential][raster]")
 {
+  const uint32_t traversal = exactTraversal();
   // raster evaluates edge functions in 32 bits when a triangle's bounds span
   // at most 64 pixels each way (CLR_EDGE32_SPAN), in 64 bits otherwise:
   // overlapping triangles just under, at and over that span, and large ones
@@ -153,16 +178,18 @@ TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[dif
                   test::screen(v[1].x, v[1].y, depth(rng), size, size),
                   test::screen(v[2].x, v[2].y, depth(rng), size, size));
   }
-  const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(size, size));
+  const std::vector<uint32_t> ids = test::renderTriIds(g, settingsFor(traversal, size, size));
   const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {size, size, false});
   size_t covered = 0;
   for (uint32_t id : expected.triId) covered += id != ref::kNone;
   CHECK(covered > size * size / 2);
+  INFO("traversal " << clr::traversalName(traversal));
   CHECK(test::countDifferences(ids, expected.triId) == 0);
 }
 
 TEST_CASE("differential: huge triangles whose edge functions leave 32 bits inside a tile", "[differential][raster]")
 {
+  const uint32_t traversal = exactTraversal();
   // raster tests a large triangle's tile rows in 32 bits where all three
   // edge functions fit an int over the rows kept (near its edges), and
   // keeps only the rows an edge can hold (raster_segment_rows): triangles
@@ -226,7 +253,7 @@ TEST_CASE("differential: huge triangles whose edge functions leave 32 bits insid
                   test::screen(v[1].x, v[1].y, z0 + 0.6f * unit(rng), size, size),
                   test::screen(v[2].x, v[2].y, z0 + 0.6f * unit(rng), size, size));
   }
-  const std::vector<uint32_t> ids = test::renderTriIds(g, test::idSettings(size, size));
+  const std::vector<uint32_t> ids = test::renderTriIds(g, settingsFor(traversal, size, size));
   const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), {size, size, false});
   size_t covered = 0;
   std::vector<bool> shown(g.numTris(), false);
@@ -235,7 +262,8 @@ TEST_CASE("differential: huge triangles whose edge functions leave 32 bits insid
       ++covered;
       shown[id] = true;
     }
-  INFO("triangles shown: " << std::count(shown.begin(), shown.end(), true));
+  INFO("triangles shown: " << std::count(shown.begin(), shown.end(), true) << ", traversal "
+                           << clr::traversalName(traversal));
   CHECK(covered == size * size);
   CHECK(std::count(shown.begin(), shown.end(), true) > 100);
   CHECK(test::countDifferences(ids, expected.triId) == 0);
@@ -243,7 +271,10 @@ TEST_CASE("differential: huge triangles whose edge functions leave 32 bits insid
 
 TEST_CASE("differential: one-pixel and 16-pixel-row raster kernels agree bit for bit", "[differential][raster]")
 {
-  // The GPU shape (one work-item per pixel) is checked here on the test device too.
+  // The GPU shape (one work-item per pixel) is checked here on the test
+  // device too, for the exact traversals and for the float walk.
+  const uint32_t traversal = GENERATE(CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_SPANS, CLR_TRAVERSAL_SPANS_FLOAT);
+  INFO("traversal " << clr::traversalName(traversal));
   std::mt19937 rng(8);
   std::uniform_real_distribution<float> coord(-4.0f, 4.0f), depth(-6.0f, 6.0f), unit(-1, 1);
   test::Geometry g;
@@ -258,7 +289,7 @@ TEST_CASE("differential: one-pixel and 16-pixel-row raster kernels agree bit for
     clr::Pipeline pipeline(ctx);
     pipeline.uploadScene(g.mesh());
     std::vector<uint32_t> rgba;
-    pipeline.render(test::idSettings(kWidth, kHeight, camera()), rgba);
+    pipeline.render(settingsFor(traversal, kWidth, kHeight, camera()), rgba);
     vis.push_back(pipeline.readVis());
   }
   REQUIRE(vis[0].size() == vis[1].size());

@@ -607,7 +607,7 @@ TEST_CASE("the visibility buffer's indices are 16 bits wide below 0xFFFF setup r
   }
 }
 
-TEST_CASE("16-bit visibility indices reach index 0xFFFE; 0xFFFF setup records take 32 bits", "[vis]")
+TEST_CASE("16-bit visibility indices reach index 0xFFFE and 0xFFFF setup records take 32 bits", "[vis]")
 {
   // One small triangle around each pixel centre of a 256 x 256 viewport, for
   // the first n pixels: n setup records, pixel i showing record i (the

@@ -109,8 +109,8 @@ TEST_CASE("stability: triangles at the fixed-point limits match the oracle", "[s
 TEST_CASE("stability: huge finite vertices are clipped to the guard band exactly", "[stability][clip]")
 {
   // Triangles with vertices at 1e20 and 3e38 contain the whole guard band.
-  // Before clip.cl put intersections exactly on the plane and halved
-  // overflowing differences, the first covered half of the viewport
+  // Without clip.cl's intersections exactly on the plane and its halved
+  // overflowing differences, the first covers half of the viewport
   // (rounding at 1e20 is 2^43) and the second nothing (6e38 overflows).
   const uint32_t W = 32, H = 32;
   const float big = GENERATE(1e6f, 1e20f, 3e38f);

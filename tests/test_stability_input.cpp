@@ -308,7 +308,7 @@ TEST_CASE("stability: CLRASTER_MAX_ALLOC_BYTES makes the command line report the
 }
 
 TEST_CASE(
-    "stability: a buffer's first allocation is what the frame needs; growing again adds 1/8 slack up to its bound",
+    "stability: a buffer's first allocation is what the frame needs and growing again adds 1/8 slack up to its bound",
     "[stability]")
 {
   clr::DeviceMemory memory;

@@ -266,7 +266,7 @@ TEST_CASE("a glTF with an embedded PNG loads, keeps its sampler and factor, and 
   CHECK(at(rgba, 8, 8, 6, 6) == 0xFF008000u);  // green × 0.5
 }
 
-TEST_CASE("missing and corrupt texture files are one-line warnings naming the file; the model renders",
+TEST_CASE("missing and corrupt texture files are one-line warnings naming the file and the model renders",
           "[texture][cli]")
 {
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";

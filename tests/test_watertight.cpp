@@ -2,7 +2,8 @@
 // cover every pixel exactly once: no holes, no double hits. Coverage counts
 // come from the kernels themselves: the triangles are split into 18 classes
 // whose members never touch (cell (i mod 3, j mod 3), lower or upper half),
-// each class is rendered alone, and the per-pixel counts are summed.
+// each class is rendered alone, and the per-pixel counts are summed. Both
+// exact traversals (bounding-box scan, span tables) must pass.
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
@@ -73,7 +74,10 @@ TEST_CASE("watertight: a jittered screen grid covers every pixel exactly once", 
       REQUIRE(area(v, r, ur) > 0);
       REQUIRE(area(v, ur, u) > 0);
     }
-  const std::vector<int> counts = coverageCounts(grid, n, test::idSettings(W, H));
+  clr::FrameSettings settings = test::idSettings(W, H);
+  settings.traversal = GENERATE(CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_SPANS);
+  INFO("traversal " << settings.traversal);
+  const std::vector<int> counts = coverageCounts(grid, n, settings);
   size_t holes = 0, doubles = 0;
   for (int c : counts) holes += c == 0, doubles += c > 1;
   CHECK(holes == 0);
@@ -97,7 +101,10 @@ TEST_CASE("watertight: a ground grid clipped by the near plane has no seams", "[
     }
   const glm::mat4 mvp = glm::perspective(glm::radians(70.0f), float(W) / H, 0.1f, 200.0f) *
                         glm::lookAt(glm::vec3(0, 1, 0), glm::vec3(0, 0.2f, -3), glm::vec3(0, 1, 0));
-  const std::vector<int> counts = coverageCounts(grid, n, test::idSettings(W, H, mvp));
+  clr::FrameSettings settings = test::idSettings(W, H, mvp);
+  settings.traversal = GENERATE(CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_SPANS);
+  INFO("traversal " << settings.traversal);
+  const std::vector<int> counts = coverageCounts(grid, n, settings);
   // Below the horizon every pixel sees the plane: its rows y < H/2 - margin.
   size_t holes = 0, doubles = 0, checked = 0;
   for (uint32_t y = 0; y < H / 3; ++y)

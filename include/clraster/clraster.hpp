@@ -135,6 +135,8 @@ class CLRASTER_API RenderOptions {
  public:
   RenderOptions();  // the CLI's defaults
   static RenderOptions parse(const std::vector<std::string>& flags);
+  // As `clraster render` takes its arguments: -o (or --aov) required.
+  static RenderOptions parseCommandLine(const std::vector<std::string>& args);
   RenderOptions& set(const std::string& flag, const std::string& value = "");
   ~RenderOptions();
   RenderOptions(const RenderOptions&);
@@ -194,5 +196,21 @@ CLRASTER_API void writePng(const std::string& path, const Image& image);
 // The whole command: load options.scenePath() (or the built-in scene),
 // render once, write options.outputPath() (and --aov's file) when given.
 CLRASTER_API Image render(Context& ctx, const RenderOptions& options);
+
+// ---- The command line: each `clraster` command as a call ----
+// (the CLI, host/main.cpp, is these calls and nothing else)
+
+// The text of `clraster --help`.
+CLRASTER_API const char* usageText();
+// Whether a command's arguments ask for help (--help or -h).
+CLRASTER_API bool wantsHelp(const std::vector<std::string>& args);
+// `clraster info ARGS`: prints what it reports on stdout; the exit status.
+CLRASTER_API int infoCommand(const std::vector<std::string>& args);
+// `clraster render` with parsed options: one view (-o, --aov), or every view
+// of a --views file; writes the outputs and returns the --stats JSON line
+// ("" without --stats). Warnings go to stderr, --views' progress bar too
+// when stderr is a terminal. `context` receives the device context the
+// command built, so that a caller about to exit may skip its teardown.
+CLRASTER_API std::string renderCommand(const RenderOptions& options, std::unique_ptr<Context>& context);
 
 }  // namespace clraster
