@@ -7,6 +7,7 @@
 #include "camera.h"
 #include "cli.h"
 #include "cli_support.h"
+#include "frame_settings.h"
 #include "scene.h"
 #include "stability_scenes.h"
 
@@ -45,7 +46,9 @@ TEST_CASE("spans: real meshes give the bounding-box scan's samples and image in 
       clr::ClContext ctx(test::context().info.name, lanes);
       clr::Pipeline pipeline(ctx);
       pipeline.uploadScene(mesh);
-      clr::FrameSettings settings = camera.frameSettings(320, 240, CLR_SHADE_LAMBERT);
+      clr::RenderArgs args;
+      args.shadeMode = CLR_SHADE_LAMBERT;
+      clr::FrameSettings settings = clr::makeFrameSettings(args, camera, 320, 240, clr::meshBounds(mesh));
       settings.samples = samples;
       const Frame bbox = renderFrame(pipeline, settings, CLR_TRAVERSAL_BBOX);
       const Frame spans = renderFrame(pipeline, settings, CLR_TRAVERSAL_SPANS);
