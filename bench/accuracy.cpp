@@ -10,7 +10,8 @@
 // against the exact area of tests/exact_coverage.h), "default" (the built-in
 // scene, lambert), one per MESH (lambert), and "checker" (a checkerboard
 // plane at a grazing angle). Methods: every --aa mode, float edges, affine
-// interpolation and hierarchical traversal (alone and with msaa4). For
+// interpolation, and the traversals (hierarchical, exact spans, each alone
+// and with msaa4, and the float edge walk of span tables). For
 // each scene and method: K warm-up and N timed frames of Pipeline::render at
 // the full size (median, min, max ms), then the error:
 //   coverage scene  the covered fraction of each pixel's samples (from the
@@ -78,6 +79,9 @@ std::vector<Method> methods()
   list.push_back({"affine", "none", CLR_EDGES_FIXED, CLR_INTERP_AFFINE});
   list.push_back({"hierarchical", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_HIERARCHICAL});
   list.push_back({"hierarchical-msaa4", "msaa4", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_HIERARCHICAL});
+  list.push_back({"spans", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS});
+  list.push_back({"spans-msaa4", "msaa4", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS});
+  list.push_back({"spans-float", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS_FLOAT});
   return list;
 }
 
