@@ -303,6 +303,6 @@ int main(int argc, char** argv)
     if (args[0] == "devices") return listDevicesCommand();
     if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
     if (args[0] == "__compile-ahead") compileAheadCommand({args.begin() + 1, args.end()});
-    throw Error("unknown command '" + args[0] + "' (render, devices)");
+    throw Error("unknown command '" + userText(args[0]) + "' (render, devices)");
   });
 }

@@ -3,6 +3,7 @@
 #include "texture.h"
 
 #include "cl.h"
+#include "file_rule.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -12,23 +13,19 @@
 #pragma GCC diagnostic pop
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 
 namespace clr {
 
 Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size)
 {
   // Step 1: decode to RGBA8.
-  if (size == 0 || size > size_t(INT32_MAX)) throw Error(name + ": empty or oversized image");
+  if (size == 0 || size > size_t(INT32_MAX)) throw Error(userText(name) + ": empty or oversized image");
   int w = 0, h = 0, channels = 0;
   unsigned char* pixels = stbi_load_from_memory(data, int(size), &w, &h, &channels, 4);
-  if (!pixels) throw Error(name + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (!pixels) throw Error(userText(name) + ": cannot decode image (" + stbi_failure_reason() + ")");
   if (w < 1 || h < 1 || w > CLR_MAX_VIEWPORT || h > CLR_MAX_VIEWPORT) {
     stbi_image_free(pixels);
-    throw Error(name + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
+    throw Error(userText(name) + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
   }
   // Step 2: pack, bottom row first.
   Texture t;
@@ -47,10 +44,8 @@ Texture decodeTexture(const std::string& name, const unsigned char* data, size_t
 
 Texture loadTextureFile(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open texture (" + std::strerror(errno) + ")");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return decodeTexture(path, bytes.data(), bytes.size());
+  const std::string bytes = readInputFile(path, kTextureInput);
+  return decodeTexture(path, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
 }
 
 std::vector<uint32_t> downsample(const std::vector<uint32_t>& rgba, uint32_t width, uint32_t height)
@@ -87,7 +82,8 @@ TexturePack packTextures(const std::vector<Texture>& textures)
     std::vector<uint32_t> level = t.rgba;
     uint32_t w = t.width, h = t.height;
     for (uint32_t l = 0;; ++l) {
-      if (pack.texels.size() + level.size() > UINT32_MAX) throw Error(t.name + ": textures exceed 2^32 texels");
+      if (pack.texels.size() + level.size() > UINT32_MAX)
+        throw Error(userText(t.name) + ": textures exceed 2^32 texels");
       d.levelOffset[l] = uint32_t(pack.texels.size());
       pack.texels.insert(pack.texels.end(), level.begin(), level.end());
       d.levels = l + 1;

@@ -26,7 +26,8 @@ struct Texture {
   std::vector<uint32_t> rgba;  // width·height, R in the low byte, bottom row first
 };
 
-// Decodes an image file (PNG, JPEG, BMP, TGA, ... as stb_image reads them).
+// Decodes an image file (PNG, JPEG, BMP, TGA, ... as stb_image reads them),
+// read under the file rule (file_rule.h).
 Texture loadTextureFile(const std::string& path);
 // Decodes an image held in memory; `name` is what errors call it.
 Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size);

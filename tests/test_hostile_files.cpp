@@ -1,0 +1,304 @@
+// test_hostile_files.cpp — hostile input beyond the model file itself: the
+// file rule wherever a file is read (file_rule.h), output patterns, the
+// length of every message, the texture budget, and correctly rounded
+// positions of text models (exact_positions.h). Every bad input here must
+// end as one line (an error, or a warning where rendering goes on) and
+// leave no output; each CLI run is under `timeout`, so a hang fails.
+#include "cli_support.h"
+#include "file_rule.h"
+#include "scene.h"
+#include "test_support.h"
+#include "texture.h"
+#include "views.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+#include <catch2/catch.hpp>
+#include <zlib.h>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using Catch::Matchers::Contains;
+
+namespace {
+
+// `clraster ARGS` with stdin from `input` (a shell redirection or a pipe
+// in front), killed after 60 s (status 124): a hang fails the test.
+test::Run runHostile(const std::string& args, const std::string& input = "</dev/null")
+{
+  const std::string errPath = test::tempDir() + "/hostile-stderr-" + std::to_string(getpid()) + ".txt";
+  const bool pipe = input.size() && input.back() == '|';
+  const std::string cmd = (pipe ? input + " " : std::string()) + "timeout 60 '" + CLRASTER_BIN + "' " + args + " 2>'" +
+                          errPath + "'" + (pipe ? "" : " " + input);
+  test::Run r;
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p);
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = test::slurp(errPath);
+  return r;
+}
+
+// Each stderr line, less its "clraster: " or "clraster: warning: " prefix.
+std::vector<std::string> messages(const std::string& err)
+{
+  std::vector<std::string> out;
+  std::istringstream lines(err);
+  for (std::string line; std::getline(lines, line);) {
+    for (const char* prefix : {"clraster: warning: ", "clraster: "})
+      if (line.rfind(prefix, 0) == 0) {
+        line = line.substr(std::strlen(prefix));
+        break;
+      }
+    out.push_back(line);
+  }
+  return out;
+}
+
+// One error line containing `needle`, at most 300 bytes, exit 1.
+void expectShortError(const test::Run& r, const std::string& needle)
+{
+  INFO("stderr: " << r.err.substr(0, 2000));
+  CHECK(r.status == 1);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.find(needle) != std::string::npos);
+  for (const std::string& m : messages(r.err)) CHECK(m.size() <= 300);
+}
+
+std::string freshDir(const std::string& name)
+{
+  const std::string dir = test::tempDir() + "/" + name;
+  REQUIRE(std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "'").c_str()) == 0);
+  return dir;
+}
+
+size_t filesIn(const std::string& dir)
+{
+  size_t n = 0;
+  FILE* p = popen(("ls -A '" + dir + "' | wc -l").c_str(), "r");
+  REQUIRE(p);
+  const bool read = std::fscanf(p, "%zu", &n) == 1;
+  REQUIRE(read);
+  pclose(p);
+  return n;
+}
+
+const char* const kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+
+// A sparse file of `bytes` bytes (no disk blocks).
+std::string sparseFile(const std::string& path, uint64_t bytes)
+{
+  std::ofstream(path, std::ios::binary) << "x";
+  REQUIRE(truncate(path.c_str(), off_t(bytes)) == 0);
+  return path;
+}
+
+void appendChunk(std::string& png, const char* type, const std::string& data)
+{
+  auto be32 = [&](uint32_t v) {
+    for (int k = 3; k >= 0; --k) png += char((v >> (8 * k)) & 0xFF);
+  };
+  be32(uint32_t(data.size()));
+  const std::string body = std::string(type, 4) + data;
+  png += body;
+  be32(uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+}
+
+// A real RGB PNG of w×h black pixels, its rows deflated as a stream: a few
+// hundred kB that decode to w·h·4 bytes.
+std::string blackPng(uint32_t w, uint32_t h)
+{
+  std::string png = "\x89PNG\r\n\x1a\n";
+  std::string ihdr;
+  for (uint32_t v : {w, h})
+    for (int k = 3; k >= 0; --k) ihdr += char((v >> (8 * k)) & 0xFF);
+  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8 bits, RGB, deflate, no filter choice, no interlace
+  appendChunk(png, "IHDR", ihdr);
+  z_stream z{};
+  REQUIRE(deflateInit(&z, 9) == Z_OK);
+  const std::vector<unsigned char> row(1 + size_t(w) * 3, 0);
+  std::string idat;
+  std::vector<unsigned char> out(1 << 16);
+  for (uint32_t y = 0; y <= h; ++y) {
+    z.next_in = const_cast<unsigned char*>(row.data());
+    z.avail_in = y < h ? uInt(row.size()) : 0;
+    do {
+      z.next_out = out.data();
+      z.avail_out = uInt(out.size());
+      deflate(&z, y < h ? Z_NO_FLUSH : Z_FINISH);
+      idat.append(reinterpret_cast<char*>(out.data()), out.size() - z.avail_out);
+    } while (z.avail_out == 0);
+  }
+  deflateEnd(&z);
+  appendChunk(png, "IDAT", idat);
+  appendChunk(png, "IEND", "");
+  return png;
+}
+
+}  // namespace
+
+TEST_CASE("hostile: a FIFO, a device, a directory or an endless pipe where a file is expected is one error line",
+          "[hostile][cli]")
+{
+  const std::string dir = freshDir("hostile-special");
+  const std::string out = freshDir("hostile-special-out");
+  const std::string fifo = dir + "/pipe.obj";
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string views = test::writeFile("hostile-views.json", "{\"views\": [{}]}");
+  // Step 1: the model and the views file, each a FIFO, /dev/zero, a folder,
+  // and /dev/stdin fed without end.
+  for (const std::string& bad : {fifo, std::string("/dev/zero"), dir}) {
+    expectShortError(runHostile("render '" + bad + "' -o '" + out + "/a.png'"), "not a regular file");
+    expectShortError(runHostile("render --views '" + bad + "' -o '" + out + "/v%d.png'"), "not a regular file");
+  }
+  expectShortError(runHostile("render /dev/stdin -o '" + out + "/a.png'", "yes 'v 0 0 0' |"),
+                   "/dev/stdin: not a regular");
+  expectShortError(runHostile("render --views /dev/stdin -o '" + out + "/v%d.png'", "yes '{' |"),
+                   "/dev/stdin: not a regular");
+  // Step 2: files a model names: a material library and a texture. The
+  // model renders without them, with one warning.
+  const std::string texFifo = dir + "/tex.png";
+  REQUIRE(mkfifo(texFifo.c_str(), 0600) == 0);
+  for (const std::string& tex : {texFifo, std::string("/dev/zero"), dir}) {
+    test::writeFile("hostile-tex.mtl", "newmtl m\nKd 1 1 1\nmap_Kd " + tex + "\n");
+    const std::string model =
+        test::writeFile("hostile-tex.obj", "mtllib hostile-tex.mtl\nusemtl m\n" + std::string(kTriangle));
+    const test::Run r = runHostile("render '" + model + "' -o '" + out + "/t.png' --size 16x16");
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_THAT(r.err, Contains("not a regular file") && Contains("rendered without the texture"));
+  }
+  // (assimp opens a material library beside the model)
+  const std::string mtlFifo = test::tempDir() + "/hostile-lib.mtl";
+  unlink(mtlFifo.c_str());
+  REQUIRE(mkfifo(mtlFifo.c_str(), 0600) == 0);
+  const std::string model =
+      test::writeFile("hostile-mtl.obj", "mtllib hostile-lib.mtl\nusemtl m\n" + std::string(kTriangle));
+  const test::Run r = runHostile("render '" + model + "' -o '" + out + "/m.png' --size 16x16");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Contains("hostile-lib.mtl: not a regular file") && Contains("imported without it"));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  // Nothing but the renders that went on was written.
+  CHECK(filesIn(out) == 2);
+}
+
+TEST_CASE("hostile: files over their size limit are refused before they are read", "[hostile][cli]")
+{
+  const std::string dir = freshDir("hostile-size");
+  const std::string out = freshDir("hostile-size-out");
+  const std::string model = sparseFile(dir + "/huge.obj", clr::kModelInput.maxBytes + 1);
+  expectShortError(runHostile("render '" + model + "' -o '" + out + "/a.png'"), "exceeds the limit of 1073741824");
+  const std::string views = sparseFile(dir + "/huge.json", clr::kViewsInput.maxBytes + 1);
+  expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/v%d.png'"), "exceeds the limit");
+  sparseFile(dir + "/huge.png", clr::kTextureInput.maxBytes + 1);
+  std::ofstream(dir + "/t.mtl") << "newmtl m\nKd 1 1 1\nmap_Kd huge.png\n";
+  std::ofstream(dir + "/t.obj") << "mtllib t.mtl\nusemtl m\n" << kTriangle;
+  const test::Run r = runHostile("render '" + dir + "/t.obj' -o '" + out + "/t.png' --size 16x16");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Contains("huge.png: texture file of 268435457 bytes exceeds the limit"));
+  CHECK(filesIn(out) == 1);
+  // Empty files too.
+  std::ofstream(dir + "/empty.json").flush();
+  expectShortError(runHostile("render --views '" + dir + "/empty.json' -o '" + out + "/v%d.png'"), "file is empty");
+}
+
+TEST_CASE("hostile: output patterns are checked before formatting and names stay bounded", "[hostile][views]")
+{
+  auto error = [](const std::string& pattern) {
+    try {
+      clr::checkOutputPattern(pattern);
+    } catch (const clr::Error& e) {
+      CHECK(std::strlen(e.what()) <= 300);
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK_THAT(error("out_%999999999d.png"), Contains("width over 9"));
+  CHECK_THAT(error("out_%10d.png"), Contains("width over 9"));
+  CHECK_THAT(error("out_%.10d.png"), Contains("precision over 9"));
+  CHECK_THAT(error("out_%#d.png"), Contains("a conversion other than"));
+  CHECK_THAT(error("out_%*d.png"), Contains("a conversion other than"));
+  CHECK(error("out_%9.9d.png").empty());
+  CHECK(error("out_%-9u.png").empty());
+  CHECK(clr::outputName("o%9.9d", 7) == "o000000007");
+  CHECK(clr::outputName("o%9d", INT_MAX) == "o2147483647");
+  // Names that cannot exist: a component over NAME_MAX, a path over PATH_MAX.
+  CHECK_THAT(error(std::string(250, 'a') + "%9d.png"), Contains("a file or folder name over 255 bytes"));
+  CHECK(error(std::string(240, 'a') + "%9d.png").empty());
+  CHECK_THAT(error(std::string(5000, 'a') + "%d"), Contains("longer than a path may be"));
+  CHECK_THAT(error(std::string(100000, '%') + "d"), Contains("longer than a path may be"));
+  // On the command line: one short line, nothing written.
+  const std::string out = freshDir("hostile-pattern");
+  const std::string views = test::writeFile("hostile-pattern.json", "{\"views\": [{}]}");
+  expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/o%999999999d.png'"), "width over 9");
+  expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/" + std::string(100000, 'x') + "%d'"),
+                   "longer than a path may be");
+  CHECK(filesIn(out) == 0);
+}
+
+TEST_CASE("hostile: no message quotes more than a bounded part of a user string", "[hostile][cli]")
+{
+  const std::string dir = freshDir("hostile-long");
+  const std::string huge(100000, 'q');
+  const std::string longPath = dir + "/" + std::string(200, 'd') + "/" + std::string(200, 'e') + "/x.obj";
+  REQUIRE(std::system(("mkdir -p '" + longPath.substr(0, longPath.rfind('/')) + "'").c_str()) == 0);
+  std::ofstream(longPath) << "v 0 0 0\nv 1 0 0\n";  // no faces
+  const std::string views = test::writeFile("hostile-long.json", "{\"views\": [{}]}");
+  const std::string badKey = test::writeFile("hostile-key.json", "{\"views\": [{\"" + huge + "\": 1}]}");
+  const std::string badJson = test::writeFile("hostile-json.json", "{\"views\": [" + huge + "]}");
+  const std::string badWord = test::writeFile("hostile-word.obj", "v 0 0 0\nv 1 0 0\nv " + huge + " 1 0\nf 1 2 3\n");
+  const std::string args[] = {
+      "render '" + dir + "/" + huge + ".obj' -o " + dir + "/a.png",
+      "render '" + longPath + "' -o " + dir + "/a.png",
+      "render --views '" + dir + "/" + huge + "' -o " + dir + "/v%d.png",
+      "render --views '" + badKey + "' -o " + dir + "/v%d.png",
+      "render --views '" + badJson + "' -o " + dir + "/v%d.png",
+      "render '" + badWord + "' -o " + dir + "/a.png",
+      "render -o '" + dir + "/" + huge + ".png'",
+      "render -o '" + dir + "/" + std::string(3000, 'n') + "/a.png'",
+      "render -o a.png --size " + huge,
+      "render -o a.png --eye " + huge,
+      "render -o a.png --shade " + huge,
+      "render -o a.png --cull " + huge,
+      "render -o a.png --aa " + huge,
+      "render -o a.png --frames " + huge,
+      "render -o a.png --light-point 1,2,3," + huge,
+      "render -o a.png --views '" + views + "' --shard " + huge,
+      "render -o a.png -" + huge,
+      "render a.obj b.obj" + huge + " -o a.png",
+      huge,
+  };
+  for (const std::string& a : args) {
+    const test::Run r = runHostile(a);
+    INFO("clraster " << a.substr(0, 300) << "\nstderr: " << r.err.substr(0, 1000));
+    CHECK(r.status == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    for (const std::string& m : messages(r.err)) CHECK(m.size() <= 300);
+  }
+  // A texture path of 1000 bytes in a material: the warning is bounded too.
+  test::writeFile("hostile-longtex.mtl", "newmtl m\nKd 1 1 1\nmap_Kd " + std::string(1000, 't') + ".png\n");
+  const std::string model =
+      test::writeFile("hostile-longtex.obj", "mtllib hostile-longtex.mtl\nusemtl m\n" + std::string(kTriangle));
+  const test::Run r = runHostile("render '" + model + "' -o '" + dir + "/t.png' --size 16x16");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Contains("rendered without the texture"));
+  for (const std::string& m : messages(r.err)) CHECK(m.size() <= 300);
+}
