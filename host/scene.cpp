@@ -127,6 +127,7 @@ void loadMaterials(ImportState& state)
   const std::string folder =
       state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
   std::map<std::string, int> byPath;
+  TextureBudget budget;  // all textures of the scene, mip chains counted
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* mat = scene->mMaterials[m];
     // Step 1: the colour factor.
@@ -168,9 +169,18 @@ void loadMaterials(ImportState& state)
         Texture t;
         if (const aiTexture* embedded = scene->GetEmbeddedTexture(name.c_str())) {
           const std::string what = userText(state.path, 100) + ": embedded texture '" + userText(name, 60) + "'";
-          if (embedded->mHeight == 0) {
-            t = decodeTexture(what, reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth);
-          } else {
+          try {
+            if (embedded->mHeight == 0)
+              t = decodeTexture(what, reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth,
+                                budget);
+            else
+              budget.claim(what, embedded->mWidth, embedded->mHeight);
+          } catch (const TextureOverBudget& e) {
+            state.mesh.warnings.push_back(std::string(e.what()) + "; rendered without the texture");
+            state.mesh.materials.push_back(out);
+            continue;
+          }
+          if (embedded->mHeight != 0) {
             t.name = what;
             t.width = embedded->mWidth;
             t.height = embedded->mHeight;
@@ -191,7 +201,7 @@ void loadMaterials(ImportState& state)
           std::replace(file.begin(), file.end(), '\\', '/');
           if (file[0] != '/') file = folder + file;
           try {
-            t = loadTextureFile(file);
+            t = loadTextureFile(file, budget);
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.

@@ -302,3 +302,48 @@ TEST_CASE("hostile: no message quotes more than a bounded part of a user string"
   CHECK_THAT(r.err, Contains("rendered without the texture"));
   for (const std::string& m : messages(r.err)) CHECK(m.size() <= 300);
 }
+
+TEST_CASE(
+    "hostile: textures are sized from their header and held to one "
+    "budget per scene",
+    "[hostile][texture]")
+{
+  // Step 1: the budget's arithmetic: whole mip chains, 4 bytes a texel.
+  CHECK(clr::mipChainBytes(1, 1) == 4);
+  CHECK(clr::mipChainBytes(2, 2) == 4 * (4 + 1));
+  CHECK(clr::mipChainBytes(3, 1) == 4 * (3 + 1));
+  CHECK(clr::mipChainBytes(16000, 16000) > clr::kTextureBudgetBytes);
+  CHECK(clr::mipChainBytes(8192, 8192) < clr::kTextureBudgetBytes);
+  clr::TextureBudget budget(40);
+  CHECK_NOTHROW(budget.claim("a", 2, 2));
+  CHECK_NOTHROW(budget.claim("b", 2, 2));
+  CHECK_THROWS_AS(budget.claim("c", 1, 1), clr::TextureOverBudget);
+  // Step 2: decodeTexture claims before it decodes.
+  const std::string png = blackPng(4, 4);
+  clr::TextureBudget small(4 * 21 - 1), enough(4 * 21);
+  const auto* bytes = reinterpret_cast<const unsigned char*>(png.data());
+  CHECK_THROWS_WITH(clr::decodeTexture("p.png", bytes, png.size(), small),
+                    Contains("p.png: 4x4 needs 1 MiB with its mip levels, over "
+                             "the scene's texture budget"));
+  const clr::Texture t = clr::decodeTexture("p.png", bytes, png.size(), enough);
+  CHECK((t.width == 4 && t.height == 4 && t.rgba.size() == 16));
+  // Step 3: a small PNG that declares 16000x16000 (1 GB decoded): a warning,
+  // the model renders untextured, and the process never holds the pixels.
+  const std::string dir = freshDir("hostile-budget");
+  const std::string huge = blackPng(16000, 16000);
+  CHECK(huge.size() < 2000000);
+  std::ofstream(dir + "/huge.png", std::ios::binary) << huge;
+  std::ofstream(dir + "/t.mtl") << "newmtl m\nKd 1 1 1\nmap_Kd huge.png\n";
+  std::ofstream(dir + "/t.obj") << "mtllib t.mtl\nusemtl m\n" << kTriangle;
+  const test::Run r = runHostile("render '" + dir + "/t.obj' -o '" + dir + "/t.png' --size 16x16 --shade texture");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Contains("huge.png: 16000x16000 needs 1303 MiB") && Contains("rendered without the texture"));
+  CHECK(test::exists(dir + "/t.png"));
+  // Every child of this test process so far (the runs above) stayed far
+  // below the 1 GB the image decodes to.
+  struct rusage usage;
+  REQUIRE(getrusage(RUSAGE_CHILDREN, &usage) == 0);
+  CHECK(usage.ru_maxrss < 700 * 1024);  // kB
+}
