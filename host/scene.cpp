@@ -5,6 +5,7 @@
 #include "scene.h"
 
 #include "cl.h"
+#include "exact_positions.h"
 #include "file_rule.h"
 #include "model_checks.h"
 #include "model_io.h"
@@ -291,6 +292,9 @@ Mesh importScene(const std::string& path)
   Assimp::Importer importer;
   auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it
   importer.SetIOHandler(io);
+  // Text formats: positions re-read correctly rounded (exact_positions.h).
+  const ExactPositions exact = prepareExactPositions(path, importer);
+  if (exact.importer != -1) io->serve(path, &exact.text);
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
@@ -304,6 +308,7 @@ Mesh importScene(const std::string& path)
     throw Error(userText(path, 80) + ": cannot import (" + userText(io->refusals().front(), 160) + ")");
   if (!scene) throw Error(userText(path, 100) + ": cannot import (" + userText(importer.GetErrorString(), 160) + ")");
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(userText(path) + ": no meshes in file");
+  applyExactPositions(path, exact, importer, *scene);
   // Step 2: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};
   for (const std::string& refused : io->refusals())

@@ -127,7 +127,8 @@ std::string blackPng(uint32_t w, uint32_t h)
   std::string ihdr;
   for (uint32_t v : {w, h})
     for (int k = 3; k >= 0; --k) ihdr += char((v >> (8 * k)) & 0xFF);
-  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8 bits, RGB, deflate, no filter choice, no interlace
+  ihdr += std::string("\x08\x02\x00\x00\x00",
+                      5);  // 8 bits, RGB, deflate, no filter choice, no interlace
   appendChunk(png, "IHDR", ihdr);
   z_stream z{};
   REQUIRE(deflateInit(&z, 9) == Z_OK);
@@ -152,8 +153,10 @@ std::string blackPng(uint32_t w, uint32_t h)
 
 }  // namespace
 
-TEST_CASE("hostile: a FIFO, a device, a directory or an endless pipe where a file is expected is one error line",
-          "[hostile][cli]")
+TEST_CASE(
+    "hostile: a FIFO, a device, a directory or an endless pipe where a "
+    "file is expected is one error line",
+    "[hostile][cli]")
 {
   const std::string dir = freshDir("hostile-special");
   const std::string out = freshDir("hostile-special-out");
@@ -219,7 +222,10 @@ TEST_CASE("hostile: files over their size limit are refused before they are read
   expectShortError(runHostile("render --views '" + dir + "/empty.json' -o '" + out + "/v%d.png'"), "file is empty");
 }
 
-TEST_CASE("hostile: output patterns are checked before formatting and names stay bounded", "[hostile][views]")
+TEST_CASE(
+    "hostile: output patterns are checked before formatting and names "
+    "stay bounded",
+    "[hostile][views]")
 {
   auto error = [](const std::string& pattern) {
     try {
@@ -346,4 +352,126 @@ TEST_CASE(
   struct rusage usage;
   REQUIRE(getrusage(RUSAGE_CHILDREN, &usage) == 0);
   CHECK(usage.ru_maxrss < 700 * 1024);  // kB
+}
+
+namespace {
+
+// Coordinates on a jittered grid written with 7 decimals, and their
+// correctly rounded floats.
+struct Coordinates {
+  std::vector<std::string> text;
+  std::vector<float> exact;
+};
+
+Coordinates gridCoordinates(size_t count)
+{
+  Coordinates c;
+  uint32_t state = 12345;
+  for (size_t i = 0; i < count; ++i) {
+    state = state * 1664525u + 1013904223u;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.7f", double(i % 97) * 0.37 + double(state >> 8) * 1e-9 - 20.0);
+    float exact = 0.0f;
+    std::from_chars(text, text + std::strlen(text), exact);
+    c.text.push_back(text);
+    c.exact.push_back(exact);
+  }
+  return c;
+}
+
+// How many coordinates assimp alone (fast_atof) reads other than `expected`.
+size_t assimpMisrounds(const std::string& path, const std::vector<float>& expected)
+{
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, 0);
+  REQUIRE(scene);
+  std::vector<float> got;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    for (unsigned v = 0; v < scene->mMeshes[m]->mNumVertices; ++v) {
+      const aiVector3D& p = scene->mMeshes[m]->mVertices[v];
+      got.insert(got.end(), {p.x, p.y, p.z});
+    }
+  REQUIRE(got.size() == expected.size());
+  size_t wrong = 0;
+  for (size_t k = 0; k < got.size(); ++k) wrong += got[k] != expected[k];
+  return wrong;
+}
+
+// The loaded mesh's positions equal the exact values, corner by corner.
+void checkExact(const clr::Mesh& mesh, const std::vector<float>& expected)
+{
+  REQUIRE(mesh.positions.size() == expected.size());
+  size_t same = 0;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    uint32_t a, b;
+    std::memcpy(&a, &mesh.positions[k], 4);
+    std::memcpy(&b, &expected[k], 4);
+    same += a == b;
+  }
+  CHECK(same == expected.size());
+}
+
+}  // namespace
+
+TEST_CASE(
+    "hostile: text model positions are the correctly rounded values of "
+    "their decimals",
+    "[hostile][models]")
+{
+  const size_t tris = 200;
+  const Coordinates c = gridCoordinates(9 * tris);
+  auto coord = [&](size_t v, int k) { return c.text[3 * v + size_t(k)]; };
+  const size_t verts = 3 * tris;
+  // OBJ, its faces naming vertices backwards (negative indices too), so
+  // assimp's corner order differs from the file's vertex order.
+  std::string obj, off = "OFF\n" + std::to_string(verts) + " " + std::to_string(tris) + " 0\n";
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(verts) +
+                    "\nproperty float y\nproperty float x\nproperty double "
+                    "z\nproperty uchar red\nelement face " +
+                    std::to_string(tris) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string stl = "solid t\n";
+  std::vector<float> objExpected, inOrder;
+  for (size_t v = 0; v < verts; ++v) {
+    obj += "v " + coord(v, 0) + " " + coord(v, 1) + " " + coord(v, 2) + "\n";
+    off += coord(v, 0) + " " + coord(v, 1) + "\t" + coord(v, 2) + "\n";
+    ply += coord(v, 1) + " " + coord(v, 0) + " " + coord(v, 2) + " 7\n";
+    for (int k = 0; k < 3; ++k) inOrder.push_back(c.exact[3 * v + size_t(k)]);
+  }
+  for (size_t t = 0; t < tris; ++t) {
+    const size_t a = 3 * t, b = 3 * t + 1, d = 3 * t + 2;
+    obj +=
+        "f " + std::to_string(d + 1) + " " + std::to_string(int(b) - int(verts)) + " " + std::to_string(a + 1) + "\n";
+    for (size_t v : {d, b, a})
+      for (int k = 0; k < 3; ++k) objExpected.push_back(c.exact[3 * v + size_t(k)]);
+    off += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+    ply += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+    stl += "facet normal 0 0 1\n outer loop\n";
+    for (size_t v : {a, b, d}) stl += "  vertex " + coord(v, 0) + " " + coord(v, 1) + " " + coord(v, 2) + "\n";
+    stl += " endloop\nendfacet\n";
+  }
+  stl += "endsolid t\n";
+  // Each file: assimp alone misrounds dozens of its 1,800 coordinates,
+  // clraster none.
+  const std::pair<std::string, const std::vector<float>*> files[] = {
+      {test::writeFile("hostile-exact.obj", obj), &objExpected},
+      {test::writeFile("hostile-exact.off", off), &inOrder},
+      {test::writeFile("hostile-exact.ply", ply), &inOrder},
+      {test::writeFile("hostile-exact.stl", stl), &inOrder}};
+  for (const auto& [path, expected] : files) {
+    INFO(path);
+    CHECK(assimpMisrounds(path, *expected) >= 40);
+    checkExact(clr::loadScene(path), *expected);
+  }
+  // A coordinate that is not a whole decimal number is an error, not a
+  // guess at what assimp's prefix parse made of it.
+  CHECK_THROWS_WITH(clr::loadScene(test::writeFile("hostile-bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1.5x 0\nf 1 2 3\n")),
+                    Contains("OBJ line 3: coordinate '1.5x' is not a decimal number"));
+  CHECK_THROWS_WITH(clr::loadScene(test::writeFile("hostile-bad.stl",
+                                                   "solid s\nfacet normal 0 0 1\nouter loop\n"
+                                                   "vertex 0 0 0\nvertex 1,0 0 0\nvertex 0 1 0\n"
+                                                   "endloop\nendfacet\nendsolid s\n")),
+                    Contains("STL line 5: coordinate '1,0' is not a decimal number"));
+  // OBJ text under another extension: assimp picks its OBJ reader by content,
+  // which would read positions with fast_atof; refused.
+  CHECK_THROWS_WITH(clr::loadScene(test::writeFile("hostile-obj.txt", obj)), Contains("name it so"));
 }
