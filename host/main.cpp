@@ -280,11 +280,11 @@ int main(int argc, char** argv)
       return 0;
     }
     if (args[0] == "devices") {
-      if (!rest.empty()) throw Error("devices: unexpected argument '" + rest[0] + "'");
+      if (!rest.empty()) throw Error("devices: unexpected argument '" + userText(rest[0]) + "'");
       return listDevicesCommand();
     }
     if (args[0] == "render") return renderCommand(rest);
     if (args[0] == "info") return infoCommand(rest);
-    throw Error("unknown command '" + args[0] + "' (render, info, devices, help)");
+    throw Error("unknown command '" + userText(args[0]) + "' (render, info, devices, help)");
   });
 }
