@@ -5,17 +5,29 @@
 //                     [--ref-samples S] [--crop C] [--device SEL]
 //                     [--csv FILE] [--pareto FILE] [--markdown FILE]
 //
-// Scenes: "coverage" (disjoint random white triangles on the 1/256 grid), "default" (built-in, lambert), one per
-// MESH (lambert), "checker" (a grazing checkerboard plane). Methods: every --aa mode, float edges, affine
-// interpolation, hierarchical traversal (alone and with msaa4). Per scene and method: K warm-up and N timed frames
-// of Pipeline::render at full size (median, min, max ms), then the error:
-//   coverage scene  each pixel's covered sample fraction against tests/exact_coverage.h: RMSE, max, and RMSE over
-//                   edge pixels (0 < area < 1), the constants of host/quality.cpp
-//   other scenes    RGBA8 against the S×S-sample reference (tests/supersample_reference.h) on a centred C×C crop:
-//                   RMSE of channels in [0, 1], max, PSNR, and the --aa auto prediction (lambert scenes)
-//   checker scene   also --shade uv and --shade depth (aa none) against the analytic values: RMSE and max
-// Writes the CSV (scene × method), the Pareto front per scene (methods no other beats in both time and error) and
-// a Markdown table. Every failure is one line on stderr and exit status 1.
+// Scenes: "coverage" (disjoint random triangles on the 1/256 grid, white,
+// against the exact area of tests/exact_coverage.h), "default" (the built-in
+// scene, lambert), one per MESH (lambert), and "checker" (a checkerboard
+// plane at a grazing angle). Methods: every --aa mode, float edges, affine
+// interpolation, and the traversals (hierarchical, exact spans, each alone
+// and with msaa4, and the float edge walk of span tables). For
+// each scene and method: K warm-up and N timed frames of Pipeline::render at
+// the full size (median, min, max ms), then the error:
+//   coverage scene  the covered fraction of each pixel's samples (from the
+//                   visibility planes) against the exact area: RMSE over all
+//                   pixels, max, and RMSE over edge pixels (0 < area < 1),
+//                   the constants of host/quality.cpp
+//   other scenes    the RGBA8 image against the S×S-sample reference
+//                   (tests/supersample_reference.h, same shading in double)
+//                   on a C×C crop at the image centre: RMSE of all channels
+//                   in [0, 1], max, PSNR; with the --aa auto model's
+//                   prediction beside it (lambert scenes)
+//   checker scene   also (u, v) from --shade uv and eye depth from --shade
+//                   depth (aa none) against the analytic values at each
+//                   pixel centre: RMSE and max
+// Writes the CSV (one row per scene and method), the Pareto front per scene
+// (methods no other method beats in both time and error), and a Markdown
+// table. Every failure is one line on stderr and exit status 1.
 #include "aa.h"
 #include "camera.h"
 #include "cl.h"
@@ -66,6 +78,9 @@ std::vector<Method> methods()
   list.push_back({"affine", "none", CLR_EDGES_FIXED, CLR_INTERP_AFFINE});
   list.push_back({"hierarchical", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_HIERARCHICAL});
   list.push_back({"hierarchical-msaa4", "msaa4", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_HIERARCHICAL});
+  list.push_back({"spans", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS});
+  list.push_back({"spans-msaa4", "msaa4", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS});
+  list.push_back({"spans-float", "none", CLR_EDGES_FIXED, CLR_INTERP_PERSPECTIVE, CLR_TRAVERSAL_SPANS_FLOAT});
   return list;
 }
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # run.sh — clraster's benchmark suite against Mesa llvmpipe, on a Debian 12
-# machine, as root (it installs gnuplot-nox when missing).
+# machine with the packages of scripts/bootstrap.sh (gnuplot-nox among them).
 #
-#   bash bench/run.sh [MESH ...]
+#   bash bench/run.sh [--out DIR | --update-docs] [MESH ...]
 #
 # Builds clraster, clraster_bench and clraster_peak in build/ (configuring it
 # when there is none), then runs, each case as one clraster_bench process:
@@ -21,17 +21,18 @@
 #                scene, 1920x1080, one frame) with an empty POCL_CACHE_DIR
 #                (median and range of three, each cache new), then warm
 #                (median of three)
-# and writes, replacing earlier results:
-#   docs/bench/results.csv          one row per case (columns: bench/bench_suite.cpp)
-#   docs/bench/results.md           the tables, peaks, cold start and definitions
-#   docs/bench/scaling_triangles.png  frame time vs triangles, log-log (sphere series)
-#   docs/bench/scaling_pixels.png     frame time vs pixels, log-log (real meshes)
+# and writes into build/bench, or DIR, or docs/bench with --update-docs
+# (bench/common.sh; BENCH_OUT is the default DIR), replacing earlier results:
+#   results.csv            one row per case (columns: bench/bench_suite.cpp)
+#   results.md             the tables, peaks, cold start and definitions
+#   scaling_triangles.png  frame time vs triangles, log-log (sphere series)
+#   scaling_pixels.png     frame time vs pixels, log-log (real meshes)
 #
 # Environment: WARMUP (default 3) and FRAMES (default 20) per case; the 10M
 # cases use 1 and 5. LP_NUM_THREADS (llvmpipe threads) defaults to the core
 # count, POCL_AFFINITY to 1 (below). DEVICE picks clraster's OpenCL device
 # (as --device: an index or a name substring; default: the first GPU, else
-# the first CPU). BENCH_OUT replaces docs/bench as the results' folder.
+# the first CPU).
 # BENCH_BIN names a folder of already built clraster, clraster_bench and
 # clraster_peak and skips the build, for a machine without the build tools
 # (a GPU machine the binaries were copied to); there, BENCH_CHARTS=0 skips the
@@ -45,6 +46,9 @@
 # earlier results in place.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
+source bench/common.sh
+bench_args bench/run.sh "$@"
+set -- ${bench_rest[@]+"${bench_rest[@]}"}
 
 models=/usr/share/assimp/models
 # The largest test models assimp loads, by triangle count (PLY/pond.0.ply is
@@ -65,7 +69,7 @@ export LP_NUM_THREADS="${LP_NUM_THREADS:-$(nproc)}"
 # such setting for llvmpipe's threads.
 export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 export POCL_CACHE_DIR="$PWD/build/pocl-cache"
-out_dir="${BENCH_OUT:-docs/bench}"
+out_dir="$bench_out"
 device_args=()
 [[ -n "${DEVICE:-}" ]] && device_args=(--device "$DEVICE")
 suite_start=$(date +%s.%N)
@@ -76,12 +80,7 @@ fail() { echo "bench/run.sh: $*" >&2; exit 1; }
 for mesh in "${real_meshes[@]}" "$grid_mesh" "$@"; do
   [[ -r "$mesh" ]] || fail "cannot read mesh '$mesh' (real meshes need assimp-testmodels)"
 done
-if [[ "${BENCH_CHARTS:-1}" != 0 ]] && ! command -v gnuplot >/dev/null; then
-  echo "bench/run.sh: installing gnuplot-nox"
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gnuplot-nox >/dev/null ||
-    { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends gnuplot-nox >/dev/null; } ||
-    fail "cannot install gnuplot-nox"
-fi
+[[ "${BENCH_CHARTS:-1}" == 0 ]] || need_gnuplot bench/run.sh
 
 # Step 2: build (unless BENCH_BIN names built binaries).
 built="${BENCH_BIN:-build}"
@@ -316,7 +315,7 @@ if [[ "${BENCH_CHARTS:-1}" != 0 ]]; then
   charts=("$work/scaling_triangles.png" "$work/scaling_pixels.png")
 fi
 
-# Step 8: replace the published results.
+# Step 8: replace the results in the output folder.
 mkdir -p "$out_dir"
 cp "$csv" "$md" ${charts[@]+"${charts[@]}"} "$out_dir/"
 elapsed=$(awk -v a="$suite_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.0f", b - a }')

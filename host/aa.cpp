@@ -22,7 +22,7 @@ const AaMode& findAaMode(const std::string& name)
     if (name == m.name) return m;
     names += std::string(names.empty() ? "" : ", ") + m.name;
   }
-  throw Error("--aa: unknown mode '" + name + "' (" + names + ", auto)");
+  throw Error("--aa: unknown mode '" + userText(name) + "' (" + names + ", auto)");
 }
 
 std::string aaModeName(uint32_t samples, bool shadeEverySample)

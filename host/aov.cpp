@@ -50,7 +50,7 @@ void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const
   const size_t n = size_t(width) * height;
   const std::vector<std::string>& names = aovChannelNames();
   static_assert(CLR_AOV_CHANNELS == 10, "aovChannelNames() lists every plane");
-  if (planes.size() != names.size() * n) throw Error(path + ": AOV planes do not match the image size");
+  if (planes.size() != names.size() * n) throw Error(userText(path) + ": AOV planes do not match the image size");
   std::vector<size_t> order(names.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return names[a] < names[b]; });
@@ -86,7 +86,7 @@ void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const
   if (size == 0) {
     const std::string why = err ? err : "unknown error";
     if (err) FreeEXRErrorMessage(err);
-    throw Error(path + ": EXR encoding failed (" + why + ")");
+    throw Error(userText(path) + ": EXR encoding failed (" + why + ")");
   }
   const std::vector<unsigned char> bytes(memory, memory + size);
   std::free(memory);

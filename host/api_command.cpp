@@ -252,6 +252,11 @@ const char* usageText()
   return clr::usageText();
 }
 
+std::string userText(const std::string& text)
+{
+  return clr::userText(text);
+}
+
 bool wantsHelp(const std::vector<std::string>& args)
 {
   return clr::wantsHelp(args);

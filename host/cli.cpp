@@ -76,7 +76,7 @@ float parseFloat(const std::string& flag, const std::string& text)
   char* end = nullptr;
   const float v = std::strtof(text.c_str(), &end);
   if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-    throw Error(flag + ": '" + text + "' is not a finite number");
+    throw Error(flag + ": '" + userText(text) + "' is not a finite number");
   return v;
 }
 
@@ -86,7 +86,7 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text)
   size_t start = 0;
   for (int k = 0; k < 3; ++k) {
     const size_t comma = text.find(',', start);
-    if ((k < 2) != (comma != std::string::npos)) throw Error(flag + ": '" + text + "' is not x,y,z");
+    if ((k < 2) != (comma != std::string::npos)) throw Error(flag + ": '" + userText(text) + "' is not x,y,z");
     v[k] = parseFloat(flag, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     start = comma + 1;
   }
@@ -102,21 +102,21 @@ uint32_t parseChoice(const std::string& flag, const std::string& text, std::init
     if (text == c) return index;
     names += std::string(index++ ? ", " : "") + c;
   }
-  throw Error(flag + ": unknown value '" + text + "' (" + names + ")");
+  throw Error(flag + ": unknown value '" + userText(text, 120) + "' (" + names + ")");
 }
 
 }  // namespace
 
 const std::string& flagValue(const std::vector<std::string>& args, size_t& i)
 {
-  if (i + 1 >= args.size()) throw Error(args[i] + ": missing value");
+  if (i + 1 >= args.size()) throw Error(userText(args[i]) + ": missing value");
   return args[++i];
 }
 
 void takeScenePath(const std::string& arg, std::string& scenePath)
 {
-  if (!arg.empty() && arg[0] == '-') throw Error("unknown option '" + arg + "'");
-  if (!scenePath.empty()) throw Error("unexpected argument '" + arg + "' (only one SCENE)");
+  if (!arg.empty() && arg[0] == '-') throw Error("unknown option '" + userText(arg) + "'");
+  if (!scenePath.empty()) throw Error("unexpected argument '" + userText(arg) + "' (only one SCENE)");
   scenePath = arg;
 }
 
@@ -126,7 +126,8 @@ uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_
   char* end = nullptr;
   const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
   if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE || v < lo || v > hi)
-    throw Error(flag + ": '" + text + "' must be an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+    throw Error(flag + ": '" + userText(text) + "' must be an integer in " + std::to_string(lo) + ".." +
+                std::to_string(hi));
   return v;
 }
 
@@ -141,7 +142,7 @@ uint32_t parseShadeMode(const std::string& flag, const std::string& text)
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height)
 {
   const size_t x = text.find('x');
-  if (x == std::string::npos) throw Error(flag + ": '" + text + "' is not WxH");
+  if (x == std::string::npos) throw Error(flag + ": '" + userText(text) + "' is not WxH");
   width = uint32_t(parseUnsigned(flag, text.substr(0, x), 1, CLR_MAX_VIEWPORT));
   height = uint32_t(parseUnsigned(flag, text.substr(x + 1), 1, CLR_MAX_VIEWPORT));
 }
@@ -181,7 +182,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
         const size_t last = text.rfind(',');
         r.pointLight = parseVec3(a, text.substr(0, last));
         const float range = parseFloat(a, text.substr(last + 1));
-        if (!(range > 0.0f)) throw Error(a + ": range r must be > 0 in '" + text + "'");
+        if (!(range > 0.0f)) throw Error(a + ": range r must be > 0 in '" + userText(text) + "'");
         r.pointLightRange = range;
       } else {
         r.pointLight = parseVec3(a, text);
@@ -225,7 +226,7 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       if (r.aovPath.empty()) throw Error("--aov: empty path");
     } else if (a == "--cull") {
       const std::string& s = flagValue(args, i);
-      if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + s + "' (none, back)");
+      if (s != "none" && s != "back") throw Error("--cull: unknown mode '" + userText(s) + "' (none, back)");
       r.cullBack = s == "back";
     } else if (a == "--device") {
       r.device = flagValue(args, i);

@@ -87,14 +87,14 @@ DeviceInfo selectDevice(const std::string& selector)
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
     const size_t index = std::stoul(selector);
     if (index >= devices.size())
-      throw Error("--device " + selector + ": no such device index (there are " + std::to_string(devices.size()) +
-                  "; see 'clraster devices')");
+      throw Error("--device " + userText(selector) + ": no such device index (there are " +
+                  std::to_string(devices.size()) + "; see 'clraster devices')");
     return devices[index];
   }
   // Step 3: a name substring.
   for (const DeviceInfo& d : devices)
     if (lower(d.name + " " + d.platformName).find(lower(selector)) != std::string::npos) return d;
-  throw Error("--device " + selector + ": no device name matches (see 'clraster devices')");
+  throw Error("--device " + userText(selector) + ": no device name matches (see 'clraster devices')");
 }
 
 int defaultLanes(const cl::Device& device)

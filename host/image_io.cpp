@@ -53,7 +53,7 @@ namespace {
 
 std::string failure(const std::string& path, int err)
 {
-  return path + ": cannot write (" + std::strerror(err) + ")";
+  return userText(path) + ": cannot write (" + std::strerror(err) + ")";
 }
 
 // Creates an empty temporary file next to path; returns its fd and name.
@@ -119,7 +119,7 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, const ui
     out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
   };
   if (!stbi_write_png_to_func(append, &png, int(width), int(height), 3, rgb.data(), int(width) * 3))
-    throw Error(path + ": PNG encoding failed");
+    throw Error(userText(path) + ": PNG encoding failed");
   // Step 2: write a temporary file, flush it, rename it into place.
   writeFileAtomic(path, png);
 }

@@ -63,12 +63,12 @@ int run(const std::vector<std::string>& args)
     return 0;
   }
   if (args[0] == "devices") {
-    if (!rest.empty()) throw clraster::Error("devices: unexpected argument '" + rest[0] + "'");
+    if (!rest.empty()) throw clraster::Error("devices: unexpected argument '" + clraster::userText(rest[0]) + "'");
     return listDevicesCommand();
   }
   if (args[0] == "render") return renderCommand(rest);
   if (args[0] == "info") return clraster::infoCommand(rest);
-  throw clraster::Error("unknown command '" + args[0] + "' (render, info, devices, help)");
+  throw clraster::Error("unknown command '" + clraster::userText(args[0]) + "' (render, info, devices, help)");
 }
 
 }  // namespace

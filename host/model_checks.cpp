@@ -2,12 +2,11 @@
 #include "model_checks.h"
 
 #include "cl.h"
+#include "file_rule.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -25,6 +24,10 @@ std::string oneLine(std::string s)
 
 namespace {
 
+// The most of a file the PLY header check reads (the file rule,
+// file_rule.h, opens it): far more than 10,000 header lines need.
+constexpr size_t kHeaderBytes = size_t(1) << 20;
+
 // Assimp 5.2's PLY reader loops forever on some malformed headers (an
 // unknown property type, a missing end_header), drops the properties after a
 // line it does not know, and it allocates what an
@@ -33,7 +36,7 @@ namespace {
 // element of N items needs at least N bytes.
 void checkPlyHeader(const std::string& path, uint64_t fileSize)
 {
-  std::ifstream in(path, std::ios::binary);
+  std::istringstream in(readInputFile(path, kModelInput, kHeaderBytes));
   std::string line;
   // Step 1: the magic. Assimp skips blank lines before it and takes any case
   // ("pLy" too), and it hung (the fuzzer found it) on a magic followed by
@@ -129,10 +132,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
 // as its leading digits; '#' starts a comment where a token may start.
 void checkOffHeader(const std::string& path, uint64_t fileSize)
 {
-  std::ifstream in(path, std::ios::binary);
-  std::string text(4096, '\0');
-  in.read(&text[0], std::streamsize(text.size()));
-  text.resize(size_t(in.gcount()));
+  const std::string text = readInputFile(path, kModelInput, 4096);
   const char* car = text.data();
   const char* const end = car + text.size();
   auto lineEnd = [](char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; };
@@ -483,8 +483,7 @@ uint32_t readU32(const std::string& bytes, size_t at)
 // A .gltf (JSON) or .glb (binary container, versions 1 and 2) file.
 void checkGltf(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = readInputFile(path, kModelInput);
   const size_t bom = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   const char* json = bytes.data() + bom;
   size_t jsonSize = bytes.size() - bom;

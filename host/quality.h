@@ -34,6 +34,14 @@ constexpr double kAutoTargetRmse = 0.005;
 // gap (compare `clraster render --stats --traversal bbox|hierarchical`, docs/methods.md).
 constexpr double kHierarchicalTilesPerTriangle = 100.0;
 
+// --quality auto then takes exact spans (the same coverage, raster.cl) where
+// they measure faster on the scene itself: kSpansProbeRounds alternated
+// probe frames of each, the least kernel time of each, spans taken when
+// below kSpansMargin of the other's (bench/traversal.sh: they win on few
+// scenes, so the margin keeps load noise from flipping the choice).
+constexpr int kSpansProbeRounds = 3;
+constexpr double kSpansMargin = 0.95;
+
 struct EdgeContrast {
   uint64_t pixels = 0, edgePixels = 0;
   double sumSquared = 0;  // Σ over edge pixels and channels of Δ²
@@ -58,15 +66,16 @@ struct AutoChoice {
   double predictedRmse = 0;
   double targetRmse = kAutoTargetRmse;
   EdgeContrast contrast;
-  bool hierarchical = false;  // chosen traversal (when chosen)
+  uint32_t traversal = CLR_TRAVERSAL_BBOX;  // chosen traversal (when chosen)
   double tilesPerTriangle = 0;
+  double ruleMs = 0, spansMs = 0;  // probe kernel times: bbox or hierarchical by the rule, and spans (0: not timed)
   std::string reason;
   std::string json() const;  // for --stats
 };
 
 // Renders the probe frame with `settings` (anti-aliasing off) and sets, with
 // chooseAa, the cheapest anti-aliasing mode whose predicted error meets the
-// target and, with chooseTraversal, the traversal.
+// target and, with chooseTraversal, the traversal (more probe frames).
 AutoChoice chooseAutomatically(Pipeline& pipeline, FrameSettings& settings, bool chooseAa, bool chooseTraversal);
 
 }  // namespace clr

@@ -5,10 +5,12 @@
 #include "scene.h"
 
 #include "cl.h"
+#include "exact_positions.h"
+#include "file_rule.h"
 #include "model_checks.h"
 #include "normals.h"
+#include "model_io.h"
 
-#include <assimp/DefaultIOSystem.h>
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
@@ -21,12 +23,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
-
-#include <sys/stat.h>
 
 namespace clr {
 
@@ -56,7 +55,7 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
 {
   Mesh& dst = state.mesh;
   const uint64_t base = dst.numVerts();
-  if (base + src->mNumVertices > UINT32_MAX) throw Error(state.path + ": more than 2^32 vertices");
+  if (base + src->mNumVertices > UINT32_MAX) throw Error(userText(state.path) + ": more than 2^32 vertices");
   // Step 1: vertices, with the node transform applied.
   aiMatrix3x3 normalMatrix(transform);
   normalMatrix.Inverse().Transpose();
@@ -67,12 +66,12 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
     // framing overflowing; the file is rejected instead.
     const aiVector3D& q = src->mVertices[v];
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-      throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) +
+      throw Error(userText(state.path) + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) +
                   " has a non-finite position " + formatVector(q));
     const aiVector3D p = transform * q;
     if (!(std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate && std::fabs(p.z) <= kMaxCoordinate))
-      throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) + " lies at " +
-                  formatVector(p) + " after node transforms, beyond the supported 1e18");
+      throw Error(userText(state.path) + ": mesh " + std::to_string(meshIndex) + " vertex " + std::to_string(v) +
+                  " lies at " + formatVector(p) + " after node transforms, beyond the supported 1e18");
     dst.positions.insert(dst.positions.end(), {p.x, p.y, p.z});
     aiVector3D n = src->mNormals ? normalMatrix * src->mNormals[v] : aiVector3D(0, 0, 0);
     if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = aiVector3D(0, 0, 0);  // unlit
@@ -90,7 +89,7 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
     const aiFace& face = src->mFaces[f];
     for (unsigned k = 0; k < face.mNumIndices; ++k)
       if (face.mIndices[k] >= src->mNumVertices)
-        throw Error(state.path + ": mesh " + std::to_string(meshIndex) + " face " + std::to_string(f) +
+        throw Error(userText(state.path) + ": mesh " + std::to_string(meshIndex) + " face " + std::to_string(f) +
                     " has vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
                     std::to_string(src->mNumVertices) + " vertices)");
     // Lines and points (glTF's line and point modes, OBJ's l and p).
@@ -107,12 +106,12 @@ void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transf
 
 void visitNode(ImportState& state, const aiNode* node, const aiMatrix4x4& parent, int depth)
 {
-  if (depth > 256) throw Error(state.path + ": node hierarchy deeper than 256 levels");
+  if (depth > 256) throw Error(userText(state.path) + ": node hierarchy deeper than 256 levels");
   const aiMatrix4x4 transform = parent * node->mTransformation;
   for (unsigned i = 0; i < node->mNumMeshes; ++i) {
     const unsigned m = node->mMeshes[i];
     if (m >= state.scene->mNumMeshes || !state.scene->mMeshes[m])
-      throw Error(state.path + ": node refers to missing mesh " + std::to_string(m));
+      throw Error(userText(state.path) + ": node refers to missing mesh " + std::to_string(m));
     appendMesh(state, state.scene->mMeshes[m], transform, m);
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c) visitNode(state, node->mChildren[c], transform, depth + 1);
@@ -135,6 +134,7 @@ void loadMaterials(ImportState& state)
   const std::string folder =
       state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
   std::map<std::string, int> byPath;
+  TextureBudget budget;  // all textures of the scene, mip chains counted
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* mat = scene->mMaterials[m];
     // Step 1: the colour factor.
@@ -175,10 +175,19 @@ void loadMaterials(ImportState& state)
       if (found == byPath.end()) {
         Texture t;
         if (const aiTexture* embedded = scene->GetEmbeddedTexture(name.c_str())) {
-          const std::string what = state.path + ": embedded texture '" + name + "'";
-          if (embedded->mHeight == 0) {
-            t = decodeTexture(what, reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth);
-          } else {
+          const std::string what = userText(state.path, 100) + ": embedded texture '" + userText(name, 60) + "'";
+          try {
+            if (embedded->mHeight == 0)
+              t = decodeTexture(what, reinterpret_cast<const unsigned char*>(embedded->pcData), embedded->mWidth,
+                                budget);
+            else
+              budget.claim(what, embedded->mWidth, embedded->mHeight);
+          } catch (const TextureOverBudget& e) {
+            state.mesh.warnings.push_back(std::string(e.what()) + "; rendered without the texture");
+            state.mesh.materials.push_back(out);
+            continue;
+          }
+          if (embedded->mHeight != 0) {
             t.name = what;
             t.width = embedded->mWidth;
             t.height = embedded->mHeight;
@@ -191,20 +200,20 @@ void loadMaterials(ImportState& state)
               }
           }
         } else if (name[0] == '*') {
-          throw Error(state.path + ": material " + std::to_string(m) + " names missing embedded texture '" + name +
-                      "'");
+          throw Error(userText(state.path, 120) + ": material " + std::to_string(m) +
+                      " names missing embedded texture '" + userText(name, 100) + "'");
         } else {
           // A file beside the model ("//" is Blender's "relative to the .blend").
           std::string file = name.rfind("//", 0) == 0 ? name.substr(2) : name;
           std::replace(file.begin(), file.end(), '\\', '/');
           if (file[0] != '/') file = folder + file;
           try {
-            t = loadTextureFile(file);
+            t = loadTextureFile(file, budget);
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.
-            state.mesh.warnings.push_back(state.path + ": material " + std::to_string(m) + ": " + e.what() +
-                                          "; rendered without the texture");
+            state.mesh.warnings.push_back(userText(state.path, 60) + ": material " + std::to_string(m) + ": " +
+                                          userText(e.what(), 190) + "; rendered without the texture");
             state.mesh.facts.missingTextures.push_back(file);
             state.mesh.materials.push_back(out);
             continue;
@@ -220,25 +229,6 @@ void loadMaterials(ImportState& state)
     state.mesh.materials.push_back(out);
   }
 }
-
-// A file may name others (a glTF buffer, an OBJ material library). Only
-// regular files are opened: a FIFO or device named there would block the
-// import or feed it without end.
-class RegularFileIOSystem : public Assimp::DefaultIOSystem {
- public:
-  bool Exists(const char* file) const override { return isRegular(file); }
-  Assimp::IOStream* Open(const char* file, const char* mode) override
-  {
-    return isRegular(file) ? Assimp::DefaultIOSystem::Open(file, mode) : nullptr;
-  }
-
- private:
-  static bool isRegular(const char* file)
-  {
-    struct stat st;
-    return file && stat(file, &st) == 0 && S_ISREG(st.st_mode);
-  }
-};
 
 // Some assimp importers repair bad input instead of failing: the OFF reader
 // clamps an out-of-range vertex index, the glTF reader drops the face. Both
@@ -288,40 +278,48 @@ Mesh loadScene(const std::string& path)
 
 void checkSceneFile(const std::string& path)
 {
-  uint64_t fileSize = 0;
-  // Step 1: the file must be a readable, non-empty regular file (checked
-  // before opening it: opening a FIFO would block).
-  {
-    struct stat st;
-    if (stat(path.c_str(), &st) != 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    if (!S_ISREG(st.st_mode)) throw Error(path + ": not a regular file");
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-    probe.seekg(0, std::ios::end);
-    if (probe.tellg() <= 0) throw Error(path + ": file is empty or unreadable");
-    fileSize = uint64_t(probe.tellg());
+  // Step 1: the file rule (file_rule.h): a non-empty regular file within
+  // the model size limit, checked without blocking.
+  const uint64_t fileSize = InputFile(path, kModelInput).size();
+  // Step 2: the guards against hostile files. Their messages start with the
+  // whole path and may quote the file's text: a long one is shortened here.
+  try {
+    checkModelFile(path, fileSize);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    if (message.size() <= 300) throw;
+    const size_t rest = message.rfind(path, 0) == 0 ? path.size() : 0;
+    throw Error(userText(message.substr(0, rest), 120) + userText(message.substr(rest), 170));
   }
-  // Step 2: the guards against hostile files.
-  checkModelFile(path, fileSize);
 }
 
 Mesh importScene(const std::string& path)
 {
   // Step 1: import without reordering post-processing.
   Assimp::Importer importer;
-  importer.SetIOHandler(new RegularFileIOSystem);  // the importer owns it
+  auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it
+  importer.SetIOHandler(io);
+  // Text formats: positions re-read correctly rounded (exact_positions.h).
+  const ExactPositions exact = prepareExactPositions(path, importer);
+  if (exact.importer != -1) io->serve(path, &exact.text);
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot import (" + oneLine(e.what()) + ")");
+    throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }
-  if (!importLog.log.firstIndexProblem.empty()) throw Error(path + ": " + oneLine(importLog.log.firstIndexProblem));
-  if (!scene) throw Error(path + ": cannot import (" + oneLine(importer.GetErrorString()) + ")");
-  if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(path + ": no meshes in file");
+  if (!importLog.log.firstIndexProblem.empty())
+    throw Error(userText(path, 100) + ": " + userText(importLog.log.firstIndexProblem, 180));
+  if (!scene && !io->refusals().empty())
+    throw Error(userText(path, 80) + ": cannot import (" + userText(io->refusals().front(), 160) + ")");
+  if (!scene) throw Error(userText(path, 100) + ": cannot import (" + userText(importer.GetErrorString(), 160) + ")");
+  if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(userText(path) + ": no meshes in file");
+  applyExactPositions(path, exact, importer, *scene);
   // Step 2: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};
+  for (const std::string& refused : io->refusals())
+    state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
   // PLY has no lines or points of its own (assimp does not read edge
   // elements), but its reader makes a truncated face list into faces of one
@@ -330,15 +328,16 @@ Mesh importScene(const std::string& path)
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (extension == ".ply" && !(state.mesh.lines.empty() && state.mesh.points.empty()))
-    throw Error(path + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
+    throw Error(userText(path) + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
-    throw Error(path + ": no triangles, lines or points in file");
+    throw Error(userText(path) + ": no triangles, lines or points in file");
   if (!state.anyColors) state.mesh.colors.clear();
   // Step 3: materials and their textures.
   loadMaterials(state);
   for (uint32_t& m : state.mesh.triMaterial)
-    if (m >= state.mesh.materials.size()) throw Error(path + ": mesh refers to missing material " + std::to_string(m));
-  if (meshBounds(state.mesh).empty) throw Error(path + ": no vertex has finite coordinates");
+    if (m >= state.mesh.materials.size())
+      throw Error(userText(path) + ": mesh refers to missing material " + std::to_string(m));
+  if (meshBounds(state.mesh).empty) throw Error(userText(path) + ": no vertex has finite coordinates");
   repairNormals(state.mesh, path, state.anyNormals);
   return std::move(state.mesh);
 }

@@ -3,6 +3,7 @@
 #include "texture.h"
 
 #include "cl.h"
+#include "file_rule.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -12,25 +13,51 @@
 #pragma GCC diagnostic pop
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 
 namespace clr {
 
-Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size)
+uint64_t mipChainBytes(uint32_t width, uint32_t height)
 {
-  // Step 1: decode to RGBA8.
-  if (size == 0 || size > size_t(INT32_MAX)) throw Error(name + ": empty or oversized image");
-  int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = stbi_load_from_memory(data, int(size), &w, &h, &channels, 4);
-  if (!pixels) throw Error(name + ": cannot decode image (" + stbi_failure_reason() + ")");
-  if (w < 1 || h < 1 || w > CLR_MAX_VIEWPORT || h > CLR_MAX_VIEWPORT) {
-    stbi_image_free(pixels);
-    throw Error(name + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
+  uint64_t texels = 0;
+  for (uint32_t w = width, h = height, l = 0;; ++l) {
+    texels += uint64_t(w) * h;
+    if ((w == 1 && h == 1) || l + 1 == CLR_MAX_MIP_LEVELS) break;
+    w = std::max(1u, w / 2);
+    h = std::max(1u, h / 2);
   }
-  // Step 2: pack, bottom row first.
+  return 4 * texels;
+}
+
+void TextureBudget::claim(const std::string& name, uint32_t width, uint32_t height)
+{
+  const uint64_t bytes = mipChainBytes(width, height);
+  auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
+  if (bytes > left_)
+    throw TextureOverBudget(userText(name, 160) + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                            " needs " + mib(bytes) + " MiB with its mip levels, over the scene's texture budget (" +
+                            mib(left_) + " of " + mib(total_) + " MiB left)");
+  left_ -= bytes;
+}
+
+Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size, TextureBudget& budget)
+{
+  // Step 1: the header alone: size and budget before any pixel is decoded.
+  if (size == 0 || size > size_t(INT32_MAX)) throw Error(userText(name) + ": empty or oversized image");
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(data, int(size), &w, &h, &channels))
+    throw Error(userText(name) + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (w < 1 || h < 1 || w > CLR_MAX_VIEWPORT || h > CLR_MAX_VIEWPORT)
+    throw Error(userText(name) + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
+  budget.claim(name, uint32_t(w), uint32_t(h));
+  // Step 2: decode to RGBA8.
+  int dw = 0, dh = 0;
+  unsigned char* pixels = stbi_load_from_memory(data, int(size), &dw, &dh, &channels, 4);
+  if (!pixels) throw Error(userText(name) + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (dw != w || dh != h) {
+    stbi_image_free(pixels);
+    throw Error(userText(name) + ": image decodes to another size than its header states");
+  }
+  // Step 3: pack, bottom row first.
   Texture t;
   t.name = name;
   t.width = uint32_t(w);
@@ -45,12 +72,10 @@ Texture decodeTexture(const std::string& name, const unsigned char* data, size_t
   return t;
 }
 
-Texture loadTextureFile(const std::string& path)
+Texture loadTextureFile(const std::string& path, TextureBudget& budget)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open texture (" + std::strerror(errno) + ")");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return decodeTexture(path, bytes.data(), bytes.size());
+  const std::string bytes = readInputFile(path, kTextureInput);
+  return decodeTexture(path, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
 }
 
 std::vector<uint32_t> downsample(const std::vector<uint32_t>& rgba, uint32_t width, uint32_t height)
@@ -87,7 +112,8 @@ TexturePack packTextures(const std::vector<Texture>& textures)
     std::vector<uint32_t> level = t.rgba;
     uint32_t w = t.width, h = t.height;
     for (uint32_t l = 0;; ++l) {
-      if (pack.texels.size() + level.size() > UINT32_MAX) throw Error(t.name + ": textures exceed 2^32 texels");
+      if (pack.texels.size() + level.size() > UINT32_MAX)
+        throw Error(userText(t.name) + ": textures exceed 2^32 texels");
       d.levelOffset[l] = uint32_t(pack.texels.size());
       pack.texels.insert(pack.texels.end(), level.begin(), level.end());
       d.levels = l + 1;

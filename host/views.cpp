@@ -5,6 +5,7 @@
 
 #include "cl.h"
 #include "cli.h"
+#include "file_rule.h"
 
 #include "../kernels/shared.h"
 
@@ -12,10 +13,10 @@
 
 #include <cerrno>
 #include <climits>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -54,7 +55,7 @@ ViewSpec parseView(const Json& view, ViewSpec spec)
 {
   if (!view.is_object()) throw Error("must be an object {\"eye\": [x, y, z], ...}");
   for (const auto& [key, value] : view.items()) {
-    const std::string what = "\"" + key + "\"";
+    const std::string what = "\"" + userText(key, 60) + "\"";
     if (key == "eye") {
       spec.camera.eye = vec3Field(value, what);
     } else if (key == "target") {
@@ -84,16 +85,28 @@ ViewSpec parseView(const Json& view, ViewSpec spec)
   return spec;
 }
 
+// The widest a width or a precision of the output pattern may be: a name
+// then has at most 9 digits more than the index itself needs.
+constexpr unsigned kMaxPatternWidth = 9;
+
 // Length of the conversion starting at pattern[i] == '%' when it is an
-// integer one (%[-+ 0#]*[0-9]*(.[0-9]*)?[diu]), else 0.
+// integer one (%[-+ 0]*[0-9]*(.[0-9]*)?[diu]), else 0. A width or precision
+// above kMaxPatternWidth is an error of its own.
 size_t integerConversion(const std::string& pattern, size_t i)
 {
   size_t j = i + 1;
-  while (j < pattern.size() && std::strchr("-+ 0#", pattern[j])) ++j;
-  while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+  auto number = [&](const char* what) {
+    const size_t start = j;
+    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+    const std::string digits = pattern.substr(start, std::min<size_t>(j - start, 3));
+    if (j - start > 2 || (!digits.empty() && unsigned(std::stoul(digits)) > kMaxPatternWidth))
+      throw Error("-o: '" + userText(pattern, 120) + "' has a " + what + " over " + std::to_string(kMaxPatternWidth));
+  };
+  while (j < pattern.size() && std::strchr("-+ 0", pattern[j]) && pattern[j] != '\0') ++j;
+  number("width");
   if (j < pattern.size() && pattern[j] == '.') {
     ++j;
-    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+    number("precision");
   }
   if (j < pattern.size() && (pattern[j] == 'd' || pattern[j] == 'i' || pattern[j] == 'u')) return j + 1 - i;
   return 0;
@@ -107,7 +120,7 @@ void forEachView(const std::string& path, const std::vector<ViewSpec>& views, Fn
     try {
       fn(views[i]);
     } catch (const Error& e) {
-      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
+      throw Error(userText(path) + ": view " + std::to_string(i) + ": " + e.what());
     }
   }
 }
@@ -125,7 +138,7 @@ std::vector<ViewSpec> parseViews(const std::string& path, const std::string& tex
     if (event == Json::parse_event_t::object_start) keys.emplace_back();
     if (event == Json::parse_event_t::object_end) keys.pop_back();
     if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second)
-      throw Error(path + ": duplicate key \"" + parsed.get<std::string>() + "\"");
+      throw Error(userText(path) + ": duplicate key \"" + userText(parsed.get<std::string>(), 60) + "\"");
     return true;
   };
   try {
@@ -134,18 +147,19 @@ std::vector<ViewSpec> parseViews(const std::string& path, const std::string& tex
     std::string message = e.what();
     if (message.rfind("[json.exception.", 0) == 0 && message.find("] ") != std::string::npos)
       message = message.substr(message.find("] ") + 2);
-    throw Error(path + ": " + message);
+    throw Error(userText(path) + ": " + userText(message, 80));
   }
 
   // Step 2: the top level, {"views": [...]}.
-  if (!doc.is_object()) throw Error(path + ": must be a JSON object {\"views\": [...]}");
+  if (!doc.is_object()) throw Error(userText(path) + ": must be a JSON object {\"views\": [...]}");
   for (const auto& item : doc.items())
-    if (item.key() != "views") throw Error(path + ": unknown key \"" + item.key() + "\" (only \"views\")");
-  if (!doc.contains("views")) throw Error(path + ": missing \"views\"");
+    if (item.key() != "views")
+      throw Error(userText(path) + ": unknown key \"" + userText(item.key(), 60) + "\" (only \"views\")");
+  if (!doc.contains("views")) throw Error(userText(path) + ": missing \"views\"");
   const Json& list = doc["views"];
-  if (!list.is_array()) throw Error(path + ": \"views\" must be an array");
-  if (list.empty()) throw Error(path + ": \"views\" is empty");
-  if (list.size() > size_t(INT_MAX)) throw Error(path + ": too many views");
+  if (!list.is_array()) throw Error(userText(path) + ": \"views\" must be an array");
+  if (list.empty()) throw Error(userText(path) + ": \"views\" is empty");
+  if (list.size() > size_t(INT_MAX)) throw Error(userText(path) + ": too many views");
 
   // Step 3: each view, merged over the command line's values.
   ViewSpec base;
@@ -158,7 +172,7 @@ std::vector<ViewSpec> parseViews(const std::string& path, const std::string& tex
     try {
       views.push_back(parseView(list[i], base));
     } catch (const Error& e) {
-      throw Error(path + ": view " + std::to_string(i) + ": " + e.what());
+      throw Error(userText(path) + ": view " + std::to_string(i) + ": " + e.what());
     }
   }
   return views;
@@ -166,13 +180,7 @@ std::vector<ViewSpec> parseViews(const std::string& path, const std::string& tex
 
 std::vector<ViewSpec> loadViews(const std::string& path, const CameraArgs& defaults, uint32_t width, uint32_t height)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::stringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read");
-  if (text.str().empty()) throw Error(path + ": file is empty");
-  return parseViews(path, text.str(), defaults, width, height);
+  return parseViews(path, readInputFile(path, kViewsInput), defaults, width, height);
 }
 
 void checkViewCameras(const std::string& path, const std::vector<ViewSpec>& views)
@@ -191,11 +199,12 @@ std::vector<Camera> frameViews(const std::string& path, const std::vector<ViewSp
 Shard parseShard(const std::string& text)
 {
   const size_t slash = text.find('/');
-  if (slash == std::string::npos) throw Error("--shard: '" + text + "' is not K/N");
+  if (slash == std::string::npos) throw Error("--shard: '" + userText(text) + "' is not K/N");
   Shard s;
   s.index = uint32_t(parseUnsigned("--shard K", text.substr(0, slash), 0, UINT32_MAX));
   s.count = uint32_t(parseUnsigned("--shard N", text.substr(slash + 1), 1, UINT32_MAX));
-  if (s.index >= s.count) throw Error("--shard: K must be less than N in K/N (K counts from 0), got '" + text + "'");
+  if (s.index >= s.count)
+    throw Error("--shard: K must be less than N in K/N (K counts from 0), got '" + userText(text) + "'");
   return s;
 }
 
@@ -208,6 +217,11 @@ std::vector<size_t> shardViews(size_t numViews, const Shard& shard)
 
 void checkOutputPattern(const std::string& pattern)
 {
+  // Step 1: the conversions, before anything is formatted.
+  if (pattern.size() >= PATH_MAX)
+    throw Error("-o: '" + userText(pattern, 120) + "' is longer than a path may be (" + std::to_string(PATH_MAX - 1) +
+                " bytes)");
+  if (pattern.find('\0') != std::string::npos) throw Error("-o: the pattern holds a NUL byte");
   size_t conversions = 0;
   for (size_t i = 0; i < pattern.size(); ++i) {
     if (pattern[i] != '%') continue;
@@ -216,22 +230,37 @@ void checkOutputPattern(const std::string& pattern)
       continue;
     }
     const size_t length = integerConversion(pattern, i);
-    if (length == 0) throw Error("-o: '" + pattern + "' has a conversion other than %d, %i or %u");
+    if (length == 0) throw Error("-o: '" + userText(pattern, 120) + "' has a conversion other than %d, %i or %u");
     ++conversions;
     i += length - 1;
   }
   if (conversions != 1)
-    throw Error("-o: with --views, '" + pattern +
+    throw Error("-o: with --views, '" + userText(pattern, 120) +
                 "' needs exactly one integer conversion for the view index (e.g. out_%04d.png)");
+  // Step 2: the longest name it can give (the index up to INT_MAX) must fit
+  // the file system: each path component NAME_MAX bytes, the whole PATH_MAX.
+  const std::string longest = outputName(pattern, size_t(INT_MAX));
+  size_t start = 0;
+  while (start <= longest.size()) {
+    const size_t slash = std::min(longest.find('/', start), longest.size());
+    if (slash - start > NAME_MAX)
+      throw Error("-o: '" + userText(pattern, 120) + "' gives a file or folder name over " + std::to_string(NAME_MAX) +
+                  " bytes");
+    start = slash + 1;
+  }
 }
 
 std::string outputName(const std::string& pattern, size_t index)
 {
-  const int n = std::snprintf(nullptr, 0, pattern.c_str(), int(index));
-  if (n < 0) throw Error("-o: cannot format '" + pattern + "'");
-  std::vector<char> name(size_t(n) + 1);
-  std::snprintf(name.data(), name.size(), pattern.c_str(), int(index));
-  return std::string(name.data(), size_t(n));
+  // A checked pattern formats to less than PATH_MAX + 2·kMaxPatternWidth
+  // bytes; the buffer is bounded whatever the pattern.
+  char name[PATH_MAX + 32];
+  if (pattern.size() >= PATH_MAX) throw Error("-o: '" + userText(pattern, 120) + "' is too long");
+  const int n = std::snprintf(name, sizeof name, pattern.c_str(), int(std::min<size_t>(index, INT_MAX)));
+  if (n < 0 || size_t(n) >= sizeof name) throw Error("-o: cannot format '" + userText(pattern, 120) + "'");
+  if (size_t(n) >= PATH_MAX)
+    throw Error("-o: '" + userText(pattern, 120) + "' gives a name over " + std::to_string(PATH_MAX - 1) + " bytes");
+  return std::string(name, size_t(n));
 }
 
 }  // namespace clr

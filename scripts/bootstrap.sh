@@ -9,7 +9,8 @@
 # Packages are checked with dpkg and only the missing ones are installed, so a
 # second run installs nothing. zlib1g-dev is listed because assimp's CMake
 # package links libz.so but Debian's libassimp-dev does not depend on it, and libclang-rt-dev
-# (libFuzzer, the sanitizer runtimes) because clang only recommends it.
+# (libFuzzer, the sanitizer runtimes) because clang only recommends it;
+# gnuplot-nox draws the benchmarks' charts (bench/*.sh only check for it).
 #
 # Both modes leave PoCL's kernel cache warm: a render of the built-in scene
 # compiles the kernels a default frame runs into PoCL's default cache
@@ -29,7 +30,7 @@ esac
 packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
   libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev nlohmann-json3-dev libtinyexr-dev
-  assimp-testmodels clang-format oclgrind clang libclang-rt-dev
+  assimp-testmodels clang-format oclgrind clang libclang-rt-dev gnuplot-nox
   python3-dev pybind11-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do

@@ -139,7 +139,7 @@ TEST_CASE("depth: unorm24 quantisation ties go to the earlier triangle", "[raste
 
 TEST_CASE("depth: reversed-Z clips at its near plane z <= w, same pixels as the oracle", "[clip][depth]")
 {
-  // The scene of the GL near-plane test (test_kernels.cpp), with the reversed projection.
+  // The scene of the GL near-plane test (test_transform.cpp), with the reversed projection.
   const uint32_t W = 80, H = 60;
   const glm::mat4 mvp = clr::reversedPerspective(glm::radians(60.0f), float(W) / H, 0.5f, 50.0f) *
                         glm::lookAt(glm::vec3(0, 1, 0), glm::vec3(0, 1, -1), glm::vec3(0, 1, 0));

@@ -7,6 +7,8 @@
 #include "camera.h"
 #include "cli.h"
 #include "cli_support.h"
+#include "frame_settings.h"
+#include "quality.h"
 #include "scene.h"
 #include "stability_scenes.h"
 
@@ -45,7 +47,9 @@ TEST_CASE("spans: real meshes give the bounding-box scan's samples and image in 
       clr::ClContext ctx(test::context().info.name, lanes);
       clr::Pipeline pipeline(ctx);
       pipeline.uploadScene(mesh);
-      clr::FrameSettings settings = camera.frameSettings(320, 240, CLR_SHADE_LAMBERT);
+      clr::RenderArgs args;
+      args.shadeMode = CLR_SHADE_LAMBERT;
+      clr::FrameSettings settings = clr::makeFrameSettings(args, camera, 320, 240, clr::meshBounds(mesh));
       settings.samples = samples;
       const Frame bbox = renderFrame(pipeline, settings, CLR_TRAVERSAL_BBOX);
       const Frame spans = renderFrame(pipeline, settings, CLR_TRAVERSAL_SPANS);
@@ -92,4 +96,27 @@ TEST_CASE("spans: the command line takes both span traversals and names them in 
   }
   test::expectError("render -o x.png --traversal spans-exact", "--traversal");
   test::expectError("render -o x.png --edges float --traversal spans", "float edges");
+}
+
+TEST_CASE("spans: quality auto takes exact spans only as its probe frames decide and never the float walk",
+          "[spans][auto]")
+{
+  // The choice rests on the probe frames' kernel times, which this test
+  // does not judge: it checks that both methods were probed and the rule
+  // applied to what was measured, and that float edges probe nothing.
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(test::randomTriangles(3, 400).mesh());
+  clr::FrameSettings settings = test::idSettings(160, 120);
+  const clr::AutoChoice choice = clr::chooseAutomatically(pipeline, settings, false, true);
+  INFO(choice.json());
+  CHECK(choice.ruleMs > 0.0);
+  CHECK(choice.spansMs > 0.0);
+  const bool spans = choice.spansMs < clr::kSpansMargin * choice.ruleMs;
+  CHECK(choice.traversal == (spans ? CLR_TRAVERSAL_SPANS : CLR_TRAVERSAL_BBOX));
+  CHECK(settings.traversal == choice.traversal);
+  clr::FrameSettings floatEdges = test::idSettings(160, 120);
+  floatEdges.edgeMode = CLR_EDGES_FLOAT;
+  const clr::AutoChoice floatChoice = clr::chooseAutomatically(pipeline, floatEdges, false, true);
+  CHECK(floatChoice.spansMs == 0.0);
+  CHECK(floatEdges.traversal == CLR_TRAVERSAL_BBOX);
 }

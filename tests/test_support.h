@@ -65,4 +65,10 @@ std::string tempDir();
 // Number of pixels where two ID images differ.
 size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b);
 
+// Index of pixel (x, y) in a row-major image `width` pixels wide.
+inline size_t pixel(uint32_t width, uint32_t x, uint32_t y)
+{
+  return size_t(y) * width + x;
+}
+
 }  // namespace test

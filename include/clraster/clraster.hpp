@@ -202,6 +202,9 @@ CLRASTER_API Image render(Context& ctx, const RenderOptions& options);
 
 // The text of `clraster --help`.
 CLRASTER_API const char* usageText();
+// A user's string as every message quotes it: control characters as
+// spaces, a long one shortened around " ... ".
+CLRASTER_API std::string userText(const std::string& text);
 // Whether a command's arguments ask for help (--help or -h).
 CLRASTER_API bool wantsHelp(const std::vector<std::string>& args);
 // `clraster info ARGS`: prints what it reports on stdout; the exit status.

@@ -1,4 +1,4 @@
-// test_api.cpp — the public C++ API (include/clraster/clraster.hpp) as a
+// api_test.cpp — the public C++ API (include/clraster/clraster.hpp) as a
 // program outside the library sees it (api_tests links only libclraster):
 // rasterize's ids against the scalar oracle exactly, its outputs' layout,
 // interpolate against the barycentric formula, the id encoding, the scene

@@ -1,0 +1,89 @@
+// test_scan.cpp — the scan kernels (scan.cl): exclusive sums, non-zero
+// counts and the list of setup sources, phase by phase, against host sums.
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <vector>
+
+TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup sources", "[scan]")
+{
+  // scan.cl's three phases launched as the pipeline launches them (scan.cpp),
+  // in the device's work shape, against sums computed here: plain scans of
+  // uint counts (with values near 2^26, so sums pass 2^32 and the 64-bit
+  // total and the uint entries' wrap are checked), the same with the
+  // non-zero counts, and the setup counts' listing (bytes 0, 1 or
+  // CLR_MAX_SUBTRIS). Sizes around a step (64 values) and a chunk, and one
+  // past 4096 chunks of 64, where a chunk spans several steps.
+  const clr::ClContext& ctx = test::context();
+  std::mt19937 rng(23);
+  for (uint32_t n : {1u, 63u, 64u, 65u, 1000u, 4096u * 64u + 4321u}) {
+    INFO("n = " << n);
+    const clr::ScanChunks c = clr::scanChunks(n);
+    for (int mode = 0; mode < 3; ++mode) {  // plain, with non-zero counts, listing
+      INFO("mode " << mode);
+      const bool alsoNonZero = mode == 1, listing = mode == 2;
+      // Step 1: counts, mostly zero or small, some large.
+      std::vector<uint32_t> values(size_t(n) + 1, 0u);
+      std::vector<uint8_t> bytes(n);
+      std::uniform_int_distribution<int> kind(0, 9);
+      for (uint32_t i = 0; i < n; ++i) {
+        const int k = kind(rng);
+        values[i] = k < 4 ? 0u : k < 8 ? uint32_t(k) : (1u << 26) + uint32_t(k);
+        bytes[i] = uint8_t(k < 3 ? 0 : k < 8 ? 1 : CLR_MAX_SUBTRIS);
+      }
+      // Step 2: the three phases.
+      uint64_t listed = 0;
+      for (uint8_t b : bytes) listed += b;
+      const size_t secondSize = listing ? size_t(listed) + c.count : size_t(n) + 1;
+      cl::Buffer data(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data());
+      cl::Buffer counts(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes.size(), bytes.data());
+      cl::Buffer partials(ctx.context, CL_MEM_READ_WRITE, 2 * (size_t(c.count) + 1) * 8);
+      cl::Buffer second(ctx.context, CL_MEM_READ_WRITE, secondSize * 4);
+      const std::vector<uint32_t> zeros(CLR_NUM_COUNTERS, 0u);
+      cl::Buffer counters(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size() * 4,
+                          const_cast<uint32_t*>(zeros.data()));
+      const cl::NDRange group(CLR_SCAN_GROUP(ctx.lanes));
+      for (uint32_t phase : {CLR_SCAN_REDUCE, CLR_SCAN_PARTIALS, CLR_SCAN_APPLY}) {
+        cl::Kernel kernel(ctx.program, "scan_chunks");
+        cl_uint a = 0;
+        kernel.setArg(a++, data), kernel.setArg(a++, data), kernel.setArg(a++, n), kernel.setArg(a++, c.size);
+        kernel.setArg(a++, c.count), kernel.setArg(a++, partials), kernel.setArg(a++, second);
+        kernel.setArg(a++, counts), kernel.setArg(a++, counters);
+        kernel.setArg(a++, uint32_t(CLR_COUNTER_SETUP_TOTAL)), kernel.setArg(a++, uint32_t(CLR_COUNTER_SLOT_TOTAL));
+        kernel.setArg(a++, phase), kernel.setArg(a++, uint32_t(alsoNonZero)), kernel.setArg(a++, uint32_t(listing));
+        const cl::NDRange items = phase == CLR_SCAN_PARTIALS ? group : clr::scanChunkItems(ctx.lanes, c.count);
+        ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, items, group);
+      }
+      std::vector<uint32_t> scanned(values.size()), seconds(secondSize), totals(CLR_NUM_COUNTERS);
+      ctx.queue.enqueueReadBuffer(data, CL_TRUE, 0, scanned.size() * 4, scanned.data());
+      ctx.queue.enqueueReadBuffer(second, CL_TRUE, 0, seconds.size() * 4, seconds.data());
+      ctx.queue.enqueueReadBuffer(counters, CL_TRUE, 0, totals.size() * 4, totals.data());
+      // Step 3: the sums here, compared.
+      const auto total64 = [&](int at) { return uint64_t(totals[at]) | uint64_t(totals[at + 1]) << 32; };
+      uint64_t sum = 0, nonZero = 0;
+      size_t wrongSums = 0, wrongNonZero = 0, wrongSources = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        if (listing) {
+          for (uint32_t k = 0; k < bytes[i]; ++k)
+            wrongSources += seconds[sum + k] != (bytes[i] == 1 ? i : CLR_SOURCE_CLIPPED | i);
+          sum += bytes[i];
+          continue;
+        }
+        wrongSums += scanned[i] != uint32_t(sum);
+        wrongNonZero += alsoNonZero && seconds[i] != uint32_t(nonZero);
+        sum += values[i];
+        nonZero += values[i] != 0;
+      }
+      CHECK(wrongSums == 0);
+      CHECK(wrongNonZero == 0);
+      CHECK(wrongSources == 0);
+      CHECK(total64(CLR_COUNTER_SETUP_TOTAL) == sum);
+      if (!listing) CHECK(scanned[n] == uint32_t(sum));
+      if (alsoNonZero) CHECK(seconds[n] == uint32_t(nonZero));
+      if (alsoNonZero) CHECK(total64(CLR_COUNTER_SLOT_TOTAL) == nonZero);
+      if (n > 4096u * 64u && !listing) CHECK(sum > (uint64_t(1) << 32));  // the totals need 64 bits
+    }
+  }
+}
