@@ -20,6 +20,11 @@ void Pipeline::aov()
 {
   if (!params_.visAttributes)
     throw Error("aov: the frame has no depth and barycentric planes (set FrameSettings.keepVisAttributes)");
+  // The normal planes read the vertex normals whatever the shading mode uploaded.
+  if (!(resident_ & kResidentNormals)) {
+    normals_.upload(scene_.normals);
+    resident_ |= kResidentNormals;
+  }
   aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
   cl::Event event;
   cl::Kernel& kernel = extraKernel(aovKernel_, "aov");

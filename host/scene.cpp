@@ -246,7 +246,9 @@ class ImportLog : public Assimp::LogStream {
       std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return c == '-' ? ' ' : std::tolower(c); });
       return l;
     }();
-    if (firstIndexProblem.empty() &&
+    // Not the glTF reader's "All indices for indexed attribute semantics
+    // must ...": it skips that attribute (a TEXCOORD_1), not faces.
+    if (firstIndexProblem.empty() && lowered.find("attribute") == std::string::npos &&
         (lowered.find("index") != std::string::npos || lowered.find("indices") != std::string::npos) &&
         (lowered.find("out of range") != std::string::npos || lowered.find("invalid") != std::string::npos))
       firstIndexProblem = m;
@@ -267,6 +269,33 @@ struct ScopedImportLog {
   }
   ImportLog log;
 };
+
+// Point clouds: assimp's PLY and OBJ readers return a mesh of vertices
+// without faces, which its validation rejects; each vertex becomes a point
+// face first. PLY has no lines or points of its own (assimp does not read
+// edge elements), so a PLY face of one or two vertices is the reader's
+// reading of a truncated face list: refused.
+void preparePointClouds(const std::string& path, aiScene* scene)
+{
+  std::string extension = path.substr(std::min(path.size(), path.find_last_of("./")));
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  for (unsigned m = 0; scene->mMeshes && m < scene->mNumMeshes; ++m) {
+    aiMesh* mesh = scene->mMeshes[m];
+    if (!mesh) continue;
+    for (unsigned f = 0; extension == ".ply" && mesh->mFaces && f < mesh->mNumFaces; ++f)
+      if (mesh->mFaces[f].mNumIndices < 3)
+        throw Error(userText(path) + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
+    if (mesh->mNumFaces != 0 || mesh->mFaces || mesh->mNumVertices == 0 || !mesh->mVertices) continue;
+    mesh->mFaces = new aiFace[mesh->mNumVertices];
+    mesh->mNumFaces = mesh->mNumVertices;
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      mesh->mFaces[v].mNumIndices = 1;
+      mesh->mFaces[v].mIndices = new unsigned[1]{v};
+    }
+    mesh->mPrimitiveTypes = aiPrimitiveType_POINT;
+  }
+}
 
 }  // namespace
 
@@ -305,7 +334,14 @@ Mesh importScene(const std::string& path)
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
-    scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+    // Validated once point clouds have faces (preparePointClouds).
+    scene = importer.ReadFile(path, 0);
+    if (scene) {
+      preparePointClouds(path, const_cast<aiScene*>(scene));
+      scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
+    }
+  } catch (const Error&) {
+    throw;  // preparePointClouds's, already one line naming the file
   } catch (const std::exception& e) {
     throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }
@@ -321,14 +357,6 @@ Mesh importScene(const std::string& path)
   for (const std::string& refused : io->refusals())
     state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
-  // PLY has no lines or points of its own (assimp does not read edge
-  // elements), but its reader makes a truncated face list into faces of one
-  // or two vertices.
-  std::string extension = path.substr(path.find_last_of("./") == std::string::npos ? 0 : path.find_last_of("./"));
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (extension == ".ply" && !(state.mesh.lines.empty() && state.mesh.points.empty()))
-    throw Error(userText(path) + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
     throw Error(userText(path) + ": no triangles, lines or points in file");
   if (!state.anyColors) state.mesh.colors.clear();

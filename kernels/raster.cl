@@ -160,19 +160,23 @@ typedef struct Spans {
 CLR_INLINE void spans_divide(long4 a, long4 d, long4* q, long4* r)
 {
   const float4 estimate = floor(convert_float4(a) / convert_float4(d));
-  if (any(fabs(estimate) > 0x1p20f)) {
+  if (any(fabs(estimate) > (float4)0x1p20f)) {
     *q = a / d;  // truncated: one less below zero where inexact
-    *q += (*q * d != a) & (a < 0);
+    *q = select(*q, *q - 1, (*q * d != a) & (a < 0));
   } else {
     *q = convert_long4(estimate);
   }
+  // (Selects, not arithmetic on masks, here and in spans_step: Oclgrind
+  // gets the latter wrong for long vectors.)
   *r = a - *q * d;
-  const long4 low = *r < 0, high = *r >= d;  // −1 where the estimate is one too large, too small
-  *q += low - high;
-  *r += (d & low) - (d & high);
+  const long4 low = *r < 0, high = *r >= d;  // the estimate one too large, one too small
+  *q = select(select(*q, *q + 1, high), *q - 1, low);
+  *r = select(select(*r, *r - d, high), *r + d, low);
 }
 
-CLR_INLINE Spans spans_begin(CLR_RECORD_SPACE const TriSetup* t, int firstSx, int firstSy)
+/* The spans of the rows from sample y firstSy (stepped: with the row step,
+ * else for that row alone). */
+CLR_INLINE Spans spans_begin(CLR_RECORD_SPACE const TriSetup* t, int firstSx, int firstSy, const bool stepped)
 {
   const int4 ax = (int4)(t->x[1], t->x[2], t->x[0], 0), ay = (int4)(t->y[1], t->y[2], t->y[0], 0);
   const int4 bx = (int4)(t->x[2], t->x[0], t->x[1], 0), by = (int4)(t->y[2], t->y[0], t->y[1], 0);
@@ -188,7 +192,8 @@ CLR_INLINE Spans spans_begin(CLR_RECORD_SPACE const TriSetup* t, int firstSx, in
   sp.d = select((long4)1, convert_long4(abs(dy)) * CLR_FIXED_ONE, sp.rising | sp.falling);
   const long4 u = select(n - 1, -n, sp.falling), du = select(step, -step, sp.falling);
   spans_divide(u, sp.d, &sp.q, &sp.r);
-  spans_divide(du, sp.d, &sp.dq, &sp.dr);
+  sp.dq = sp.dr = (long4)0;
+  if (stepped) spans_divide(du, sp.d, &sp.dq, &sp.dr);
   return sp;
 }
 
@@ -207,9 +212,9 @@ CLR_INLINE int2 spans_row(const Spans* sp)
 CLR_INLINE void spans_step(Spans* sp)
 {
   sp->r += sp->dr;
-  const long4 carry = sp->r >= sp->d;  // −1 where the remainder reached d
-  sp->q += sp->dq - carry;
-  sp->r -= sp->d & carry;
+  const long4 carry = sp->r >= sp->d;
+  sp->q += select(sp->dq, sp->dq + 1, carry);
+  sp->r = select(sp->r, sp->r - sp->d, carry);
 }
 
 /* The classic edge walk of the notes (spans-float), in float pixel units:
@@ -298,9 +303,9 @@ CLR_INLINE void raster_row(CLR_RECORD_SPACE const TriSetup* t, uint s, intL sx, 
   const longL e2 = edge_function(t->x[0], t->y[0], t->x[1], t->y[1], sx, sy);
   intL inside;
   if (traversal == CLR_TRAVERSAL_SPANS) {
-    const Spans sp = spans_begin(t, CLR_LANE0(sx), sy);
+    const Spans sp = spans_begin(t, CLR_LANE0(sx), sy, false);
     const int2 span = spans_row(&sp);
-    inside = (CLR_LANE_INDEX >= span.x) & (CLR_LANE_INDEX <= span.y);
+    inside = (CLR_LANE_INDEX >= (intL)span.x) & (CLR_LANE_INDEX <= (intL)span.y);
   } else if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {
     Walk w = walk_begin(t, (float)(sy - tileRow * CLR_FIXED_ONE) * (1.0f / CLR_FIXED_ONE));
     for (int row = 0; row < tileRow; ++row) w.x += w.step;
@@ -359,7 +364,7 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
     const int firstSx = CLR_LANE0(sx);                                                                           \
     Spans sp;                                                                                                    \
     Walk w;                                                                                                      \
-    if (traversal == CLR_TRAVERSAL_SPANS) sp = spans_begin(t, firstSx, firstSy);                                 \
+    if (traversal == CLR_TRAVERSAL_SPANS) sp = spans_begin(t, firstSx, firstSy, true);                           \
     if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                                \
       w = walk_begin(t, (float)(firstSy - rowBegin * CLR_FIXED_ONE) * (1.0f / CLR_FIXED_ONE));                   \
       for (int row = 0; row < rowBegin; ++row) w.x += w.step;                                                    \
@@ -369,7 +374,7 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
       bool any = true;                                                                                           \
       if (traversal == CLR_TRAVERSAL_SPANS) {                                                                    \
         const int2 span = spans_row(&sp);                                                                        \
-        inside = (CLR_LANE_INDEX >= span.x) & (CLR_LANE_INDEX <= span.y);                                        \
+        inside = (CLR_LANE_INDEX >= (intL)span.x) & (CLR_LANE_INDEX <= (intL)span.y);                            \
         any = span.x <= span.y;                                                                                  \
         spans_step(&sp);                                                                                         \
       } else if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                       \

@@ -38,11 +38,13 @@ std::string gDir;
 
 void checkMesh(const std::string& path, const clr::Mesh& mesh)
 {
-  if (mesh.numTris() == 0) fail(path, "loaded without triangles");
-  if (mesh.positions.size() % 3 || mesh.indices.size() % 3) fail(path, "ragged arrays");
+  if (mesh.numTris() == 0 && mesh.lines.empty() && mesh.points.empty())
+    fail(path, "loaded without triangles, lines or points");
+  if (mesh.positions.size() % 3 || mesh.indices.size() % 3 || mesh.lines.size() % 2) fail(path, "ragged arrays");
   if (mesh.normals.size() != mesh.positions.size()) fail(path, "normals and positions differ in length");
-  for (const uint32_t i : mesh.indices)
-    if (i >= mesh.numVerts()) fail(path, "index " + std::to_string(i) + " out of range");
+  for (const std::vector<uint32_t>* list : {&mesh.indices, &mesh.lines, &mesh.points})
+    for (const uint32_t i : *list)
+      if (i >= mesh.numVerts()) fail(path, "index " + std::to_string(i) + " out of range");
   for (const float p : mesh.positions)
     if (!std::isfinite(p)) fail(path, "non-finite position accepted");
   for (const float n : mesh.normals)

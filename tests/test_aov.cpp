@@ -241,3 +241,20 @@ TEST_CASE("cli: --aov writes the EXR and rejects bad combinations", "[cli][aov]"
   test::expectError("render -o " + png + " --line thick", "--line: unknown value 'thick'");
   test::expectError("render -o " + png + " --line-width 0", "--line-width must lie in (0, 16]");
 }
+
+TEST_CASE("cli: the AOV planes do not depend on the shading mode", "[cli][aov]")
+{
+  // Depth shading uploads no normals of its own; the normal planes must still read the mesh's.
+  const std::string dir = test::tempDir();
+  const std::string model = "/usr/share/assimp/models/OBJ/spider.obj";
+  std::string exr[2];
+  const char* modes[2] = {"phong", "depth"};
+  for (int i = 0; i < 2; ++i) {
+    exr[i] = dir + "/aov_mode_" + modes[i] + ".exr";
+    std::remove(exr[i].c_str());
+    REQUIRE(test::run("render " + model + " --size 160x120 --shade " + modes[i] + " --aov " + exr[i]).status == 0);
+  }
+  const std::string a = test::slurp(exr[0]), b = test::slurp(exr[1]);
+  REQUIRE(!a.empty());
+  CHECK(a == b);
+}

@@ -151,7 +151,7 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
                             "end_header\n0 0 0\n1 0") +
                   "'" + out,
               "truncated.ply: PLY faces of fewer than 3 vertices");
-  expectError("render '" + writeFile("vertices.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n") + "'" + out, "vertices.obj");
+  expectError("render '" + writeFile("no-mesh.obj", "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\n") + "'" + out, "no-mesh.obj");
   // Assimp's OFF reader would clamp the index with only a log message.
   expectError("render '" + writeFile("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n") + "'" + out,
               "range.off: OFF: Vertex index is out of range");
@@ -257,11 +257,11 @@ TEST_CASE("cli: a scene file loads while the program builds and its error comes 
   const std::string png = tmpDir() + "/both-bad.png";
   std::remove(png.c_str());
   const std::string header = writeFile("both-bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
-  const std::string points = writeFile("both-bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  const std::string points = writeFile("both-bad.obj", "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
   const std::string device = " --device no-such-device-anywhere";
   for (const auto& [scene, needle] :
        {std::pair{header, header + ": PLY header has no end_header"},
-        std::pair{points, points + ": cannot import (Validation failed: Mesh  contains no faces)"}}) {
+        std::pair{points, points + ": cannot import (Validation failed: aiScene::mNumMeshes is 0"}}) {
     const Run r = expectError("render '" + scene + "' -o '" + png + "'" + device, needle);
     CHECK(r.err.find("--device") == std::string::npos);
   }
