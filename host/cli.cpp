@@ -65,7 +65,7 @@ void checkExtension(const std::string& flag, const std::string& path, const std:
   std::string tail = path.size() >= extension.size() ? path.substr(path.size() - extension.size()) : "";
   std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (tail != extension || path.size() == extension.size() || path.back() == '/')
-    throw Error(flag + ": '" + path + "' must be a file name ending in " + extension);
+    throw Error(flag + ": '" + userText(path) + "' must be a file name ending in " + extension);
 }
 
 namespace {

@@ -27,13 +27,14 @@ import tempfile
 # Policy reasons: what clraster refuses on purpose, each a pattern of its
 # one-line message. Order matters: the first match names the reason.
 POLICY = [
-    ("empty-file", r": file is empty or unreadable$"),
+    ("empty-file", r": file is empty( or unreadable)?$"),
     ("assimp-cannot-import", r": cannot import \("),
     ("no-geometry", r": no meshes in file$|: no triangles, lines or points in file$"),
     ("bad-position", r"non-finite position|beyond the supported 1e18|no vertex has finite coordinates"),
     ("index-out-of-range", r"(?i)invalid (vertex |face )?index|out.of.range"),
     ("missing-file", r"could not open referenced file|names missing embedded texture|: cannot open \("),
     ("hostile-file-guard", r": (PLY|OFF|glTF|GLB)\b|nested deeper than"),
+    ("inexact-number", r"is not a decimal number \(positions are read exactly"),
 ]
 
 # Lines a library prints on stderr by itself before clraster's one line

@@ -150,7 +150,7 @@ TEST_CASE("cli: bad scene files name the file and the problem", "[cli]")
                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                             "end_header\n0 0 0\n1 0") +
                   "'" + out,
-              "truncated.ply: PLY faces of fewer than 3 vertices");
+              "truncated.ply: PLY line 11: a vertex line with too few values");
   expectError("render '" + writeFile("no-mesh.obj", "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\n") + "'" + out, "no-mesh.obj");
   // Assimp's OFF reader would clamp the index with only a log message.
   expectError("render '" + writeFile("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n") + "'" + out,

@@ -254,7 +254,7 @@ TEST_CASE(
   const std::string out = freshDir("hostile-pattern");
   const std::string views = test::writeFile("hostile-pattern.json", "{\"views\": [{}]}");
   expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/o%999999999d.png'"), "width over 9");
-  expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/" + std::string(100000, 'x') + "%d'"),
+  expectShortError(runHostile("render --views '" + views + "' -o '" + out + "/" + std::string(100000, 'x') + "%d.png'"),
                    "longer than a path may be");
   CHECK(filesIn(out) == 0);
 }
@@ -265,7 +265,7 @@ TEST_CASE("hostile: no message quotes more than a bounded part of a user string"
   const std::string huge(100000, 'q');
   const std::string longPath = dir + "/" + std::string(200, 'd') + "/" + std::string(200, 'e') + "/x.obj";
   REQUIRE(std::system(("mkdir -p '" + longPath.substr(0, longPath.rfind('/')) + "'").c_str()) == 0);
-  std::ofstream(longPath) << "v 0 0 0\nv 1 0 0\n";  // no faces
+  std::ofstream(longPath) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";  // an index out of range
   const std::string views = test::writeFile("hostile-long.json", "{\"views\": [{}]}");
   const std::string badKey = test::writeFile("hostile-key.json", "{\"views\": [{\"" + huge + "\": 1}]}");
   const std::string badJson = test::writeFile("hostile-json.json", "{\"views\": [" + huge + "]}");
