@@ -2,7 +2,7 @@
 // Mesa llvmpipe, both shading lambert per pixel (the same image), and
 // llvmpipe again with its fixed-function lighting per vertex.
 //
-//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
@@ -10,7 +10,9 @@
 //
 // The case: SCENE (a file assimp reads; the built-in scene when absent), or
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
-// optionally --grid N (N x N instanced copies of the scene), seen from the
+// optionally --grid N (N x N instanced copies of the scene), with
+// --shuffle SEED its triangles in a random order (shuffledTriangles,
+// layout.h: a file in no spatial order; the same camera), seen from the
 // --view "far" (whole scene), "fill" (the scene filling the viewport) or
 // "near" (camera close). A file's materials, textures and vertex colours are
 // set aside, so that both renderers light the built-in grey albedo. Each
@@ -73,6 +75,7 @@
 #include "cl.h"
 #include "device.h"
 #include "image_io.h"
+#include "layout.h"
 #include "pipeline.h"
 #include "scene.h"
 
@@ -97,6 +100,7 @@ struct Args {
   std::string scenePath;  // empty: the built-in scene (or --sphere)
   uint64_t sphereTriangles = 0;
   uint32_t gridSide = 0;
+  std::optional<uint32_t> shuffleSeed;  // --shuffle
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
   uint32_t warmup = 2, frames = 5, rounds = 4;
@@ -131,6 +135,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.sphereTriangles = parseUnsigned(a, flagValue(args, i), 12, 400000000);
     } else if (a == "--grid") {
       r.gridSide = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
+    } else if (a == "--shuffle") {
+      r.shuffleSeed = uint32_t(parseUnsigned(a, flagValue(args, i), 0, UINT32_MAX));
     } else if (a == "--view") {
       r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "fill" && r.view != "near")
@@ -203,7 +209,14 @@ std::string baseName(const std::string& path)
 }
 
 // The case's scene (built here, not timed) and its default name.
+BenchScene buildSceneInOrder(const Args& args);
 BenchScene buildScene(const Args& args)
+{
+  BenchScene scene = buildSceneInOrder(args);
+  if (args.shuffleSeed) scene.mesh = shuffledTriangles(scene.mesh, *args.shuffleSeed);
+  return scene;
+}
+BenchScene buildSceneInOrder(const Args& args)
 {
   if (args.sphereTriangles) {
     BenchScene sphere = displacedSphere(args.sphereTriangles);
@@ -226,6 +239,7 @@ std::string caseName(const Args& args)
                       : args.scenePath.empty() ? "default"
                                                : baseName(args.scenePath);
   if (args.gridSide) scene = "grid" + std::to_string(args.gridSide) + "x" + std::to_string(args.gridSide) + "-" + scene;
+  if (args.shuffleSeed) scene += "-shuffled";
   return plainText(scene + "-" + args.view);
 }
 
@@ -236,6 +250,7 @@ struct ClrasterRun {
   double deviceIdleMs = 0;                // median over the timed frames (FrameStats)
   FrameStats last;
   size_t deviceBytes = 0;
+  double prepareMs = 0;  // Pipeline::prepareMs: the scene's layout and upload
   std::vector<uint32_t> image, ids;
 };
 
@@ -280,6 +295,7 @@ void finishClraster(const Args& args, Pipeline& pipeline, FrameSettings settings
   run.deviceIdleMs = median(idle);
   run.last = timed.back();
   run.deviceBytes = pipeline.deviceBytes();
+  run.prepareMs = pipeline.prepareMs();
   if (args.ids) {
     settings.shadeMode = CLR_SHADE_ID;
     pipeline.render(settings, run.ids);
@@ -334,6 +350,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"name", r.name},
       {"scene", r.scene},
       {"view", args.view},
+      {"order", args.shuffleSeed ? "shuffled" : "file"},
       {"width", std::to_string(args.width)},
       {"height", std::to_string(args.height)},
       {"pixels", std::to_string(r.pixels)},
@@ -368,6 +385,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"device_bytes", std::to_string(clr.deviceBytes)},
       {"min_bytes", std::to_string(r.minBytes)},
       {"mem_ratio", number(mem, "%.3f")},
+      {"prepare_ms", number(clr.prepareMs, "%.3f")},
       {"covered_pixels", r.ids ? std::to_string(r.ids->coveredUnion) : ""},
       {"differing_pixels", r.ids ? std::to_string(r.ids->differing) : ""},
       {"differing_fraction", r.ids ? number(r.ids->differingFraction(), "%.3e") : ""},

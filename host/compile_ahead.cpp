@@ -213,6 +213,7 @@ void compileKernelsAhead(ClContext& cl, const std::vector<std::string>& kernels,
       for (const cl::Buffer* b : {&image, &in}) set(*b);
       set(visPlane);
       set(cl_uint(0));  // prefetchRows
+      set(in);          // fileTri
       const WorkShape shape = resolveShape(cl.lanes, params.tilesX, params.tilesY);
       global = shape.global, local = shape.local;
     }

@@ -68,7 +68,7 @@ void Pipeline::resolve()
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
-          visPlane(), cl_uint(resolvePrefetch_));
+          visPlane(), cl_uint(resolvePrefetch_), fileTri_.get());
   cl_.compileAhead.await(lean ? "resolve_lambert" : "resolve");  // when a helper compiles it (compile_ahead.h)
   const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);

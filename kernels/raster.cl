@@ -23,8 +23,10 @@
  * follows FrameParams.depthMode (shared.h), as a LESS compare of a key:
  * float32 key z (GL LESS against the clear value 1), unorm24 key
  * rint(clamp(z, 0, 1)·(2^24 − 1)) in float (LESS against 2^24 − 1), reversed
- * key −z (so GREATER against the clear value 0); equal keys go to the lower
- * setup index, i.e. the earlier input triangle. With
+ * key −z (so GREATER against the clear value 0); equal keys go to the
+ * triangle earlier in the file (paintRank holds each input triangle's index
+ * in the file, host layout.h; a clipped triangle's pieces by setup index).
+ * With
  * CLR_VISIBILITY_PAINTER there is no test between triangles: a fragment
  * that passes the test against the clear value replaces the kept one when
  * its triangle comes later in the host's far-to-near order (paintRank, by
@@ -117,16 +119,48 @@ typedef struct DepthRule {
   uint depthMode, visibility;
   float clearKey;
   bool barycentrics;  // keep the nearest fragment's b1, b2 (FrameParams.visAttributes)
+  // An exact tie's order (raster_tie_wins): source words, clip slots, and
+  // each input triangle's index in the file (the paintRank argument).
+  __global const uint* source;
+  __global const ClipBary* clipBary;
+  __global const uint* fileRank;
 } DepthRule;
 
-CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params)
+CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params, __global const uint* source,
+                                       __global const ClipBary* clipBary, __global const uint* fileRank)
 {
   DepthRule r;
   r.depthMode = params->depthMode;
   r.visibility = params->visibility;
   r.clearKey = raster_clear_key(r.depthMode);
   r.barycentrics = params->visAttributes != 0;
+  r.source = source;
+  r.clipBary = clipBary;
+  r.fileRank = fileRank;
   return r;
+}
+
+/* Which tied lanes setup record s wins against the records kept: the
+ * triangle earlier in the file, then (pieces of one clipped triangle) the
+ * lower setup index. A lane still at the clear key keeps it (nothing ties
+ * the cleared state). Called only when some lane ties, which is rare. */
+CLR_INLINE intL raster_tie_wins(const DepthRule* rule, uint s, uintL kept, floatL keptKey, intL tie)
+{
+  const uint mine = rule->fileRank[clr_source_triangle(rule->source[s], rule->clipBary)];
+  uint keptLanes[CLR_LANES];
+  int tieLanes[CLR_LANES], win[CLR_LANES];
+  float keyLanes[CLR_LANES];
+  CLR_STORE_LANES(kept, keptLanes);
+  CLR_STORE_LANES(tie, tieLanes);
+  CLR_STORE_LANES(keptKey, keyLanes);
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
+    win[lane] = 0;
+    if (tieLanes[lane] == 0 || keyLanes[lane] == rule->clearKey) continue;
+    const uint other = keptLanes[lane];
+    const uint theirs = rule->fileRank[clr_source_triangle(rule->source[other], rule->clipBary)];
+    win[lane] = mine < theirs || (mine == theirs && s < other) ? -1 : 0;
+  }
+  return CLR_LOAD_LANES(win);
 }
 
 /* The float edge function, the weaker method: the same formula on float
@@ -157,7 +191,8 @@ CLR_INLINE void raster_depth_test(CLR_RECORD_SPACE const TriSetup* t, uint s, in
   } else {
     // Step 1 (z-buffer): LESS on the key, ties to the earlier triangle.
     const intL nearer = key < best->depth;
-    const intL tieWin = (key == best->depth) & (s < best->index);
+    intL tieWin = inside & (key == best->depth);
+    if (CLR_ANY(tieWin)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tieWin);
     take = inside & (nearer | tieWin);
   }
   // Step 2: keep the fragment.
@@ -503,7 +538,8 @@ CLR_INLINE float raster_nearest_key(float z0, float z1, float z2, uint depthMode
 /* The raster kernels' parameters, the same for every variant below:
  *   params, setup, tileOffset (tiles + 1), binEntries,
  *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
- *   paintRank (numTris with the painter's algorithm, else 1), tileSlot
+ *   paintRank (numTris: each input triangle's paint rank with the
+ *   painter's algorithm, else its index in the file), tileSlot
  *   (tiles + 1: each non-empty tile's slot) and visPlane (slots · tile²). */
 #define CLR_RASTER_PARAMS                                                                                              \
   __constant FrameParams *params, __global const TriSetup *setup, __global const uint *source,                         \
@@ -545,7 +581,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, __local Tri
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // the whole group: resolve fills empty tiles without reading the visibility buffer
-  const DepthRule rule = raster_depth_rule(params);
+  const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   const bool skipHidden = !painter && edgeMode == CLR_EDGES_FIXED;  // raster_nearest_key
   RowBest best;
@@ -618,13 +654,14 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
   if (begin == end) return;  // resolve fills empty tiles without reading the visibility buffer
   // Step 1: the tile's sample positions and its nearest fragments so far.
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
-  const DepthRule rule = raster_depth_rule(params);
+  const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   // The default depth rule (float32, z-buffer) as constants: its row loops,
   // specialised below, have no branch on the rule, so the compiler keeps
   // their masks in mask registers (raster on yxa_1 filling 1080p 1.98 ->
   // 1.79 ms, the engine filling it 9.80 -> 9.41 ms).
-  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false};
+  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false, source, clipBary,
+                                    paintRank};
   const bool defaultRule = rule.depthMode == CLR_DEPTH_FLOAT32 && !painter && !rule.barycentrics;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];

@@ -487,10 +487,14 @@ typedef struct VisSample {
  *  binEntries uint[total]         the emit pass and bin_fill_clipped write
  *                                 setup indices; raster reads
  *  scanPartials ulong[2 · (chunks + 1)] scan internals (chunks at most 4096)
- *  paintRank  uint[numTris]       host upload with CLR_VISIBILITY_PAINTER
- *                                 (position of each input triangle in the
- *                                 far-to-near order; one unused element
- *                                 otherwise); read by raster
+ *  paintRank  uint[numTris]       host upload: with CLR_VISIBILITY_PAINTER
+ *                                 the position of each input triangle in
+ *                                 the far-to-near order, otherwise its index
+ *                                 in the file (fileTri, the scene's layout,
+ *                                 host layout.h: depth ties); read by raster
+ *  fileTri    uint[numTris]       host upload: each input triangle's index
+ *                                 in the file; read by resolve (--shade id)
+ *                                 and aov (triangle_id)
  *  counters   uint[CLR_NUM_COUNTERS] setup kernels and the scans' totals;
  *                                 host reads them at its wait, and at the
  *                                 frame's end for stats when it clipped
@@ -544,7 +548,7 @@ typedef struct LineParams {
 /* Visibility-buffer outputs (kernels/aov.cl): plane c of the AOV buffer
  * float[CLR_AOV_CHANNELS · width · height], pixel (i, j) at c·P + j·W + i
  * (bottom row first). Written by aov, read by the host (Pipeline::readAov). */
-#define CLR_AOV_TRIANGLE_ID 0 /* input triangle index as a float, −1 = none */
+#define CLR_AOV_TRIANGLE_ID 0 /* the triangle's index in the file as a float, −1 = none */
 #define CLR_AOV_BARY_U 1      /* perspective-correct weight of input vertex 1 */
 #define CLR_AOV_BARY_V 2      /* perspective-correct weight of input vertex 2 */
 #define CLR_AOV_SCREEN_U 3    /* screen-space (affine) weight of input vertex 1 */
