@@ -2,7 +2,7 @@
 // Mesa llvmpipe, both shading lambert per pixel (the same image), and
 // llvmpipe again with its fixed-function lighting per vertex.
 //
-//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--view far|fill|near]
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--no-layout] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
@@ -12,7 +12,10 @@
 // --sphere T (a displaced cube-sphere of about T triangles, procedural.h),
 // optionally --grid N (N x N instanced copies of the scene), with
 // --shuffle SEED its triangles in a random order (shuffledTriangles,
-// layout.h: a file in no spatial order; the same camera), seen from the
+// layout.h: a file in no spatial order; the same camera), and with
+// --no-layout clraster keeps the file's order on the device
+// (Pipeline::setLayout(false): the pipeline before layouts, for bench/ab.sh
+// turns against the same build), seen from the
 // --view "far" (whole scene), "fill" (the scene filling the viewport) or
 // "near" (camera close). A file's materials, textures and vertex colours are
 // set aside, so that both renderers light the built-in grey albedo. Each
@@ -101,6 +104,7 @@ struct Args {
   uint64_t sphereTriangles = 0;
   uint32_t gridSide = 0;
   std::optional<uint32_t> shuffleSeed;  // --shuffle
+  bool layout = true;                   // --no-layout clears it
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
   uint32_t warmup = 2, frames = 5, rounds = 4;
@@ -137,6 +141,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.gridSide = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
     } else if (a == "--shuffle") {
       r.shuffleSeed = uint32_t(parseUnsigned(a, flagValue(args, i), 0, UINT32_MAX));
+    } else if (a == "--no-layout") {
+      r.layout = false;
     } else if (a == "--view") {
       r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "fill" && r.view != "near")
@@ -449,6 +455,7 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
 {
   ClContext cl(args.device);
   Pipeline pipeline(cl);
+  pipeline.setLayout(args.layout);
   pipeline.uploadScene(mesh);
   const FrameSettings settings = camera.frameSettings(args.width, args.height, args.shadeMode);
   ImageView view;
@@ -496,6 +503,7 @@ int run(const Args& args)
   // device, program and scene stay loaded across the rounds.
   ClContext cl(args.device);
   Pipeline pipeline(cl);
+  pipeline.setLayout(args.layout);
   pipeline.uploadScene(mesh);
   const FrameSettings settings = camera.frameSettings(args.width, args.height, CLR_SHADE_LAMBERT);
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
