@@ -46,6 +46,7 @@ void Pipeline::lines(const std::vector<LineSeg>& segments)
 
 void Pipeline::drawLineSegments(uint32_t n)
 {
+  blankImage_ = BlankImage{};  // lines draw on the image
   // Step 1: the line constants. Without a wireframe mode (caller's
   // segments), lines are drawn over the image.
   const FrameSettings& s = settings_;

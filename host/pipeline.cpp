@@ -379,6 +379,8 @@ FrameStats Pipeline::finishFrame()
     lastEnd = std::max(lastEnd, end);
     busy += end - start;
   }
+  if (resolveSkipped_) stats.stageMs["resolve"] += 0.0;  // the image was already the frame's (resolve.cpp)
+  stats.imageKept = resolveSkipped_;
   if (!events_.empty()) stats.deviceIdleMs = double(lastEnd - firstStart - std::min(busy, lastEnd - firstStart)) * 1e-6;
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];

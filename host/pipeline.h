@@ -174,6 +174,7 @@ struct FrameStats {
   uint64_t binEntries = 0;
   bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
   bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
+  bool imageKept = false;        // nothing binned, and the image was already this frame's background: no resolve
 };
 
 class Pipeline {
@@ -349,7 +350,14 @@ class Pipeline {
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
-  bool leanResolve_ = false;      // this frame's resolve kernel was resolve_lambert
+  bool leanResolve_ = false;  // this frame's resolve kernel was resolve_lambert
+  // The size and background of an image that resolve left all background
+  // and nothing drew on since (width 0: none); a frame with nothing binned
+  // that would paint the same leaves it as it is (resolve.cpp).
+  struct BlankImage {
+    uint32_t width = 0, height = 0, background = 0;
+  } blankImage_;
+  bool resolveSkipped_ = false;   // this frame's image was such a blank one
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
   PrefetchChooser prefetchChooser_;

@@ -11,6 +11,7 @@
 #include "scene.h"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -178,4 +179,53 @@ TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the
   size_t later = 0;  // pixels won by a triangle that is not the file's first (ties decided)
   for (uint32_t id : laid.ids) later += id != ref::kNone && id > 0;
   CHECK(later > kW * kH / 4);
+}
+
+TEST_CASE("A frame with nothing in view keeps an image that is already its background", "[layout][resolve]")
+{
+  // One triangle over the middle of a 64 x 48 viewport (identity MVP); a
+  // translation moves it out of view.
+  test::Geometry g;
+  g.addTriangle({-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.0f, 0.5f, 0.0f});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  clr::FrameSettings shown = test::idSettings(64, 48);
+  shown.shadeMode = CLR_SHADE_LAMBERT;
+  clr::FrameSettings away = shown;
+  away.mvp = glm::translate(glm::mat4(1.0f), glm::vec3(5.0f, 0.0f, 0.0f));
+  std::vector<uint32_t> image;
+  auto frame = [&](const clr::FrameSettings& s) {
+    const clr::FrameStats stats = pipeline.render(s, image);
+    CHECK(stats.stageMs.count("resolve") == 1);
+    return stats.imageKept;
+  };
+  auto all = [&](uint32_t colour) { return std::count(image.begin(), image.end(), colour) == long(image.size()); };
+  const uint32_t lit = CLR_BACKGROUND_LIT;
+  // Step 1: the first empty frame paints; the next keeps.
+  CHECK_FALSE(frame(away));
+  CHECK(all(lit));
+  CHECK(frame(away));
+  CHECK(all(lit));
+  // Step 2: a covered frame, then an empty one must paint again.
+  CHECK_FALSE(frame(shown));
+  CHECK_FALSE(all(lit));
+  CHECK_FALSE(frame(away));
+  CHECK(all(lit));
+  CHECK(frame(away));
+  // Step 3: another background (the id mode's) or another size paints.
+  clr::FrameSettings idAway = away;
+  idAway.shadeMode = CLR_SHADE_ID;
+  CHECK_FALSE(frame(idAway));
+  CHECK(all(CLR_BACKGROUND_UNLIT));
+  CHECK(frame(idAway));
+  clr::FrameSettings smaller = test::keepingVis(idAway);  // (lines test against the depth plane)
+  smaller.width = 32;
+  CHECK_FALSE(frame(smaller));
+  CHECK(image.size() == 32u * 48u);
+  CHECK(all(CLR_BACKGROUND_UNLIT));
+  // Step 4: lines drawn over the image make the next empty frame paint.
+  CHECK(frame(smaller));
+  pipeline.lines({LineSeg{}});
+  CHECK_FALSE(frame(smaller));
+  CHECK(all(CLR_BACKGROUND_UNLIT));
 }
