@@ -10,6 +10,10 @@
 
 namespace clr {
 
+// How much longer than the sorted order's the file's mean step between
+// consecutive triangles may be for the file to keep its order.
+constexpr double kCoherentSteps = 8.0;
+
 // Copies per-element arrays (`width` values per element) into the new order.
 template <typename T>
 static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint32_t>& order, size_t width)
@@ -19,6 +23,19 @@ static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint3
   for (size_t i = 0; i < order.size(); ++i)
     for (size_t k = 0; k < width; ++k) out[i * width + k] = from[size_t(order[i]) * width + k];
   return out;
+}
+
+// The mean distance between consecutive centroids in `order`.
+static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>& order)
+{
+  double sum = 0;
+  for (size_t i = 1; i < order.size(); ++i) {
+    const float* a = &centroids[3 * size_t(order[i - 1])];
+    const float* b = &centroids[3 * size_t(order[i])];
+    sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
+                     double(a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return order.size() > 1 ? sum / double(order.size() - 1) : 0.0;
 }
 
 SceneLayout layOutScene(const Mesh& file, bool enabled)
@@ -47,7 +64,13 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
     }
   std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
   meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
-  for (size_t t = 0; t < tris; ++t) out.fileTri[newTri[t]] = uint32_t(t);
+  std::vector<uint32_t> sorted(tris);
+  for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  // A file whose triangles already step between near neighbours keeps its
+  // order (docs/architecture.md, "Scene layout and locality": the sort
+  // slowed raster on such a file, whose order also served the depth skip).
+  const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
+  if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
   // Step 2: the vertices in the order the sorted triangles first use them,
   // then the unused ones.

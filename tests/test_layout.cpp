@@ -145,14 +145,15 @@ TEST_CASE("A shuffled mesh and its file order render the same with and without t
 TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the layout", "[layout]")
 {
   // Step 1: overlapping random triangles all in the plane z = 0.25 (an
-  // identity MVP: every fragment of every triangle ties in depth), their
-  // centroids scattered, so the layout's order is not the file's.
+  // identity MVP: every fragment of every triangle ties in depth), in a file
+  // order far from spatial, so the layout sorts them.
   std::mt19937 random(31);
-  std::uniform_real_distribution<float> corner(-1.1f, 1.1f);
+  std::uniform_real_distribution<float> centre(-1.0f, 1.0f), offset(-0.3f, 0.3f);
   test::Geometry g;
-  for (int t = 0; t < 200; ++t) {
+  for (int t = 0; t < 2000; ++t) {
+    const glm::vec3 c(centre(random), centre(random), 0.25f);
     glm::vec3 v[3];
-    for (glm::vec3& p : v) p = glm::vec3(corner(random), corner(random), 0.25f);
+    for (glm::vec3& p : v) p = c + glm::vec3(offset(random), offset(random), 0.0f);
     g.addTriangle(v[0], v[1], v[2]);
   }
   const clr::Mesh file = g.mesh();
