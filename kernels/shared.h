@@ -347,7 +347,8 @@ typedef struct VisSample {
  *  tileSlot    uint[tiles + 1]              scan_chunks (last = slot count) -> raster, resolve, lines_draw, aov
  *  binEntries  uint[bin total]              emit, bin_fill_clipped -> raster
  *  scanPartials ulong[2·(chunks + 1)]       scan internals (chunks <= 4096)
- *  paintRank   uint[numTris]                host (painter only) -> raster
+ *  paintRank   uint[numTris]                host: painter's far-to-near rank, else fileTri -> raster (depth ties)
+ *  fileTri     uint[numTris]                host: each input triangle's index in the file (layout.h) -> resolve, aov
  *  image       uint[width·height]           resolve, then lines_draw -> host
  *  lineParams LineParams[1], lineSegs LineSeg[segments], lineTileCount uint[tiles + 1], lineTileCursor uint[tiles],
  *  lineBinEntries uint[total]               lines kernels (below)
@@ -387,7 +388,7 @@ typedef struct LineParams {
 
 /* AOV buffer float[CLR_AOV_CHANNELS·W·H]: plane c, pixel (i, j) at c·W·H + j·W + i, bottom row first. aov writes;
  * the host reads (Pipeline::readAov). */
-#define CLR_AOV_TRIANGLE_ID 0 /* input triangle index as a float, −1 = none */
+#define CLR_AOV_TRIANGLE_ID 0 /* the triangle's index in the file as a float, −1 = none */
 #define CLR_AOV_BARY_U 1      /* perspective-correct weight of input vertex 1 */
 #define CLR_AOV_BARY_V 2      /* perspective-correct weight of input vertex 2 */
 #define CLR_AOV_SCREEN_U 3    /* screen-space (affine) weight of input vertex 1 */
