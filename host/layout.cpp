@@ -82,15 +82,15 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   for (uint32_t& i : sortedIndices) i = newVertex[i];
   // Step 3: the copy.
   Mesh& m = out.mesh;
+  m = file;  // every field; the reordered ones are replaced below
   m.indices = std::move(sortedIndices);
   m.positions = gather(file.positions, out.fileVertex, 3);
   m.normals = gather(file.normals, out.fileVertex, 3);
   m.uvs = gather(file.uvs, out.fileVertex, 2);
   m.colors = gather(file.colors, out.fileVertex, 4);
   m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
-  m.materials = file.materials;
-  m.textures = file.textures;
-  m.warnings = file.warnings;
+  for (uint32_t& v : m.lines) v = newVertex[v];  // a file's own lines and points name vertices too
+  for (uint32_t& v : m.points) v = newVertex[v];
   return out;
 }
 
