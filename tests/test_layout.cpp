@@ -7,6 +7,8 @@
 #include "test_support.h"
 
 #include "camera.h"
+#include "cli.h"
+#include "frame_settings.h"
 #include "layout.h"
 #include "scene.h"
 
@@ -97,7 +99,9 @@ TEST_CASE("A shuffled mesh and its file order render the same with and without t
   REQUIRE(moved > file.numTris() / 2);
   const clr::Camera camera = clr::frameCamera(clr::CameraArgs{}, clr::meshBounds(file));
   const uint32_t mode = GENERATE(CLR_SHADE_LAMBERT, CLR_SHADE_PHONG);
-  const clr::FrameSettings settings = camera.frameSettings(kW, kH, mode);
+  clr::RenderArgs args;
+  args.shadeMode = mode;
+  const clr::FrameSettings settings = clr::makeFrameSettings(args, camera, kW, kH, clr::meshBounds(file));
   // Step 2: the four renders.
   const Outputs fileBefore = renderAll(file, false, settings, mode);
   const Outputs fileLaid = renderAll(file, true, settings, mode);
