@@ -201,7 +201,12 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   fileTriHost_ = std::move(layout.fileTri);
   fileVertex_ = std::move(layout.fileVertex);
   ++sceneUploads_;
-  fileTri_.upload(fileTriHost_);
+  fileOrder_ = true;
+  for (uint32_t t = 0; t < fileTriHost_.size() && fileOrder_; ++t) fileOrder_ = fileTriHost_[t] == t;
+  if (fileOrder_)
+    fileTri_.reserve(1);  // FrameParams.fileOrder: no reader takes it
+  else
+    fileTri_.upload(fileTriHost_);
   positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
   indices_.upload(scene_.indices);
   const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
@@ -326,6 +331,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   params_ = makeFrameParams(settings, params_.numVerts, params_.numTris);
   params_.sceneFlags = bindAttributes(settings);
   params_.clusterMargin = clusterMargin(settings.mvp);
+  params_.fileOrder = fileOrder_ ? 1u : 0u;
   settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;

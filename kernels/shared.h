@@ -277,6 +277,9 @@ typedef struct FrameParams {
    * otherwise, so that frames of a scene about the size of the view skip
    * the test (Pipeline::clusterMargin). */
   float clusterMargin;
+  /* 1: the scene's triangles lie in the file's order (host layout.h), so
+   * fileTri is the identity and not bound: readers take the index itself. */
+  uint fileOrder;
 } FrameParams;
 
 /* The image pixel (x, y) of screen space (y up; pixel (0, 0) at the bottom
@@ -493,8 +496,9 @@ typedef struct VisSample {
  *                                 in the file (fileTri, the scene's layout,
  *                                 host layout.h: depth ties); read by raster
  *  fileTri    uint[numTris]       host upload: each input triangle's index
- *                                 in the file; read by resolve (--shade id)
- *                                 and aov (triangle_id)
+ *                                 in the file (one unused element when
+ *                                 FrameParams.fileOrder); read by resolve
+ *                                 (--shade id) and aov (triangle_id)
  *  counters   uint[CLR_NUM_COUNTERS] setup kernels and the scans' totals;
  *                                 host reads them at its wait, and at the
  *                                 frame's end for stats when it clipped
@@ -561,7 +565,7 @@ typedef struct LineParams {
 #define CLR_AOV_CHANNELS 10
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 368, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 372, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 48, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 44, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
