@@ -195,8 +195,13 @@ CLR_INLINE void raster_depth_test(CLR_RECORD_SPACE const TriSetup* t, uint s, in
   } else {
     // Step 1 (z-buffer): LESS on the key, ties to the earlier triangle.
     const intL nearer = key < best->depth;
-    intL tieWin = inside & (key == best->depth);
-    if (CLR_ANY(tieWin)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tieWin);
+    // (In the file's order the setup index orders ties; else the rare ties
+    // look the file's order up.)
+    intL tieWin = (key == best->depth) & (s < best->index);
+    if (!rule->fileOrder) {
+      const intL tie = inside & (key == best->depth);
+      if (CLR_ANY(tie)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tie);
+    }
     take = inside & (nearer | tieWin);
   }
   // Step 2: keep the fragment.
