@@ -213,7 +213,12 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   fileTriHost_ = std::move(layout.fileTri);
   fileVertex_ = std::move(layout.fileVertex);
   ++sceneUploads_;
-  fileTri_.upload(fileTriHost_);
+  fileOrder_ = true;
+  for (uint32_t t = 0; t < fileTriHost_.size() && fileOrder_; ++t) fileOrder_ = fileTriHost_[t] == t;
+  if (fileOrder_)
+    fileTri_.reserve(1);  // FrameParams.fileOrder: no reader takes it
+  else
+    fileTri_.upload(fileTriHost_);
   positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
   indices_.upload(scene_.indices);
   const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
@@ -337,6 +342,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   params_.sceneFlags = bindAttributes(settings);
   if (!scene_.lines.empty() || !scene_.points.empty()) params_.visAttributes = 1;  // their depth test reads it
   params_.clusterMargin = clusterMargin(settings.mvp);
+  params_.fileOrder = fileOrder_ ? 1u : 0u;
   settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
@@ -408,6 +414,7 @@ FrameStats Pipeline::finishFrame()
 std::vector<cl_float4> Pipeline::readClipPositions() const
 {
   const std::vector<cl_float4> laidOut = clipPos_.download(params_.numVerts);
+  if (fileVertex_.empty()) return laidOut;  // a clip-space scene: no layout
   std::vector<cl_float4> out(laidOut.size());
   for (size_t v = 0; v < out.size(); ++v) out[fileVertex_[v]] = laidOut[v];
   return out;
@@ -430,7 +437,8 @@ std::vector<SetupRecord> Pipeline::readSetup() const
     r.invArea2 = CLR_RECORD_INV_AREA2(t);
     r.clipSlot = clr_source_clip_slot(source[s]);
     const bool clipped = r.clipSlot != CLR_NOT_CLIPPED;
-    r.triId = clipped ? clip.at(r.clipSlot).triId : fileTriHost_.at(source[s] & CLR_SOURCE_TRIANGLE);
+    const uint32_t tri = source[s] & CLR_SOURCE_TRIANGLE;
+    r.triId = clipped ? clip.at(r.clipSlot).triId : fileTriHost_.empty() ? tri : fileTriHost_.at(tri);
     r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
   }
   return out;

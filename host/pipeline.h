@@ -396,6 +396,7 @@ class Pipeline {
   bool layoutOn_ = true;
   double prepareMs_ = 0;
   std::vector<uint32_t> fileTriHost_, fileVertex_;  // the layout's maps (layout.h)
+  bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
   uint32_t resident_ = 0;                           // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 

@@ -5,8 +5,6 @@
 // nvdiffrast's rast, rast_db and the exact triangle ids.
 #include "pipeline.h"
 
-#include <numeric>
-
 namespace clr {
 
 void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris)
@@ -17,12 +15,11 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   ++sceneUploads_;
   positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
   indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
-  // No layout: the caller's order is the file's (raster's depth ties and resolve read fileTri).
-  if (fileTriHost_.size() != numTris) {
-    fileTriHost_.resize(numTris);
-    std::iota(fileTriHost_.begin(), fileTriHost_.end(), 0u);
-    fileTri_.upload(fileTriHost_);
-  }
+  // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
+  fileTriHost_.clear();
+  fileVertex_.clear();
+  fileOrder_ = true;
+  fileTri_.reserve(1);
   // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
   clusterBounds_.upload(std::vector<float>(6, NAN));
   sceneMin_ = glm::vec3(INFINITY);

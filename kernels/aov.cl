@@ -64,7 +64,7 @@ __kernel void aov(__constant FrameParams* params,
   const float len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   n = len > 0.0f ? n / len : (float3)(0.0f);
   // Step 5: write.
-  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)fileTri[triId];
+  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)(params->fileOrder ? triId : fileTri[triId]);
   out[CLR_AOV_BARY_U * plane + p] = mu[1];
   out[CLR_AOV_BARY_V * plane + p] = mu[2];
   out[CLR_AOV_SCREEN_U * plane + p] = muScreen[1];

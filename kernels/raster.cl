@@ -97,6 +97,7 @@ typedef struct DepthRule {
   __global const uint* source;
   __global const ClipBary* clipBary;
   __global const uint* fileRank;
+  bool fileOrder;  // FrameParams.fileOrder: the rank is the triangle itself
 } DepthRule;
 
 CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params, __global const uint* source,
@@ -110,6 +111,7 @@ CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params, __global 
   r.source = source;
   r.clipBary = clipBary;
   r.fileRank = fileRank;
+  r.fileOrder = params->fileOrder != 0;
   return r;
 }
 
@@ -119,7 +121,8 @@ CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params, __global 
  * the cleared state). Called only when some lane ties, which is rare. */
 CLR_INLINE intL raster_tie_wins(const DepthRule* rule, uint s, uintL kept, floatL keptKey, intL tie)
 {
-  const uint mine = rule->fileRank[clr_source_triangle(rule->source[s], rule->clipBary)];
+  const uint tri = clr_source_triangle(rule->source[s], rule->clipBary);
+  const uint mine = rule->fileOrder ? tri : rule->fileRank[tri];
   uint keptLanes[CLR_LANES];
   int tieLanes[CLR_LANES], win[CLR_LANES];
   float keyLanes[CLR_LANES];
@@ -130,7 +133,8 @@ CLR_INLINE intL raster_tie_wins(const DepthRule* rule, uint s, uintL kept, float
     win[lane] = 0;
     if (tieLanes[lane] == 0 || keyLanes[lane] == rule->clearKey) continue;
     const uint other = keptLanes[lane];
-    const uint theirs = rule->fileRank[clr_source_triangle(rule->source[other], rule->clipBary)];
+    const uint otherTri = clr_source_triangle(rule->source[other], rule->clipBary);
+    const uint theirs = rule->fileOrder ? otherTri : rule->fileRank[otherTri];
     win[lane] = mine < theirs || (mine == theirs && s < other) ? -1 : 0;
   }
   return CLR_LOAD_LANES(win);
@@ -162,8 +166,13 @@ CLR_INLINE void raster_depth_test(CLR_RECORD_SPACE const TriSetup* t, uint s, in
   } else {
     // LESS on the key, ties to the earlier triangle.
     const intL nearer = key < best->depth;
-    intL tieWin = inside & (key == best->depth);
-    if (CLR_ANY(tieWin)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tieWin);
+    // (In the file's order the setup index orders ties; else the rare ties
+    // look the file's order up.)
+    intL tieWin = (key == best->depth) & (s < best->index);
+    if (!rule->fileOrder) {
+      const intL tie = inside & (key == best->depth);
+      if (CLR_ANY(tie)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tie);
+    }
     take = inside & (nearer | tieWin);
   }
   best->index = select(best->index, (uintL)s, take);
@@ -711,7 +720,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   // The default rule (float32, z-buffer) as a constant (raster_segment).
   const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false, source, clipBary,
-                                    paintRank};
+                                    paintRank,         rule.fileOrder};
   const bool defaultRule = rule.depthMode == CLR_DEPTH_FLOAT32 && !painter && !rule.barycentrics;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];

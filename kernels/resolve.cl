@@ -477,6 +477,14 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
 #undef CLR_INTERPOLATE
 }
 
+/* A setup record's input triangle by its index in the file (fileTri). */
+CLR_INLINE uint resolve_file_triangle(__constant FrameParams* params, __global const uint* fileTri, uint source,
+                                      __global const ClipBary* clipBary)
+{
+  const uint tri = clr_source_triangle(source, clipBary);
+  return params->fileOrder ? tri : fileTri[tri];
+}
+
 /* The id mode: the input triangle that holds most samples of each pixel,
  * by its index in the file (fileTri). */
 CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint* visIndex, uint visPlane, uint p,
@@ -507,7 +515,7 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   for (uint lane = 0; lane < CLR_LANES; ++lane)
     rgb[lane] = winner[lane] == CLR_NONE
                     ? 0u
-                    : ((fileTri[clr_source_triangle(source[winner[lane]], clipBary)] + 1u) & 0xFFFFFFu);
+                    : ((resolve_file_triangle(params, fileTri, source[winner[lane]], clipBary) + 1u) & 0xFFFFFFu);
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
