@@ -16,6 +16,8 @@
 # caches hold less of their data than in clraster_bench's own runs: compare the two builds here, not these
 # times with the suite's. Each build runs from a private copy, with its own PoCL kernel cache, and PoCL's
 # workers pinned (POCL_AFFINITY=1, as bench/run.sh).
+# AB_ARGS_A and AB_ARGS_B (words, split on spaces) go to one build only: the same build twice with
+# AB_ARGS_A=--no-layout compares the scene's layout with the file's order.
 set -euo pipefail
 
 fail() { echo "bench/ab.sh: $*" >&2; exit 1; }
@@ -43,7 +45,9 @@ export POCL_AFFINITY="${POCL_AFFINITY:-1}"
 # Step 2: both servers, each loading the case and its kernels.
 for build in A B; do
   mkfifo "$work/$build.in" "$work/$build.out"
-  POCL_CACHE_DIR="$work/$build/cache" "$work/$build/clraster_bench" --warmup 1 --frames 3 "$@" --no-ids --serve \
+  extra="AB_ARGS_$build"
+  # shellcheck disable=SC2086 # (words on purpose)
+  POCL_CACHE_DIR="$work/$build/cache" "$work/$build/clraster_bench" --warmup 1 --frames 3 "$@" ${!extra:-} --no-ids --serve \
     <"$work/$build.in" >"$work/$build.out" 2>"$work/$build.err" &
 done
 exec {to_a}>"$work/A.in" {from_a}<"$work/A.out" {to_b}>"$work/B.in" {from_b}<"$work/B.out"

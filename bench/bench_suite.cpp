@@ -1,7 +1,7 @@
 // bench_suite.cpp — clraster_bench: one benchmark case, clraster against Mesa llvmpipe, both shading lambert per
 // pixel (the same image), and llvmpipe again with its fixed-function lighting per vertex.
 //
-//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--view far|fill|near]
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--no-layout] [--view far|fill|near]
 //                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
@@ -13,6 +13,8 @@
 // each); unless --no-ids one triangle-ID frame of each is compared as clraster_vs_llvmpipe does. Prints one JSON
 // line; --csv appends a row (columns: columns() below); --images writes both lambert images. --serve: turns driven
 // by bench/ab.sh (serveTurns). Every failure is one line on stderr and exit status 1.
+// --shuffle SEED puts the triangles in a random order (layout.h: a file in no spatial order, the same camera);
+// --no-layout keeps the file's order on the device (Pipeline::setLayout(false)), for bench/ab.sh turns.
 #include "llvmpipe_render.h"
 #include "procedural.h"
 
@@ -22,6 +24,7 @@
 #include "device.h"
 #include "frame_settings.h"
 #include "image_io.h"
+#include "layout.h"
 #include "pipeline.h"
 #include "scene.h"
 
@@ -46,6 +49,8 @@ struct Args {
   std::string scenePath;  // empty: the built-in scene (or --sphere)
   uint64_t sphereTriangles = 0;
   uint32_t gridSide = 0;
+  std::optional<uint32_t> shuffleSeed;  // --shuffle
+  bool layout = true;                   // --no-layout clears it
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
   uint32_t warmup = 2, frames = 5, rounds = 4;
@@ -80,6 +85,10 @@ Args parseArgs(const std::vector<std::string>& args)
       r.sphereTriangles = parseUnsigned(a, flagValue(args, i), 12, 400000000);
     } else if (a == "--grid") {
       r.gridSide = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 1000));
+    } else if (a == "--shuffle") {
+      r.shuffleSeed = uint32_t(parseUnsigned(a, flagValue(args, i), 0, UINT32_MAX));
+    } else if (a == "--no-layout") {
+      r.layout = false;
     } else if (a == "--view") {
       r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "fill" && r.view != "near")
@@ -152,7 +161,14 @@ std::string baseName(const std::string& path)
 }
 
 // The case's scene (built here, not timed) and its default name.
+BenchScene buildSceneInOrder(const Args& args);
 BenchScene buildScene(const Args& args)
+{
+  BenchScene scene = buildSceneInOrder(args);
+  if (args.shuffleSeed) scene.mesh = shuffledTriangles(scene.mesh, *args.shuffleSeed);
+  return scene;
+}
+BenchScene buildSceneInOrder(const Args& args)
 {
   if (args.sphereTriangles) {
     BenchScene sphere = displacedSphere(args.sphereTriangles);
@@ -175,6 +191,7 @@ std::string caseName(const Args& args)
                       : args.scenePath.empty() ? "default"
                                                : baseName(args.scenePath);
   if (args.gridSide) scene = "grid" + std::to_string(args.gridSide) + "x" + std::to_string(args.gridSide) + "-" + scene;
+  if (args.shuffleSeed) scene += "-shuffled";
   return plainText(scene + "-" + args.view);
 }
 
@@ -185,6 +202,7 @@ struct ClrasterRun {
   double deviceIdleMs = 0;                // median over the timed frames (FrameStats)
   FrameStats last;
   size_t deviceBytes = 0;
+  double prepareMs = 0;  // Pipeline::prepareMs: the scene's layout and upload
   std::vector<uint32_t> image, ids;
 };
 
@@ -229,6 +247,7 @@ void finishClraster(const Args& args, Pipeline& pipeline, FrameSettings settings
   run.deviceIdleMs = median(idle);
   run.last = timed.back();
   run.deviceBytes = pipeline.deviceBytes();
+  run.prepareMs = pipeline.prepareMs();
   if (args.ids) {
     settings.shadeMode = CLR_SHADE_ID;
     pipeline.render(settings, run.ids);
@@ -298,6 +317,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"name", r.name},
       {"scene", r.scene},
       {"view", args.view},
+      {"order", args.shuffleSeed ? "shuffled" : "file"},
       {"width", std::to_string(args.width)},
       {"height", std::to_string(args.height)},
       {"pixels", std::to_string(r.pixels)},
@@ -332,6 +352,7 @@ std::vector<std::pair<std::string, std::string>> columns(const Args& args, const
       {"device_bytes", std::to_string(clr.deviceBytes)},
       {"min_bytes", std::to_string(r.minBytes)},
       {"mem_ratio", number(mem, "%.3f")},
+      {"prepare_ms", number(clr.prepareMs, "%.3f")},
       {"covered_pixels", r.ids ? std::to_string(r.ids->coveredUnion) : ""},
       {"differing_pixels", r.ids ? std::to_string(r.ids->differing) : ""},
       {"differing_fraction", r.ids ? number(r.ids->differingFraction(), "%.3e") : ""},
@@ -397,6 +418,7 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
 {
   ClContext cl(args.device);
   Pipeline pipeline(cl);
+  pipeline.setLayout(args.layout);
   pipeline.uploadScene(mesh);
   RenderArgs frameArgs;  // the CLI's defaults, but the shading
   frameArgs.shadeMode = args.shadeMode;
@@ -446,6 +468,7 @@ int run(const Args& args)
   // device, program and scene stay loaded across the rounds.
   ClContext cl(args.device);
   Pipeline pipeline(cl);
+  pipeline.setLayout(args.layout);
   pipeline.uploadScene(mesh);
   const FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);

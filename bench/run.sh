@@ -16,7 +16,14 @@
 #                triangles), each with the far (whole object, small
 #                triangles) and the near (camera close, large triangles)
 #                view, at 1920x1080
+#   grid5-fill   a 5x5 grid of Wuson.off copies (93k triangles) filling
+#                the 1920x1080 screen
 #   MESH ...     any further mesh files, like the real meshes
+#   input order  every case of a real mesh (the meshes, the Wuson grids,
+#                MESH ...) runs twice: in the file's triangle order, and
+#                with its faces shuffled (clraster_bench --shuffle 1, a
+#                fixed seed), the same camera; the shuffled rows are named
+#                shuffled-CASE, and the report sets both orders side by side
 #   cold start   wall time of a whole `clraster render` process (built-in
 #                scene, 1920x1080, one frame) with an empty POCL_CACHE_DIR
 #                (median and range of three, each cache new), then warm
@@ -122,18 +129,25 @@ bench_case() {  # NAME ARGS...
     --peak-lane-gops "$peak_lanes" --peak-copy-gbs "$peak_copy" >/dev/null ||
     fail "case $name failed"
 }
+both_orders() {  # NAME ARGS...: the case in the file's order, then shuffled
+  local name=$1
+  shift
+  bench_case "$name" "$@"
+  bench_case "shuffled-$name" "$@" --shuffle 1
+}
 for mesh in "${real_meshes[@]}" "$@"; do
   for size in 1280x720 1920x1080 3840x2160; do
-    bench_case "mesh-$(basename "$mesh")" "$mesh" --size "$size" --warmup "$warmup" --frames "$frames"
+    both_orders "mesh-$(basename "$mesh")" "$mesh" --size "$size" --warmup "$warmup" --frames "$frames"
   done
-  bench_case "fill-$(basename "$mesh")" "$mesh" --view fill --size 1920x1080 --warmup "$warmup" --frames "$frames"
+  both_orders "fill-$(basename "$mesh")" "$mesh" --view fill --size 1920x1080 --warmup "$warmup" --frames "$frames"
 done
+both_orders "grid5-fill" "$grid_mesh" --grid 5 --view fill --size 1920x1080 --warmup "$warmup" --frames "$frames"
 for view in far near; do
   for tris in 10000 100000 1000000; do
     bench_case "sphere-$view" --sphere "$tris" --view "$view" --size 1920x1080 --warmup "$warmup" --frames "$frames"
   done
   bench_case "sphere-$view" --sphere 10000000 --view "$view" --size 1920x1080 --warmup 1 --frames 5
-  bench_case "grid16-$view" "$grid_mesh" --grid 16 --view "$view" --size 1920x1080 --warmup "$warmup" \
+  both_orders "grid16-$view" "$grid_mesh" --grid 16 --view "$view" --size 1920x1080 --warmup "$warmup" \
     --frames "$frames"
 done
 
@@ -212,6 +226,30 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
       $c["differing_pixels"], $c["differing_not_near_edge"], $c["shade_mad"], $c["shade_mad_vertex"]
     printf " %.2f (%.1f%%) | %.2f (%.1f%%) |\n", $c["edge_gevals_s"], 100 * $c["edge_frac_lane_ops"], $c["rr_gbs"],
       100 * $c["rr_frac_copy"]
+  }' "$csv"
+  echo
+  echo "## Input order: the file's and shuffled faces"
+  echo
+  echo "Each real-mesh case in its file's triangle order and with its faces shuffled (\`--shuffle 1\`), the same camera."
+  echo "clraster lays every scene out at upload (docs/architecture.md, \"Scene layout and locality\"); **prepare ms** is"
+  echo "that upload (layout, cluster bounds, buffers), once per scene and outside the frame times."
+  echo
+  echo "| case | size | triangles | file: clraster ms | file: llvmpipe ms | file: ratio | shuffled: clraster ms | shuffled: llvmpipe ms | shuffled: ratio | clraster shuffled / file | prepare ms (file; shuffled) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F, "$columns"'NR > 1 {
+    key = $c["name"] "@" $c["width"] "x" $c["height"]
+    if ($c["name"] ~ /^shuffled-/) { sub(/^shuffled-/, "", key); shuf[key] = NR; row[NR] = $0; next }
+    keys[++n] = key; file[key] = NR; row[NR] = $0
+  }
+  END {
+    for (i = 1; i <= n; i++) {
+      k = keys[i]; if (!(k in shuf)) continue
+      split(row[file[k]], f, ","); split(row[shuf[k]], s, ",")
+      name = k; sub(/@.*/, "", name); sub(/^mesh-/, "", name)
+      printf "| %s | %sx%s | %d | %s | %s | %s | %s | %s | %s | %.2f | %s; %s |\n", name, f[c["width"]], f[c["height"]],
+        f[c["triangles"]], f[c["clr_ms"]], f[c["llvm_ms"]], f[c["ratio"]], s[c["clr_ms"]], s[c["llvm_ms"]], s[c["ratio"]],
+        s[c["clr_ms"]] / f[c["clr_ms"]], f[c["prepare_ms"]], s[c["prepare_ms"]]
+    }
   }' "$csv"
   echo
   echo "## Per-stage kernel times (clraster, median ms, OpenCL profiling)"

@@ -4,10 +4,12 @@
 #include "pipeline.h"
 
 #include "aa.h"
+#include "layout.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -102,6 +104,7 @@ Pipeline::Pipeline(ClContext& cl)
       clusterBounds_(memory_, "cluster bounds"),
       indices_(memory_, "triangle indices"),
       triMaterial_(memory_, "triangle materials"),
+      fileTri_(memory_, "triangles' file order"),
       materials_(memory_, "materials"),
       texDescs_(memory_, "texture descriptors"),
       texels_(memory_, "texels"),
@@ -184,8 +187,10 @@ static std::vector<float> clusterBounds(const Mesh& mesh)
   return bounds;
 }
 
-void Pipeline::uploadScene(const Mesh& mesh)
+void Pipeline::uploadScene(const Mesh& fileMesh)
 {
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh& mesh = fileMesh;
   // Step 1: validate the optional attributes against the vertices.
   if (cl_.clipInput) throw Error("uploadScene: this context's programs take clip-space positions (uploadClipScene)");
   if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
@@ -202,11 +207,21 @@ void Pipeline::uploadScene(const Mesh& mesh)
     if (v >= mesh.numVerts()) throw Error("scene's point vertex " + std::to_string(v) + " out of range");
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
-  // Step 2: what every mode reads, now; the rest when a frame reads it.
+  // Step 2: the layout; what every mode reads, now; the rest when a frame reads it.
+  SceneLayout layout = layOutScene(fileMesh, layoutOn_);
+  scene_ = std::move(layout.mesh);
+  fileTriHost_ = std::move(layout.fileTri);
+  fileVertex_ = std::move(layout.fileVertex);
   ++sceneUploads_;
-  positions_.uploadPadded(mesh.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
-  indices_.upload(mesh.indices);
-  const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(mesh) : std::vector<float>(6, NAN);
+  fileOrder_ = true;
+  for (uint32_t t = 0; t < fileTriHost_.size() && fileOrder_; ++t) fileOrder_ = fileTriHost_[t] == t;
+  if (fileOrder_)
+    fileTri_.reserve(1);  // FrameParams.fileOrder: no reader takes it
+  else
+    fileTri_.upload(fileTriHost_);
+  positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
+  indices_.upload(scene_.indices);
+  const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
   clusterBounds_.upload(bounds);
   sceneMin_ = glm::vec3(INFINITY);
   sceneMax_ = glm::vec3(-INFINITY);
@@ -216,11 +231,12 @@ void Pipeline::uploadScene(const Mesh& mesh)
       sceneMax_ = glm::max(sceneMax_, glm::vec3(bounds[c + 3], bounds[c + 4], bounds[c + 5]));
     }
   paintOrder_.clear();
-  scene_ = mesh;
   resident_ = 0;
   triCount_.reserve(mesh.numTris(), true);
   params_.numVerts = uint32_t(mesh.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
+  cl_.queue.finish();
+  prepareMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
@@ -326,6 +342,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   params_.sceneFlags = bindAttributes(settings);
   if (!scene_.lines.empty() || !scene_.points.empty()) params_.visAttributes = 1;  // their depth test reads it
   params_.clusterMargin = clusterMargin(settings.mvp);
+  params_.fileOrder = fileOrder_ ? 1u : 0u;
   settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
@@ -380,6 +397,8 @@ FrameStats Pipeline::finishFrame()
     lastEnd = std::max(lastEnd, end);
     busy += end - start;
   }
+  if (resolveSkipped_) stats.stageMs["resolve"] += 0.0;  // the image was already the frame's (resolve.cpp)
+  stats.imageKept = resolveSkipped_;
   if (!events_.empty()) stats.deviceIdleMs = double(lastEnd - firstStart - std::min(busy, lastEnd - firstStart)) * 1e-6;
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];
@@ -394,7 +413,11 @@ FrameStats Pipeline::finishFrame()
 
 std::vector<cl_float4> Pipeline::readClipPositions() const
 {
-  return clipPos_.download(params_.numVerts);
+  const std::vector<cl_float4> laidOut = clipPos_.download(params_.numVerts);
+  if (fileVertex_.empty()) return laidOut;  // a clip-space scene: no layout
+  std::vector<cl_float4> out(laidOut.size());
+  for (size_t v = 0; v < out.size(); ++v) out[fileVertex_[v]] = laidOut[v];
+  return out;
 }
 std::vector<SetupRecord> Pipeline::readSetup() const
 {
@@ -414,14 +437,18 @@ std::vector<SetupRecord> Pipeline::readSetup() const
     r.invArea2 = CLR_RECORD_INV_AREA2(t);
     r.clipSlot = clr_source_clip_slot(source[s]);
     const bool clipped = r.clipSlot != CLR_NOT_CLIPPED;
-    r.triId = clipped ? clip.at(r.clipSlot).triId : source[s] & CLR_SOURCE_TRIANGLE;
+    const uint32_t tri = source[s] & CLR_SOURCE_TRIANGLE;
+    r.triId = clipped ? clip.at(r.clipSlot).triId : fileTriHost_.empty() ? tri : fileTriHost_.at(tri);
     r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
   }
   return out;
 }
 std::vector<ClipBary> Pipeline::readClipBary() const
 {
-  return clipBary_.download(uint64_t(numClipped_) * CLR_MAX_SUBTRIS);
+  std::vector<ClipBary> slots = clipBary_.download(uint64_t(numClipped_) * CLR_MAX_SUBTRIS);
+  for (ClipBary& c : slots)
+    if (c.triId < fileTriHost_.size()) c.triId = fileTriHost_[c.triId];
+  return slots;
 }
 std::vector<uint32_t> Pipeline::readTileOffsets() const
 {

@@ -175,6 +175,7 @@ struct FrameStats {
   uint64_t binEntries = 0;
   bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
   bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
+  bool imageKept = false;        // nothing binned, and the image was already this frame's background: no resolve
 };
 
 class Pipeline {
@@ -184,9 +185,18 @@ class Pipeline {
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
-  // Uploads positions and indices and keeps a copy of the scene; the other
-  // attributes are uploaded when a frame first reads them (bindAttributes).
+  // Lays the scene out (layout.h), uploads positions and indices and keeps
+  // a copy of the laid-out scene; the other attributes are uploaded when a
+  // frame first reads them (bindAttributes). Everything a caller reads back
+  // (readSetup's and readClipBary's triangles, readClipPositions' order,
+  // paintOrder, the id shading and AOV) speaks of the file's order.
   void uploadScene(const Mesh& mesh);
+  // Whether uploadScene lays scenes out (default); tests compare with the
+  // file's own order.
+  void setLayout(bool on) { layoutOn_ = on; }
+  // The milliseconds of the last uploadScene: the layout, the cluster bounds
+  // and the uploads (--stats prepare_ms).
+  double prepareMs() const { return prepareMs_; }
 
   // What is on the device now, kResident* bits (for tests).
   enum : uint32_t {
@@ -366,7 +376,14 @@ class Pipeline {
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
   uint32_t numSetup_ = 0;
-  bool leanResolve_ = false;      // this frame's resolve kernel was resolve_lambert
+  bool leanResolve_ = false;  // this frame's resolve kernel was resolve_lambert
+  // The size and background of an image that resolve left all background
+  // and nothing drew on since (width 0: none); a frame with nothing binned
+  // that would paint the same leaves it as it is (resolve.cpp).
+  struct BlankImage {
+    uint32_t width = 0, height = 0, background = 0;
+  } blankImage_;
+  bool resolveSkipped_ = false;   // this frame's image was such a blank one
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
   PrefetchChooser prefetchChooser_;
@@ -375,8 +392,12 @@ class Pipeline {
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
   uint64_t numBinEntries_ = 0;
   uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
-  Mesh scene_;                // host copy: lazy uploads read it
-  uint32_t resident_ = 0;     // kResident* bits
+  Mesh scene_;                // host copy, laid out: lazy uploads read it
+  bool layoutOn_ = true;
+  double prepareMs_ = 0;
+  std::vector<uint32_t> fileTriHost_, fileVertex_;  // the layout's maps (layout.h)
+  bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
+  uint32_t resident_ = 0;                           // kResident* bits
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
@@ -392,6 +413,7 @@ class Pipeline {
   // FrameParams.clusterMargin.
   glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};
   DeviceBuffer<uint32_t> indices_, triMaterial_;
+  DeviceBuffer<uint32_t> fileTri_;  // each laid-out triangle's index in the file (shared.h)
   DeviceBuffer<Material> materials_;
   DeviceBuffer<TextureDesc> texDescs_;
   DeviceBuffer<uint32_t> texels_;

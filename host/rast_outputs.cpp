@@ -15,6 +15,11 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   ++sceneUploads_;
   positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
   indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
+  // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
+  fileTriHost_.clear();
+  fileVertex_.clear();
+  fileOrder_ = true;
+  fileTri_.reserve(1);
   // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
   clusterBounds_.upload(std::vector<float>(6, NAN));
   sceneMin_ = glm::vec3(INFINITY);

@@ -7,8 +7,10 @@
 // projection), from the transform kernel's clip positions (run here: a
 // frame otherwise transforms the vertices inside setup). Equal keys put the
 // later input triangle first, so the earlier one is drawn last and wins, as an
-// exact tie does in the z-buffer. The ranks go to the kernel, which keeps
-// the fragment of the latest-drawn triangle.
+// exact tie does in the z-buffer (both by the file's order, fileTri). The
+// ranks go to the kernel, which keeps the fragment of the latest-drawn
+// triangle; a z-buffer frame binds each triangle's index in the file there
+// instead, for its ties.
 #include "pipeline.h"
 
 #include <algorithm>
@@ -33,14 +35,16 @@ void Pipeline::sortForPainter()
       const cl_float4& c = clip[indices[3 * size_t(t) + v]];
       if (c.s[3] > 0.0f) key[t] = std::max(key[t], sign * c.s[2] / c.s[3]);
     }
-  // Step 3: far to near; ties: the later input triangle first.
+  // Step 3: far to near; ties: the triangle later in the file first.
   paintOrder_.resize(numTris);
   std::iota(paintOrder_.begin(), paintOrder_.end(), 0u);
-  std::sort(paintOrder_.begin(), paintOrder_.end(),
-            [&](uint32_t a, uint32_t b) { return key[a] != key[b] ? key[a] > key[b] : a > b; });
+  std::sort(paintOrder_.begin(), paintOrder_.end(), [&](uint32_t a, uint32_t b) {
+    return key[a] != key[b] ? key[a] > key[b] : fileTriHost_[a] > fileTriHost_[b];
+  });
   std::vector<uint32_t> rank(numTris);
   for (uint32_t i = 0; i < numTris; ++i) rank[paintOrder_[i]] = i;
   paintRank_.upload(rank);
+  for (uint32_t& t : paintOrder_) t = fileTriHost_[t];  // as the file numbers them
 }
 
 void Pipeline::raster()
@@ -60,7 +64,8 @@ void Pipeline::raster()
   const uint64_t perWord = params_.visIndex16 ? 2 : 1;
   visIndex_.reserve((samples + perWord - 1) / perWord, false, (most + perWord - 1) / perWord);
   visAttr_.reserve(params_.visAttributes ? 3 * samples : 1, false, 3 * most);  // else a 1-element dummy
-  if (params_.visibility == CLR_VISIBILITY_PAINTER)
+  const bool painter = params_.visibility == CLR_VISIBILITY_PAINTER;
+  if (painter)
     sortForPainter();
   else {
     paintOrder_.clear();
@@ -79,7 +84,8 @@ void Pipeline::raster()
     kernel = &extraKernel(rasterSpansFloatKernel_, "raster_spans_float");
   cl::Event event;
   setArgs(*kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
-          binEntries_.get(), visIndex_.get(), visAttr_.get(), paintRank_.get(), tileSlot_.get(), visPlane());
+          binEntries_.get(), visIndex_.get(), visAttr_.get(), painter ? paintRank_.get() : fileTri_.get(),
+          tileSlot_.get(), visPlane());
   const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
   cl_.queue.enqueueNDRangeKernel(*kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("raster", event);

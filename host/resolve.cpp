@@ -47,6 +47,19 @@ void PrefetchChooser::report(double resolveMs)
 void Pipeline::resolve()
 {
   image_.reserve(uint64_t(params_.width) * params_.height, true);
+  // Step 0: a frame with nothing binned paints only background; when the
+  // image already is that background at this size (the last resolve painted
+  // only it and nothing drew since), it stays. The buffer keeps its
+  // contents: it is reallocated only to grow, which changes the size.
+  const BlankImage blank{params_.width, params_.height, CLR_BACKGROUND(params_.shadeMode)};
+  const bool nothing = numBinEntries_ == 0;
+  resolveSkipped_ = nothing && blankImage_.width == blank.width && blankImage_.height == blank.height &&
+                    blankImage_.background == blank.background;
+  blankImage_ = nothing ? blank : BlankImage{};
+  if (resolveSkipped_) {
+    leanResolve_ = timedPrefetch_ = resolvePrefetch_ = false;
+    return;
+  }
   cl::Event event;
   // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
   const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
@@ -63,7 +76,7 @@ void Pipeline::resolve()
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
-          visPlane(), cl_uint(resolvePrefetch_));
+          visPlane(), cl_uint(resolvePrefetch_), fileTri_.get());
   const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("resolve", event);

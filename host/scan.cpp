@@ -81,6 +81,7 @@ void Pipeline::scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n,
 void Pipeline::scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
                                  DeviceBuffer<uint32_t>& sources, const char* stage)
 {
+  if (total == 0) return;                        // no record to list (a frame with nothing in view)
   sources.reserve(total + scanChunks(n).count);  // + a spare entry per chunk (scan.cl)
   const uint32_t none = CLR_SCAN_NO_TOTAL;       // the total was copied by Begin
   const ScanJob job{counts.get(), counts.get(), sources.get(), counts.get(), 0u, 1u, none, none};

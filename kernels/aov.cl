@@ -21,7 +21,8 @@ __kernel void aov(__constant FrameParams* params,
                   __global const float* normals,  // 3·numVerts
                   __global float* out,            // CLR_AOV_CHANNELS · width · height
                   __global const uint* tileSlot,  // tiles + 1: visibility-buffer slots (shared.h)
-                  uint visPlane)
+                  uint visPlane,
+                  __global const uint* fileTri)  // numTris: each input triangle's index in the file
 {
   const uint px = get_global_id(0), py = get_global_id(1);
   if (px >= params->width || py >= params->height) return;
@@ -63,7 +64,7 @@ __kernel void aov(__constant FrameParams* params,
   const float len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   n = len > 0.0f ? n / len : (float3)(0.0f);
   // Step 5: write.
-  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)triId;
+  out[CLR_AOV_TRIANGLE_ID * plane + p] = (float)(params->fileOrder ? triId : fileTri[triId]);
   out[CLR_AOV_BARY_U * plane + p] = mu[1];
   out[CLR_AOV_BARY_V * plane + p] = mu[2];
   out[CLR_AOV_SCREEN_U * plane + p] = muScreen[1];

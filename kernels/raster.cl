@@ -11,8 +11,10 @@
  * notes' edge functions in 64-bit fixed point (exact) or float; hierarchical
  * acceptance of tiles inside all edges; exact span tables; the classic float
  * edge walk. Fill rule: CLR_EDGE_HOLDS_SAMPLES (fixed.h). Depth: a LESS
- * compare of raster_depth_key, ties to the lower setup index, or the
- * painter's ranks (CLR_VISIBILITY_PAINTER, ranks from host raster.cpp).
+ * compare of raster_depth_key; equal keys go to the triangle earlier in the
+ * file (paintRank holds each input triangle's file index, host layout.h),
+ * pieces of one clipped triangle by setup index; or the painter's ranks
+ * (CLR_VISIBILITY_PAINTER, ranks from host raster.cpp).
  */
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -91,16 +93,51 @@ typedef struct DepthRule {
   uint depthMode, visibility;
   float clearKey;
   bool barycentrics;  // keep b1, b2 (FrameParams.visAttributes)
+  // An exact tie's order (raster_tie_wins): source words, clip slots, file ranks.
+  __global const uint* source;
+  __global const ClipBary* clipBary;
+  __global const uint* fileRank;
+  bool fileOrder;  // FrameParams.fileOrder: the rank is the triangle itself
 } DepthRule;
 
-CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params)
+CLR_INLINE DepthRule raster_depth_rule(__constant FrameParams* params, __global const uint* source,
+                                       __global const ClipBary* clipBary, __global const uint* fileRank)
 {
   DepthRule r;
   r.depthMode = params->depthMode;
   r.visibility = params->visibility;
   r.clearKey = raster_clear_key(r.depthMode);
   r.barycentrics = params->visAttributes != 0;
+  r.source = source;
+  r.clipBary = clipBary;
+  r.fileRank = fileRank;
+  r.fileOrder = params->fileOrder != 0;
   return r;
+}
+
+/* Which tied lanes setup record s wins against the records kept: the
+ * triangle earlier in the file, then (pieces of one clipped triangle) the
+ * lower setup index. A lane still at the clear key keeps it (nothing ties
+ * the cleared state). Called only when some lane ties, which is rare. */
+CLR_INLINE intL raster_tie_wins(const DepthRule* rule, uint s, uintL kept, floatL keptKey, intL tie)
+{
+  const uint tri = clr_source_triangle(rule->source[s], rule->clipBary);
+  const uint mine = rule->fileOrder ? tri : rule->fileRank[tri];
+  uint keptLanes[CLR_LANES];
+  int tieLanes[CLR_LANES], win[CLR_LANES];
+  float keyLanes[CLR_LANES];
+  CLR_STORE_LANES(kept, keptLanes);
+  CLR_STORE_LANES(tie, tieLanes);
+  CLR_STORE_LANES(keptKey, keyLanes);
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
+    win[lane] = 0;
+    if (tieLanes[lane] == 0 || keyLanes[lane] == rule->clearKey) continue;
+    const uint other = keptLanes[lane];
+    const uint otherTri = clr_source_triangle(rule->source[other], rule->clipBary);
+    const uint theirs = rule->fileOrder ? otherTri : rule->fileRank[otherTri];
+    win[lane] = mine < theirs || (mine == theirs && s < other) ? -1 : 0;
+  }
+  return CLR_LOAD_LANES(win);
 }
 
 /* The float edge function: the same formula on float pixel coordinates. */
@@ -129,7 +166,13 @@ CLR_INLINE void raster_depth_test(CLR_RECORD_SPACE const TriSetup* t, uint s, in
   } else {
     // LESS on the key, ties to the earlier triangle.
     const intL nearer = key < best->depth;
-    const intL tieWin = (key == best->depth) & (s < best->index);
+    // (In the file's order the setup index orders ties; else the rare ties
+    // look the file's order up.)
+    intL tieWin = (key == best->depth) & (s < best->index);
+    if (!rule->fileOrder) {
+      const intL tie = inside & (key == best->depth);
+      if (CLR_ANY(tie)) tieWin = raster_tie_wins(rule, s, best->index, best->depth, tie);
+    }
     take = inside & (nearer | tieWin);
   }
   best->index = select(best->index, (uintL)s, take);
@@ -558,7 +601,8 @@ CLR_INLINE float raster_nearest_key(float z0, float z1, float z2, uint depthMode
 /* The kernels' parameters, the same for every variant:
  *   params, setup, source, clipBary, tileOffset (tiles + 1), binEntries,
  *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
- *   paintRank (numTris with the painter's algorithm, else 1), tileSlot
+ *   paintRank (numTris: each input triangle's paint rank with the
+ *   painter's algorithm, else its index in the file), tileSlot
  *   (tiles + 1: each non-empty tile's slot) and visPlane (slots · tile²). */
 #define CLR_RASTER_PARAMS                                                                                              \
   __constant FrameParams *params, __global const TriSetup *setup, __global const uint *source,                         \
@@ -595,7 +639,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;  // the whole group
-  const DepthRule rule = raster_depth_rule(params);
+  const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   const bool skipHidden = !painter && CLR_EXACT_COVERAGE(edgeMode, traversal);
   RowBest best;
@@ -672,10 +716,11 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
   const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
   if (begin == end) return;
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
-  const DepthRule rule = raster_depth_rule(params);
+  const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   // The default rule (float32, z-buffer) as a constant (raster_segment).
-  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false};
+  const DepthRule zbufferFloat32 = {CLR_DEPTH_FLOAT32, CLR_VISIBILITY_ZBUFFER, 1.0f, false, source, clipBary,
+                                    paintRank,         rule.fileOrder};
   const bool defaultRule = rule.depthMode == CLR_DEPTH_FLOAT32 && !painter && !rule.barycentrics;
   RowBest best[CLR_TILE_SIZE / CLR_LANES][CLR_TILE_SIZE];
   intL sx[CLR_TILE_SIZE / CLR_LANES];

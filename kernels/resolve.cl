@@ -477,9 +477,19 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
 #undef CLR_INTERPOLATE
 }
 
-/* The id mode: the input triangle that holds most samples of each pixel. */
+/* A setup record's input triangle by its index in the file (fileTri). */
+CLR_INLINE uint resolve_file_triangle(__constant FrameParams* params, __global const uint* fileTri, uint source,
+                                      __global const ClipBary* clipBary)
+{
+  const uint tri = clr_source_triangle(source, clipBary);
+  return params->fileOrder ? tri : fileTri[tri];
+}
+
+/* The id mode: the input triangle that holds most samples of each pixel,
+ * by its index in the file (fileTri). */
 CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint* visIndex, uint visPlane, uint p,
-                            uint count, __global const uint* source, __global const ClipBary* clipBary)
+                            uint count, __global const uint* source, __global const ClipBary* clipBary,
+                            __global const uint* fileTri)
 {
   // Step 1: the most frequent setup index per lane (CLR_NONE counts too).
   const uint plane = visPlane, samples = params->samples;
@@ -503,12 +513,13 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
   // Step 2: its input triangle, + 1 as 24-bit RGB (0 = background).
   uint rgb[CLR_LANES];
   for (uint lane = 0; lane < CLR_LANES; ++lane)
-    rgb[lane] =
-        winner[lane] == CLR_NONE ? 0u : ((clr_source_triangle(source[winner[lane]], clipBary) + 1u) & 0xFFFFFFu);
+    rgb[lane] = winner[lane] == CLR_NONE
+                    ? 0u
+                    : ((resolve_file_triangle(params, fileTri, source[winner[lane]], clipBary) + 1u) & 0xFFFFFFu);
   return CLR_LOAD_LANES(rgb) | 0xFF000000u;
 }
 
-/* The resolve kernels' parameters: the buffers of shared.h, and prefetchRows (resolve_prefetch). */
+/* The resolve kernels' parameters: the buffers of shared.h, prefetchRows (resolve_prefetch) and fileTri. */
 #define CLR_RESOLVE_PARAMS                                                                                        \
   __constant FrameParams *params, __global const uint *visIndex, __global const float *visAttr,                   \
       __global const uint *tileOffset, __global const TriSetup *setup, __global const uint *source,               \
@@ -516,10 +527,10 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
       __global const float *normals, __global const float *uvs, __global const float *colours,                    \
       __global const uint *triMaterial, __global const Material *materials, __global const TextureDesc *texDescs, \
       __global const uint *texels, __global uint *image, __global const uint *tileSlot, uint visPlane,            \
-      uint prefetchRows
+      uint prefetchRows, __global const uint *fileTri
 #define CLR_RESOLVE_ARGS                                                                                     \
   params, visIndex, visAttr, tileOffset, setup, source, clipBary, indices, positions, normals, uvs, colours, \
-      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows
+      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows, fileTri
 
 #ifdef CLR_PREFETCH
 /* Prefetch for tiles of many small triangles (> 128 binned), whose scattered records miss the caches. The host asks
@@ -600,7 +611,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const ColourL backgroundColour = colour_unpack(background);
   const ShadeInputs inputs = {materials, texDescs, texels};
   if (mode == CLR_SHADE_ID) {
-    colour = resolve_id(params, visIndex, visPlane, p, count, source, clipBary);
+    colour = resolve_id(params, visIndex, visPlane, p, count, source, clipBary, fileTri);
   } else if (samples == 1) {
     // Step 2a: one sample per pixel, shaded where covered.
     uint index[CLR_LANES];

@@ -215,6 +215,9 @@ typedef struct FrameParams {
   uint cullSampleFree;
   /* > 0: clip-space margin of the cluster test (setup_cluster_outside); 0 skips it (Pipeline::clusterMargin). */
   float clusterMargin;
+  /* 1: the scene's triangles lie in the file's order (host layout.h), so
+   * fileTri is the identity and not bound: readers take the index itself. */
+  uint fileOrder;
 } FrameParams;
 
 /* The image pixel (x, y) of screen space (y up, (0, 0) bottom left); image is stored top row first. */
@@ -347,7 +350,9 @@ typedef struct VisSample {
  *  tileSlot    uint[tiles + 1]              scan_chunks (last = slot count) -> raster, resolve, lines_draw, aov
  *  binEntries  uint[bin total]              emit, bin_fill_clipped -> raster
  *  scanPartials ulong[2·(chunks + 1)]       scan internals (chunks <= 4096)
- *  paintRank   uint[numTris]                host (painter only) -> raster
+ *  paintRank   uint[numTris]                host: painter's far-to-near rank, else fileTri -> raster (depth ties)
+ *  fileTri     uint[numTris]                host: each input triangle's index in the file (layout.h; 1 unused
+ *                                           element when FrameParams.fileOrder) -> resolve, aov
  *  image       uint[width·height]           resolve, then lines_draw -> host
  *  lineParams LineParams[1], lineSegs LineSeg[segments], lineTileCount uint[tiles + 1], lineTileCursor uint[tiles],
  *  lineBinEntries uint[total]               lines kernels (below)
@@ -387,7 +392,7 @@ typedef struct LineParams {
 
 /* AOV buffer float[CLR_AOV_CHANNELS·W·H]: plane c, pixel (i, j) at c·W·H + j·W + i, bottom row first. aov writes;
  * the host reads (Pipeline::readAov). */
-#define CLR_AOV_TRIANGLE_ID 0 /* input triangle index as a float, −1 = none */
+#define CLR_AOV_TRIANGLE_ID 0 /* the triangle's index in the file as a float, −1 = none */
 #define CLR_AOV_BARY_U 1      /* perspective-correct weight of input vertex 1 */
 #define CLR_AOV_BARY_V 2      /* perspective-correct weight of input vertex 2 */
 #define CLR_AOV_SCREEN_U 3    /* screen-space (affine) weight of input vertex 1 */
@@ -400,7 +405,7 @@ typedef struct LineParams {
 #define CLR_AOV_CHANNELS 10
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 368, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 372, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 48, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 44, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");

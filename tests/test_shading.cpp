@@ -611,8 +611,9 @@ TEST_CASE("16-bit visibility indices reach index 0xFFFE and 0xFFFF setup records
 {
   // One small triangle around each pixel centre of a 256 x 256 viewport, for
   // the first n pixels: n setup records, pixel i showing record i (the
-  // records keep input order). n = 0xFFFE is the most 16 bits hold besides
-  // 0xFFFF (none); one more record takes the 32-bit planes.
+  // records keep input order: no layout, Pipeline::setLayout). n = 0xFFFE is
+  // the most 16 bits hold besides 0xFFFF (none); one more record takes the
+  // 32-bit planes.
   const uint32_t size = 256;
   for (const uint32_t n : {0xFFFEu, 0xFFFFu}) {
     INFO("setup records: " << n);
@@ -624,6 +625,7 @@ TEST_CASE("16-bit visibility indices reach index 0xFFFE and 0xFFFF setup records
                     test::screen(x + 0.5f, y + 0.75f, 0.5f, size, size));
     }
     clr::Pipeline pipeline(test::context());
+    pipeline.setLayout(false);
     pipeline.uploadScene(g.mesh());
     const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(size, size));
     CHECK(pipeline.params().visIndex16 == (n < 0xFFFFu ? 1u : 0u));

@@ -344,7 +344,8 @@ TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and
   // the same, and the visibility buffer is tile (0, 0)'s block in each, so
   // the device bytes differ by what each triangle costs (shared.h): its
   // vertices (three positions of 12 bytes; ID frames upload no normals),
-  // its indices (12) and its count (1); and for a setup triangle its record
+  // its indices (12) and its count (1) (the scenes keep the file's order, so
+  // the layout binds no map, layout.h); and for a setup triangle its record
   // (48), its source word (4) and its bin entry (4). Each pipeline's first
   // frame allocates exactly what it needs (buffer.h).
   const uint32_t W = 64, H = 64, base = 16, m = 32;

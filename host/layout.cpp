@@ -1,0 +1,109 @@
+// layout.cpp — layOutScene (layout.h): the spatial order of the triangles
+// and the first-use order of the vertices, from meshoptimizer.
+#include "layout.h"
+
+#include <meshoptimizer.h>
+
+#include <cmath>
+#include <numeric>
+#include <random>
+
+namespace clr {
+
+// How much longer than the sorted order's the file's mean step between
+// consecutive triangles may be for the file to keep its order.
+constexpr double kCoherentSteps = 8.0;
+
+// Copies per-element arrays (`width` values per element) into the new order.
+template <typename T>
+static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint32_t>& order, size_t width)
+{
+  if (from.empty()) return {};
+  std::vector<T> out(order.size() * width);
+  for (size_t i = 0; i < order.size(); ++i)
+    for (size_t k = 0; k < width; ++k) out[i * width + k] = from[size_t(order[i]) * width + k];
+  return out;
+}
+
+// The mean distance between consecutive centroids in `order`.
+static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>& order)
+{
+  double sum = 0;
+  for (size_t i = 1; i < order.size(); ++i) {
+    const float* a = &centroids[3 * size_t(order[i - 1])];
+    const float* b = &centroids[3 * size_t(order[i])];
+    sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
+                     double(a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return order.size() > 1 ? sum / double(order.size() - 1) : 0.0;
+}
+
+SceneLayout layOutScene(const Mesh& file, bool enabled)
+{
+  SceneLayout out;
+  const size_t tris = file.numTris(), verts = file.numVerts();
+  out.fileTri.resize(tris);
+  out.fileVertex.resize(verts);
+  std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
+  std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
+  // An index past the vertices (the loader rejects such files) keeps the
+  // file's order: meshoptimizer may not see it.
+  for (uint32_t i : file.indices) enabled = enabled && i < verts;
+  if (!enabled || tris < 2) {
+    out.mesh = file;
+    return out;
+  }
+  // Step 1: the triangles by the Morton order of their centroids (a
+  // centroid that is not finite sorts as the origin).
+  std::vector<float> centroids(3 * tris);
+  for (size_t t = 0; t < tris; ++t)
+    for (int a = 0; a < 3; ++a) {
+      float sum = 0.0f;
+      for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
+      centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
+    }
+  std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
+  meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
+  std::vector<uint32_t> sorted(tris);
+  for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  // A file whose triangles already step between near neighbours keeps its
+  // order (docs/architecture.md, "Scene layout and locality": the sort
+  // slowed raster on such a file, whose order also served the depth skip).
+  const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
+  if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
+  std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
+  // Step 2: the vertices in the order the sorted triangles first use them,
+  // then the unused ones.
+  std::vector<uint32_t> newVertex(verts);  // file vertex -> laid-out, ~0u unused
+  size_t used = meshopt_optimizeVertexFetchRemap(newVertex.data(), sortedIndices.data(), sortedIndices.size(), verts);
+  for (size_t v = 0; v < verts; ++v)
+    if (newVertex[v] == ~0u) newVertex[v] = uint32_t(used++);
+  for (size_t v = 0; v < verts; ++v) out.fileVertex[newVertex[v]] = uint32_t(v);
+  for (uint32_t& i : sortedIndices) i = newVertex[i];
+  // Step 3: the copy.
+  Mesh& m = out.mesh;
+  m = file;  // every field; the reordered ones are replaced below
+  m.indices = std::move(sortedIndices);
+  m.positions = gather(file.positions, out.fileVertex, 3);
+  m.normals = gather(file.normals, out.fileVertex, 3);
+  m.uvs = gather(file.uvs, out.fileVertex, 2);
+  m.colors = gather(file.colors, out.fileVertex, 4);
+  m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
+  for (uint32_t& v : m.lines) v = newVertex[v];  // a file's own lines and points name vertices too
+  for (uint32_t& v : m.points) v = newVertex[v];
+  return out;
+}
+
+Mesh shuffledTriangles(const Mesh& mesh, uint32_t seed)
+{
+  std::vector<uint32_t> order(mesh.numTris());
+  std::iota(order.begin(), order.end(), 0u);
+  std::mt19937 random(seed);
+  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[random() % i]);
+  Mesh out = mesh;
+  out.indices = gather(mesh.indices, order, 3);
+  out.triMaterial = gather(mesh.triMaterial, order, 1);
+  return out;
+}
+
+}  // namespace clr

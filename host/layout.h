@@ -1,0 +1,38 @@
+// layout.h — the scene's memory layout on the device, made once at upload.
+//
+// Real meshes often store their triangles in no spatial order (scans, files
+// rewritten by tools), and then every stage's loads miss the caches
+// (docs/architecture.md, "Scene layout and locality"). layOutScene returns a
+// copy of a mesh with its triangles in spatial order (meshoptimizer's Morton
+// sort of the centroids, meshopt_spatialSortRemap, as
+// meshopt_spatialSortTriangles does) and its vertices in first-use order
+// (meshopt_optimizeVertexFetchRemap; vertices no triangle uses follow in
+// file order, so none is dropped). fileTri maps each laid-out triangle to
+// its index in the file and fileVertex each laid-out vertex to the file's:
+// what a user sees (--shade id, the triangle_id AOV, depth ties, read-backs)
+// speaks of the file's order through them. The same geometry, attributes
+// and materials, only reordered; an identity layout when `enabled` is false.
+#pragma once
+
+#include "scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace clr {
+
+struct SceneLayout {
+  Mesh mesh;                         // the laid-out copy
+  std::vector<uint32_t> fileTri;     // laid-out triangle -> the file's triangle
+  std::vector<uint32_t> fileVertex;  // laid-out vertex -> the file's vertex
+};
+
+SceneLayout layOutScene(const Mesh& file, bool enabled = true);
+
+// A copy of a mesh with its triangles in a random order (a Fisher-Yates
+// shuffle from mt19937(seed), the same on every platform) and each
+// triangle's vertices as they were: a file in no spatial order, for the
+// bench and the tests.
+Mesh shuffledTriangles(const Mesh& mesh, uint32_t seed);
+
+}  // namespace clr

@@ -1,0 +1,236 @@
+// test_layout.cpp — the scene's layout (layout.h) changes no output: for a
+// mesh in the file's order and a copy with its triangles shuffled (a fixed
+// seed), with the layout and without it (Pipeline::setLayout, the pipeline
+// as it was before layouts), the triangle IDs, the AOVs, the id shading and
+// the shaded images are the same, IDs speaking of each file's own order, and
+// an exact depth tie goes to the triangle earlier in the file.
+#include "test_support.h"
+
+#include "camera.h"
+#include "cli.h"
+#include "frame_settings.h"
+#include "layout.h"
+#include "scene.h"
+
+#include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+
+namespace {
+
+constexpr uint32_t kW = 256, kH = 192;
+
+// What a frame shows: IDs (input triangles per pixel, as readSetup names
+// them), the id shading's image, a shaded image and the AOV planes.
+struct Outputs {
+  std::vector<uint32_t> ids, idImage, shaded;
+  std::vector<float> aov;
+};
+
+Outputs renderAll(const clr::Mesh& mesh, bool layout, const clr::FrameSettings& base, uint32_t shadeMode)
+{
+  clr::Pipeline pipeline(test::context());
+  pipeline.setLayout(layout);
+  pipeline.uploadScene(mesh);
+  Outputs out;
+  clr::FrameSettings s = test::keepingVis(base);
+  s.shadeMode = CLR_SHADE_ID;
+  pipeline.render(s, out.idImage);
+  out.ids = test::readTriIds(pipeline);
+  pipeline.aov();
+  out.aov = pipeline.readAov();
+  s.shadeMode = shadeMode;
+  s.keepVisAttributes = false;
+  pipeline.render(s, out.shaded);
+  return out;
+}
+
+// The shuffle's order: the file triangle behind each shuffled triangle,
+// found by its vertex indices (shuffledTriangles keeps each triangle's).
+std::vector<uint32_t> shuffleOrder(const clr::Mesh& file, const clr::Mesh& shuffled)
+{
+  std::map<std::array<uint32_t, 3>, uint32_t> where;
+  for (uint32_t t = 0; t < file.numTris(); ++t)
+    where[{file.indices[3 * t], file.indices[3 * t + 1], file.indices[3 * t + 2]}] = t;
+  std::vector<uint32_t> order(shuffled.numTris());
+  for (uint32_t t = 0; t < shuffled.numTris(); ++t)
+    order[t] = where.at({shuffled.indices[3 * t], shuffled.indices[3 * t + 1], shuffled.indices[3 * t + 2]});
+  return order;
+}
+
+// Elements in which two outputs differ (bitwise for floats: -0 is not 0),
+// or SIZE_MAX when their sizes differ.
+template <typename T>
+size_t differing(const std::vector<T>& a, const std::vector<T>& b)
+{
+  if (a.size() != b.size()) return SIZE_MAX;
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
+  return n;
+}
+
+// The id image's colour of a triangle index (resolve_id: index + 1, 24 bits).
+uint32_t idColour(uint32_t tri)
+{
+  return tri == ref::kNone ? 0xFF000000u : 0xFF000000u | ((tri + 1u) & 0xFFFFFFu);
+}
+
+}  // namespace
+
+TEST_CASE("A shuffled mesh and its file order render the same with and without the layout", "[layout]")
+{
+  // Step 1: a real mesh (assimp's test model), framed as the CLI does, and
+  // its shuffled copy.
+  const std::string path = "/usr/share/assimp/models/OFF/Wuson.off";
+  const clr::Mesh file = clr::loadScene(path);
+  REQUIRE(file.numTris() > 1000);
+  const clr::Mesh shuffled = clr::shuffledTriangles(file, 12345);
+  const std::vector<uint32_t> order = shuffleOrder(file, shuffled);
+  REQUIRE(std::set<uint32_t>(order.begin(), order.end()).size() == file.numTris());
+  size_t moved = 0;
+  for (uint32_t t = 0; t < order.size(); ++t) moved += order[t] != t;
+  REQUIRE(moved > file.numTris() / 2);
+  const clr::Camera camera = clr::frameCamera(clr::CameraArgs{}, clr::meshBounds(file));
+  const uint32_t mode = GENERATE(CLR_SHADE_LAMBERT, CLR_SHADE_PHONG);
+  clr::RenderArgs args;
+  args.shadeMode = mode;
+  const clr::FrameSettings settings = clr::makeFrameSettings(args, camera, kW, kH, clr::meshBounds(file));
+  // Step 2: the four renders.
+  const Outputs fileBefore = renderAll(file, false, settings, mode);
+  const Outputs fileLaid = renderAll(file, true, settings, mode);
+  const Outputs shuffledBefore = renderAll(shuffled, false, settings, mode);
+  const Outputs shuffledLaid = renderAll(shuffled, true, settings, mode);
+  size_t covered = 0;
+  for (uint32_t id : fileBefore.ids) covered += id != ref::kNone;
+  REQUIRE(covered > kW * kH / 20);
+  // Step 3: the layout changes nothing of either file.
+  CHECK(differing(fileLaid.ids, fileBefore.ids) == 0);
+  CHECK(differing(fileLaid.idImage, fileBefore.idImage) == 0);
+  CHECK(differing(fileLaid.shaded, fileBefore.shaded) == 0);
+  CHECK(differing(fileLaid.aov, fileBefore.aov) == 0);
+  CHECK(differing(shuffledLaid.ids, shuffledBefore.ids) == 0);
+  CHECK(differing(shuffledLaid.idImage, shuffledBefore.idImage) == 0);
+  CHECK(differing(shuffledLaid.shaded, shuffledBefore.shaded) == 0);
+  CHECK(differing(shuffledLaid.aov, shuffledBefore.aov) == 0);
+  // Step 4: the shuffled file shows the same triangles by its own numbers,
+  // the same pixels and the same AOVs but for the triangle id plane.
+  std::vector<uint32_t> mapped(shuffledLaid.ids.size());
+  std::vector<uint32_t> mappedImage(mapped.size());
+  for (size_t p = 0; p < mapped.size(); ++p) {
+    const uint32_t id = shuffledLaid.ids[p];
+    mapped[p] = id == ref::kNone ? ref::kNone : order.at(id);
+  }
+  CHECK(differing(mapped, fileBefore.ids) == 0);
+  // (the id image is top row first, the ids bottom row first)
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const uint32_t id = shuffledLaid.idImage[size_t(kH - 1 - y) * kW + x];
+      const uint32_t tri = (id & 0xFFFFFFu) == 0 ? ref::kNone : order.at((id & 0xFFFFFFu) - 1);
+      mappedImage[size_t(kH - 1 - y) * kW + x] = idColour(tri);
+    }
+  CHECK(differing(mappedImage, fileBefore.idImage) == 0);
+  CHECK(differing(shuffledLaid.shaded, fileBefore.shaded) == 0);
+  const size_t plane = size_t(kW) * kH;
+  std::vector<float> aov = shuffledLaid.aov;
+  for (size_t p = 0; p < plane; ++p) {
+    const float id = aov[CLR_AOV_TRIANGLE_ID * plane + p];
+    aov[CLR_AOV_TRIANGLE_ID * plane + p] = id < 0.0f ? id : float(order.at(uint32_t(id)));
+  }
+  CHECK(differing(aov, fileBefore.aov) == 0);
+}
+
+TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the layout", "[layout]")
+{
+  // Step 1: overlapping random triangles all in the plane z = 0.25 (an
+  // identity MVP: every fragment of every triangle ties in depth), in a file
+  // order far from spatial, so the layout sorts them.
+  std::mt19937 random(31);
+  std::uniform_real_distribution<float> centre(-1.0f, 1.0f), offset(-0.3f, 0.3f);
+  test::Geometry g;
+  for (int t = 0; t < 2000; ++t) {
+    const glm::vec3 c(centre(random), centre(random), 0.25f);
+    glm::vec3 v[3];
+    for (glm::vec3& p : v) p = c + glm::vec3(offset(random), offset(random), 0.0f);
+    g.addTriangle(v[0], v[1], v[2]);
+  }
+  const clr::Mesh file = g.mesh();
+  const clr::SceneLayout layout = clr::layOutScene(file);
+  size_t reordered = 0;
+  for (uint32_t t = 0; t < layout.fileTri.size(); ++t) reordered += layout.fileTri[t] != t;
+  REQUIRE(reordered > file.numTris() / 2);
+  const uint32_t depthMode = GENERATE(CLR_DEPTH_FLOAT32, CLR_DEPTH_UNORM24);
+  clr::FrameSettings settings = test::idSettings(kW, kH);
+  settings.depthMode = depthMode;
+  // Step 2: with and without the layout, the same IDs, the oracle's: each
+  // covered pixel shows the earliest triangle of the file that covers it.
+  const Outputs before = renderAll(file, false, settings, CLR_SHADE_LAMBERT);
+  const Outputs laid = renderAll(file, true, settings, CLR_SHADE_LAMBERT);
+  CHECK(differing(laid.ids, before.ids) == 0);
+  CHECK(differing(laid.idImage, before.idImage) == 0);
+  CHECK(differing(laid.aov, before.aov) == 0);
+  ref::Options options;
+  options.width = kW;
+  options.height = kH;
+  options.depthMode = depthMode;
+  const ref::Result expected = ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), options);
+  CHECK(differing(laid.ids, expected.triId) == 0);
+  size_t later = 0;  // pixels won by a triangle that is not the file's first (ties decided)
+  for (uint32_t id : laid.ids) later += id != ref::kNone && id > 0;
+  CHECK(later > kW * kH / 4);
+}
+
+TEST_CASE("A frame with nothing in view keeps an image that is already its background", "[layout][resolve]")
+{
+  // One triangle over the middle of a 64 x 48 viewport (identity MVP); a
+  // translation moves it out of view.
+  test::Geometry g;
+  g.addTriangle({-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.0f, 0.5f, 0.0f});
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  clr::FrameSettings shown = test::idSettings(64, 48);
+  shown.shadeMode = CLR_SHADE_LAMBERT;
+  clr::FrameSettings away = shown;
+  away.mvp = glm::translate(glm::mat4(1.0f), glm::vec3(5.0f, 0.0f, 0.0f));
+  std::vector<uint32_t> image;
+  auto frame = [&](const clr::FrameSettings& s) {
+    const clr::FrameStats stats = pipeline.render(s, image);
+    CHECK(stats.stageMs.count("resolve") == 1);
+    return stats.imageKept;
+  };
+  auto all = [&](uint32_t colour) { return std::count(image.begin(), image.end(), colour) == long(image.size()); };
+  const uint32_t lit = CLR_BACKGROUND_LIT;
+  // Step 1: the first empty frame paints; the next keeps.
+  CHECK_FALSE(frame(away));
+  CHECK(all(lit));
+  CHECK(frame(away));
+  CHECK(all(lit));
+  // Step 2: a covered frame, then an empty one must paint again.
+  CHECK_FALSE(frame(shown));
+  CHECK_FALSE(all(lit));
+  CHECK_FALSE(frame(away));
+  CHECK(all(lit));
+  CHECK(frame(away));
+  // Step 3: another background (the id mode's) or another size paints.
+  clr::FrameSettings idAway = away;
+  idAway.shadeMode = CLR_SHADE_ID;
+  CHECK_FALSE(frame(idAway));
+  CHECK(all(CLR_BACKGROUND_UNLIT));
+  CHECK(frame(idAway));
+  clr::FrameSettings smaller = test::keepingVis(idAway);  // (lines test against the depth plane)
+  smaller.width = 32;
+  CHECK_FALSE(frame(smaller));
+  CHECK(image.size() == 32u * 48u);
+  CHECK(all(CLR_BACKGROUND_UNLIT));
+  // Step 4: lines drawn over the image make the next empty frame paint.
+  CHECK(frame(smaller));
+  pipeline.lines({LineSeg{}});
+  CHECK_FALSE(frame(smaller));
+  CHECK(all(CLR_BACKGROUND_UNLIT));
+}
