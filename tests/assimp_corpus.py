@@ -63,11 +63,9 @@ def render(args, tmp, index, path):
     device = os.environ.get("CLRASTER_TEST_DEVICE")
     if device:
         cmd += ["--device", device]
-    # No compile-ahead helper (compile_ahead.h): one process per file.
-    env = dict(os.environ, CLRASTER_COMPILE_AHEAD="0")
     try:
         r = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True, errors="replace",
-                           timeout=args.timeout, env=env)
+                           timeout=args.timeout)
     except subprocess.TimeoutExpired:
         return "FAIL:timeout after %g s" % args.timeout
     return classify(r.returncode, out_png, r.stderr)
