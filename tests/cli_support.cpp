@@ -29,9 +29,13 @@ Run run(const std::string& args)
 {
   // One stderr file per test process: CTest runs test cases in parallel.
   const std::string errPath = tempDir() + "/stderr-" + std::to_string(getpid()) + ".txt";
-  const std::string cmd = std::string("'") + CLRASTER_BIN + "' " + args + " 2>'" + errPath + "' </dev/null";
+  return runShell(std::string("'") + CLRASTER_BIN + "' " + args + " 2>'" + errPath + "' </dev/null", errPath);
+}
+
+Run runShell(const std::string& command, const std::string& errPath)
+{
   Run r;
-  FILE* pipe = popen(cmd.c_str(), "r");
+  FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe);
   char buf[4096];
   size_t n;

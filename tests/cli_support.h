@@ -17,6 +17,10 @@ struct Run {
 // /dev/null and stderr to a file, so stderr is never a terminal.
 Run run(const std::string& args);
 
+// Runs a shell command whose stderr the command itself sends to errPath:
+// its exit status, its stdout, and errPath's contents.
+Run runShell(const std::string& command, const std::string& errPath);
+
 // The whole contents of a file ("" when it cannot be read).
 std::string slurp(const std::string& path);
 

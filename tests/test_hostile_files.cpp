@@ -42,16 +42,7 @@ test::Run runHostile(const std::string& args, const std::string& input = "</dev/
   const bool pipe = input.size() && input.back() == '|';
   const std::string cmd = (pipe ? input + " " : std::string()) + "timeout 60 '" + CLRASTER_BIN + "' " + args + " 2>'" +
                           errPath + "'" + (pipe ? "" : " " + input);
-  test::Run r;
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = test::slurp(errPath);
-  return r;
+  return test::runShell(cmd, errPath);
 }
 
 // Each stderr line, less its "clraster: " or "clraster: warning: " prefix.
