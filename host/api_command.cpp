@@ -16,6 +16,7 @@
 #include "frame_writer.h"
 #include "image_io.h"
 #include "info.h"
+#include "program_cache.h"
 #include "quality.h"
 #include "views.h"
 
@@ -265,6 +266,11 @@ bool wantsHelp(const std::vector<std::string>& args)
 int infoCommand(const std::vector<std::string>& args)
 {
   return guarded([&] { return clr::infoCommand(args); });
+}
+
+int cacheCommand(const std::vector<std::string>& args)
+{
+  return guarded([&] { return clr::cacheCommand(args); });
 }
 
 std::string renderCommand(const RenderOptions& options, std::unique_ptr<Context>& context)

@@ -3,6 +3,7 @@
 #include "device.h"
 
 #include "embedded_kernels.h"
+#include "program_cache.h"
 #include "../kernels/fixed.h"
 
 #include <algorithm>
@@ -115,15 +116,23 @@ std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide, bool 
   return options.str();
 }
 
+std::string programOptions(const std::string& options, bool extras)
+{
+  return options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0");
+}
+
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options, bool extras)
 {
-  // Step 1: the embedded sources, in dependency order.
+  // Step 1: the program cache's binary for these sources, options and driver, if it holds one.
+  const std::string fullOptions = programOptions(options, extras);
+  if (cl::Program cached = loadCachedProgram(context, device, fullOptions); cached()) return cached;
+  // Step 2: the embedded sources, in dependency order.
   cl::Program::Sources sources;
   for (size_t i = 0; i < kEmbeddedKernelCount; ++i) sources.push_back(kEmbeddedKernels[i].text);
   cl::Program program(context, sources);
-  // Step 2: build; on failure report the device's log.
+  // Step 3: build; on failure report the device's log.
   try {
-    program.build({device}, (options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0")).c_str());
+    program.build({device}, fullOptions.c_str());
   } catch (const cl::Error& e) {
     std::string log;
     try {

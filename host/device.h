@@ -79,7 +79,11 @@ struct ClContext {
 // clipInput: -D CLR_CLIP_INPUT=1 (ClContext).
 std::string kernelBuildOptions(int lanes, bool prefetch = false, bool exactDivide = false, bool clipInput = false);
 
+// The options of one of the two programs: kernelBuildOptions' and CLR_EXTRAS.
+std::string programOptions(const std::string& options, bool extras);
+
 // extras: the extras program rather than the frame program (shared.h).
+// Loaded from the program cache when it holds this build (program_cache.h).
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options,
                          bool extras = false);
 

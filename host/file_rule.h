@@ -23,9 +23,10 @@ struct InputKind {
   uint64_t maxBytes;  // the size limit
 };
 
-inline constexpr InputKind kModelInput{"model file", uint64_t(1) << 30};        // and the files it names
-inline constexpr InputKind kTextureInput{"texture file", uint64_t(256) << 20};  // an image, compressed
-inline constexpr InputKind kViewsInput{"views file", uint64_t(16) << 20};       // JSON, ~100 bytes a view
+inline constexpr InputKind kModelInput{"model file", uint64_t(1) << 30};                  // and the files it names
+inline constexpr InputKind kTextureInput{"texture file", uint64_t(256) << 20};            // an image, compressed
+inline constexpr InputKind kViewsInput{"views file", uint64_t(16) << 20};                 // JSON, ~100 bytes a view
+inline constexpr InputKind kProgramCacheInput{"kernel cache file", uint64_t(256) << 20};  // program_cache.h
 
 // An open input file; closes it when destroyed.
 class InputFile {

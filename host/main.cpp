@@ -1,7 +1,7 @@
 // main.cpp — the clraster command line: `render` (one camera, or a views
-// file of many), `info`, `devices` and `help` (every command also answers
-// --help). A client of the library's public API (clraster.hpp) and nothing
-// else: each command is one of its calls.
+// file of many), `info`, `devices`, `cache` and `help` (every command also
+// answers --help). A client of the library's public API (clraster.hpp) and
+// nothing else: each command is one of its calls.
 //
 // Every failure, from a bad flag to a device that cannot hold the frame,
 // ends as one line on stderr and exit status 1; no output file is left
@@ -58,7 +58,8 @@ int run(const std::vector<std::string>& args)
     return args.empty() ? 1 : 0;
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if ((args[0] == "devices" || args[0] == "render" || args[0] == "info") && clraster::wantsHelp(rest)) {
+  if ((args[0] == "devices" || args[0] == "render" || args[0] == "info" || args[0] == "cache") &&
+      clraster::wantsHelp(rest)) {
     std::fputs(clraster::usageText(), stdout);
     return 0;
   }
@@ -68,7 +69,8 @@ int run(const std::vector<std::string>& args)
   }
   if (args[0] == "render") return renderCommand(rest);
   if (args[0] == "info") return clraster::infoCommand(rest);
-  throw clraster::Error("unknown command '" + clraster::userText(args[0]) + "' (render, info, devices, help)");
+  if (args[0] == "cache") return clraster::cacheCommand(rest);
+  throw clraster::Error("unknown command '" + clraster::userText(args[0]) + "' (render, info, devices, cache, help)");
 }
 
 }  // namespace

@@ -47,12 +47,15 @@ fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)"
 
-# Step 3: render (into PoCL's default kernel cache), or warm the caches and test.
+# Step 3: render (into PoCL's default kernel cache) and store the compiled
+# programs (clraster cache), or warm PoCL's caches and test.
 if [[ "$mode" == render ]]; then
   mkdir -p out
   ./build/clraster devices
   ./build/clraster render -o out/default.png --size 1280x720 --stats
   echo "bootstrap: wrote out/default.png"
+  echo "bootstrap: storing the compiled kernels, so later starts skip the compiler (clraster cache)"
+  ./build/clraster cache
 else
   warm=$(mktemp -d)
   trap 'rm -rf "$warm"' EXIT

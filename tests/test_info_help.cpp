@@ -38,7 +38,7 @@ std::string flagsLine(const std::string& out)
 TEST_CASE("cli: help and --help on every command print usage and exit 0", "[cli]")
 {
   for (const char* args : {"help", "--help", "-h", "render --help", "render -o x.png --help", "devices --help",
-                           "info --help", "info -h"}) {
+                           "cache --help", "info --help", "info -h"}) {
     INFO(args);
     const Run r = run(args);
     CHECK(r.status == 0);
@@ -51,7 +51,7 @@ TEST_CASE("cli: help and --help on every command print usage and exit 0", "[cli]
   CHECK(none.status == 1);
   CHECK(none.err.rfind("usage:\n", 0) == 0);
   expectError("devices extra", "devices: unexpected argument 'extra'");
-  expectError("frobnicate", "unknown command 'frobnicate' (render, info, devices, help)");
+  expectError("frobnicate", "unknown command 'frobnicate' (render, info, devices, cache, help)");
 }
 
 TEST_CASE("cli: -o must name a .png and --aov a .exr", "[cli]")

@@ -209,6 +209,9 @@ CLRASTER_API std::string userText(const std::string& text);
 CLRASTER_API bool wantsHelp(const std::vector<std::string>& args);
 // `clraster info ARGS`: prints what it reports on stdout; the exit status.
 CLRASTER_API int infoCommand(const std::vector<std::string>& args);
+// `clraster cache [--device SEL]`: compiles the kernels for the device and
+// stores their binaries, so later starts skip the compiler front end.
+CLRASTER_API int cacheCommand(const std::vector<std::string>& args);
 // `clraster render` with parsed options: one view (-o, --aov), or every view
 // of a --views file; writes the outputs and returns the --stats JSON line
 // ("" without --stats). Warnings go to stderr, --views' progress bar too
