@@ -91,8 +91,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.layout = false;
     } else if (a == "--view") {
       r.view = flagValue(args, i);
-      if (r.view != "far" && r.view != "fill" && r.view != "near")
-        throw Error("--view: '" + r.view + "' is not far, fill or near");
+      if (r.view != "far" && r.view != "fill" && r.view != "near" && r.view != "away")
+        throw Error("--view: '" + r.view + "' is not far, fill, near or away");
     } else if (a == "--warmup") {
       r.warmup = uint32_t(parseUnsigned(a, flagValue(args, i), 0, 100000));
     } else if (a == "--frames") {

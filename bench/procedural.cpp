@@ -120,6 +120,16 @@ Camera benchCamera(const BenchScene& scene, const std::string& view, uint32_t wi
 {
   const Bounds all = meshBounds(scene.mesh);
   if (view == "far") return frameCamera(CameraArgs{}, all);
+  if (view == "away") {
+    // The far camera turned round: the whole scene behind the eye, nothing in view.
+    const Camera far = frameCamera(CameraArgs{}, all);
+    CameraArgs args;
+    args.eye = far.eye;
+    args.target = far.eye + (far.eye - far.target);
+    args.zNear = far.zNear;
+    args.zFar = far.zFar;
+    return frameCamera(args, all);
+  }
   if (view == "fill") {
     // The far camera moved along its line of sight until the vertices'
     // projection reaches 90% of the way to the viewport's nearest border
@@ -142,7 +152,7 @@ Camera benchCamera(const BenchScene& scene, const std::string& view, uint32_t wi
     }
     return camera;
   }
-  if (view != "near") throw Error("--view: '" + view + "' is not far, fill or near");
+  if (view != "near") throw Error("--view: '" + view + "' is not far, fill, near or away");
   // The eye 0.75 focus radii from the focus centre, on the CLI's default
   // viewing diagonal; near and far planes from the whole scene's extent.
   const glm::vec3 centre = 0.5f * (scene.focus.min + scene.focus.max);

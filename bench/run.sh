@@ -18,6 +18,8 @@
 #                view, at 1920x1080
 #   grid5-fill   a 5x5 grid of Wuson.off copies (93k triangles) filling
 #                the 1920x1080 screen
+#   grid16-away  the 16x16 grid loaded and nothing in view (the far camera
+#                turned round)
 #   MESH ...     any further mesh files, like the real meshes
 #   input order  every case of a real mesh (the meshes, the Wuson grids,
 #                MESH ...) runs twice: in the file's triangle order, and
@@ -151,6 +153,8 @@ for view in far near; do
   both_orders "grid16-$view" "$grid_mesh" --grid 16 --view "$view" --size 1920x1080 --warmup "$warmup" \
     --frames "$frames"
 done
+# Nothing in view with the ~1M-triangle scene loaded (the far camera turned round).
+both_orders "grid16-away" "$grid_mesh" --grid 16 --view away --size 1920x1080 --warmup "$warmup" --frames "$frames"
 
 # Step 5: start-up, the whole process: empty caches, PoCL's cache warm, and
 # PoCL's cache warm with the programs stored by `clraster cache`.
@@ -203,6 +207,37 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "| fp32 FMA | 64-bit multiply-add (64x64) | 64-bit widening multiply-add (32x32→64) | copy (read + write) |"
   echo "|---|---|---|---|"
   echo "| $peak_fp32 GFLOP/s | $peak_mad G/s | $peak_wmad G/s | $peak_copy GB/s |"
+  echo
+  echo "## Targets"
+  echo
+  echo "The performance targets at 1920x1080 against llvmpipe in this run: the ~93k-triangle real mesh (grid5-fill, 5x5"
+  echo "copies of Wuson.off filling the screen), the ~1M-triangle real scene (grid16, 16x16 copies, far and near), both"
+  echo "in the file's order and shuffled; nothing in view with grid16 loaded (grid16-away); the added cost per triangle"
+  echo "over the sphere series from 100k to 10M (largest over smallest); and device memory over its minimum in every case."
+  echo
+  echo "| target | case | measured | goal | met |"
+  echo "|---|---|---|---|---|"
+  awk -F, "$columns"'NR > 1 { ratio[$c["name"]] = $c["ratio"]; ms[$c["name"]] = $c["clr_ms"]
+      if ($c["mem_ratio"] > mem) { mem = $c["mem_ratio"]; memCase = $c["name"] }
+      if ($c["name"] ~ /^sphere-/) { n[$c["name"]]++; t[$c["name"], n[$c["name"]]] = $c["triangles"]; f[$c["name"], n[$c["name"]]] = $c["clr_ms"] } }
+    function row(what, name, value, goal, ok) { printf "| %s | %s | %s | %s | %s |\n", what, name, value, goal, ok ? "yes" : "no" }
+    END {
+      split("grid5-fill shuffled-grid5-fill grid16-far shuffled-grid16-far grid16-near shuffled-grid16-near", cases, " ")
+      for (i = 1; i <= 6; i++) if (cases[i] in ratio)
+        row(i <= 2 ? "frame, ~93k-triangle real mesh" : "frame, ~1M-triangle real scene", cases[i],
+            sprintf("%.3fx llvmpipe", ratio[cases[i]]), "<= 0.20x", ratio[cases[i]] <= 0.20)
+      split("grid16-away shuffled-grid16-away", away, " ")
+      for (i = 1; i <= 2; i++) if (away[i] in ms)
+        row("empty view, 1M triangles loaded", away[i], ms[away[i]] " ms", "< 0.5 ms", ms[away[i]] < 0.5)
+      split("sphere-far sphere-near", series, " ")
+      for (j = 1; j <= 2; j++) {
+        s = series[j]; lo = hi = 0
+        for (i = 2; i <= n[s]; i++) if (t[s, i - 1] >= 90000) {
+          a = (f[s, i] - f[s, i - 1]) / (t[s, i] - t[s, i - 1]); if (!lo || a < lo) lo = a; if (a > hi) hi = a }
+        if (lo > 0) row("added cost per triangle, 100k to 10M", s, sprintf("%.2fx", hi / lo), "within 2x", hi / lo <= 2)
+      }
+      row("device memory over the minimum", "largest: " memCase, sprintf("%.2fx", mem), "<= 2x", mem <= 2)
+    }' "$csv"
   echo
   echo "## Cases"
   echo

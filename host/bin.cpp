@@ -24,6 +24,7 @@ void Pipeline::bin()
     throw Error("the frame needs " + std::to_string(numBinEntries_) +
                 " bin entries, more than the 2^32 a 32-bit offset can address");
   binEntries_.reserve(numBinEntries_);
+  if (numSetup_ == 0) return;  // nothing in view: no record to emit, no bin to fill
 
   // Step 2: emit the unclipped triangles into the setup buffer and their bins.
   std::vector<cl::Event> fills;

@@ -56,21 +56,25 @@ void Pipeline::raster()
   if (samples > UINT32_MAX / 3)
     throw Error("the frame needs " + std::to_string(samples) + " visibility samples, more than 32-bit offsets address");
   params_.visIndex16 = numSetup_ < 0xFFFFu && !settings_.wideVisIndex ? 1u : 0u;
-  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, offsetof(FrameParams, visIndex16), sizeof params_.visIndex16,
-                               &params_.visIndex16);
   // At most the whole viewport's tiles: no growth slack past that. (The
   // buffer counts 32-bit words: two 16-bit indices each.)
   const uint64_t most = uint64_t(numTiles_) * CLR_TILE_SIZE * CLR_TILE_SIZE * params_.samples;
   const uint64_t perWord = params_.visIndex16 ? 2 : 1;
   visIndex_.reserve((samples + perWord - 1) / perWord, false, (most + perWord - 1) / perWord);
   visAttr_.reserve(params_.visAttributes ? 3 * samples : 1, false, 3 * most);  // else a 1-element dummy
+  paintRank_.reserve(1);
+  // Nothing binned: no tile has a block to write, and resolve paints background only.
+  if (numBinEntries_ == 0) {
+    paintOrder_.clear();
+    return;
+  }
+  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, offsetof(FrameParams, visIndex16), sizeof params_.visIndex16,
+                               &params_.visIndex16);
   const bool painter = params_.visibility == CLR_VISIBILITY_PAINTER;
   if (painter)
     sortForPainter();
-  else {
+  else
     paintOrder_.clear();
-    paintRank_.reserve(1);
-  }
   // The method's variant: the default is in the frame program, the others
   // in the extras program (float edges take the bounding-box scan).
   cl::Kernel* kernel = &rasterKernel_;

@@ -13,7 +13,10 @@ namespace clr {
 void Pipeline::setup()
 {
   const uint32_t numTris = params_.numTris;
-  const uint32_t batches = (numTris + cl_.lanes - 1) / cl_.lanes;  // CLR_LANES triangles per work-item
+  // The count pass's work-items: one per cluster in the CPU shape (setup_triangles), else CLR_LANES triangles each.
+  const bool perCluster = cl_.lanes > 1 && !cl_.clipInput;
+  const uint32_t countItems = perCluster ? uint32_t((uint64_t(numTris) + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS)
+                                         : (numTris + cl_.lanes - 1) / cl_.lanes;
   // Step 1: count, and sum the counts, reading the clip-list length and the
   // total with one wait (one read of the counters, where the scans copy
   // their totals); if the clip list was too short, grow it and redo.
@@ -35,7 +38,7 @@ void Pipeline::setup()
     setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
             clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
             binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get());
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(batches),
+    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(countItems),
                                    cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
     record("setup_count", countEvent);
     scanListingBegin(triCount_, numTris, "setup_scan", CLR_COUNTER_SETUP_TOTAL);

@@ -364,21 +364,13 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
-                                          __global const float* clusterBounds, uint item)
+                                          uint item)
 {
   // Step 1: pass 1 input triangles from `first`; pass 2 the sources of records from `first` (lanes of clipped
   // records and past the end are not written).
   const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
   if (first >= (emit ? numSetup : params->numTris)) return;
-#if CLR_LANES > 1 && !CLR_CLIP_INPUT
-  // (Pass 1 skips a batch whose cluster lies beside the view, unloaded.)
-  if (!emit && params->clusterMargin > 0.0f &&
-      setup_cluster_outside(params, clusterBounds + 6 * (first / CLR_CLUSTER_TRIS))) {
-    setup_count_none(params, first, triCount);
-    return;
-  }
-#endif
   uint tri[CLR_LANES], from[CLR_LANES];
   if (emit) {
     for (uint lane = 0; lane < CLR_LANES; ++lane)
@@ -442,10 +434,28 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global uint* binEntries,  // pass 2: tileOffset[tiles]
     __global uint* source,      // pass 2: numSetup (the scan lists them; winding added)
     uint numSetup, uint pass,
-    __global const float* clusterBounds)  // pass 1, CPU work shape: 6 · ceil(numTris / CLR_CLUSTER_TRIS)
+    __global const float* clusterBounds)  // pass 1, CPU work shape (a work-item per cluster): 6 · clusters
 {
+#if CLR_LANES > 1 && !CLR_CLIP_INPUT
+  // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded.
+  if (pass == CLR_SETUP_PASS_COUNT) {
+    const uint cluster = get_global_id(0), first = cluster * CLR_CLUSTER_TRIS;
+    if (first >= params->numTris) return;
+    if (params->clusterMargin > 0.0f && setup_cluster_outside(params, clusterBounds + 6 * cluster)) {
+      const uint end = min(first + CLR_CLUSTER_TRIS, params->numTris);
+      for (uint t = first; t < end; ++t) triCount[t] = 0;
+      return;
+    }
+    CLR_NO_UNROLL
+    for (uint k = 0; k < CLR_CLUSTER_TRIS / CLR_LANES; ++k)
+      setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
+                           tileCursor, binEntries, source, numSetup, pass,
+                           cluster * (CLR_CLUSTER_TRIS / CLR_LANES) + k);
+    return;
+  }
+#endif
   setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
-                       tileCursor, binEntries, source, numSetup, pass, clusterBounds, get_global_id(0));
+                       tileCursor, binEntries, source, numSetup, pass, get_global_id(0));
 }
 
 /* The lowest s with source[s] == CLR_SOURCE_CLIPPED | tri: binary search, the listing being sorted by triangle. */

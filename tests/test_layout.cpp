@@ -186,7 +186,7 @@ TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the
   CHECK(later > kW * kH / 4);
 }
 
-TEST_CASE("A frame with nothing in view keeps an image that is already its background", "[layout][resolve]")
+TEST_CASE("A frame with nothing in view launches no raster and keeps an image already its background", "[layout][resolve]")
 {
   // One triangle over the middle of a 64 x 48 viewport (identity MVP); a
   // translation moves it out of view.
@@ -202,6 +202,9 @@ TEST_CASE("A frame with nothing in view keeps an image that is already its backg
   auto frame = [&](const clr::FrameSettings& s) {
     const clr::FrameStats stats = pipeline.render(s, image);
     CHECK(stats.stageMs.count("resolve") == 1);
+    // Work follows what is in view: nothing binned, no emit and no raster launched.
+    CHECK(stats.stageMs.count("raster") == stats.stageMs.count("setup_emit"));
+    CHECK(stats.stageMs.count("raster") == (stats.binEntries > 0 ? 1u : 0u));
     return stats.imageKept;
   };
   auto all = [&](uint32_t colour) { return std::count(image.begin(), image.end(), colour) == long(image.size()); };
@@ -211,11 +214,17 @@ TEST_CASE("A frame with nothing in view keeps an image that is already its backg
   CHECK(all(lit));
   CHECK(frame(away));
   CHECK(all(lit));
-  // Step 2: a covered frame, then an empty one must paint again.
+  // Step 2: a covered frame, then an empty one must paint again; the covered
+  // frame after them is the same image.
   CHECK_FALSE(frame(shown));
   CHECK_FALSE(all(lit));
+  const std::vector<uint32_t> shownImage = image;
   CHECK_FALSE(frame(away));
   CHECK(all(lit));
+  CHECK(frame(away));
+  CHECK_FALSE(frame(shown));
+  CHECK(image == shownImage);
+  CHECK_FALSE(frame(away));
   CHECK(frame(away));
   // Step 3: another background (the id mode's) or another size paints.
   clr::FrameSettings idAway = away;
