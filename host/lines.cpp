@@ -55,6 +55,7 @@ Pipeline::LinePass Pipeline::settingsLinePass() const
 void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
 {
   blankImage_ = BlankImage{};  // lines and points draw on the image
+  tileBlankValid_ = false;
   // Step 1: the line constants.
   const FrameSettings& s = settings_;
   if (!params_.visAttributes)

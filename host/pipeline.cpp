@@ -119,6 +119,7 @@ Pipeline::Pipeline(ClContext& cl)
       tileCursor_(memory_, "tile cursors"),
       tileSlot_(memory_, "tile slots"),
       binEntries_(memory_, "bin entries"),
+      tileBlank_(memory_, "tile background flags"),
       scanPartials_(memory_, "scan partial sums"),
       listingPartials_(memory_, "setup scan partial sums"),
       visIndex_(memory_, "visibility buffer (triangles)"),

@@ -382,7 +382,14 @@ class Pipeline {
   // that would paint the same leaves it as it is (resolve.cpp).
   struct BlankImage {
     uint32_t width = 0, height = 0, background = 0;
+    bool operator==(const BlankImage& o) const
+    {
+      return width == o.width && height == o.height && background == o.background;
+    }
   } blankImage_;
+  // The size and background tileBlank_'s flags were set under; false once anything but resolve drew on the image.
+  BlankImage tileBlankImage_;
+  bool tileBlankValid_ = false;
   bool resolveSkipped_ = false;   // this frame's image was such a blank one
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
@@ -425,6 +432,7 @@ class Pipeline {
   DeviceBuffer<uint32_t> setupSource_;  // each setup record's source word (shared.h)
   DeviceBuffer<ClipBary> clipBary_;
   DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
+  DeviceBuffer<uint32_t> tileBlank_;  // resolve: a tile already background (shared.h)
   DeviceBuffer<cl_ulong> scanPartials_, listingPartials_;
   // The tile scans' totals; binScanned_: setup() enqueued the scans before
   // its wait, as it does when the previous frame clipped nothing

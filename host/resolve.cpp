@@ -60,6 +60,11 @@ void Pipeline::resolve()
     leanResolve_ = timedPrefetch_ = resolvePrefetch_ = false;
     return;
   }
+  // The tiles' background flags (resolve.cl) hold while the image keeps its size and background and nothing else
+  // drew on it.
+  if (!tileBlankValid_ || !(tileBlankImage_ == blank)) tileBlank_.zero(numTiles_);
+  tileBlankImage_ = blank;
+  tileBlankValid_ = true;
   cl::Event event;
   // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
   const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
@@ -76,7 +81,7 @@ void Pipeline::resolve()
   setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
           triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
-          visPlane(), cl_uint(resolvePrefetch_), fileTri_.get());
+          visPlane(), cl_uint(resolvePrefetch_), fileTri_.get(), tileBlank_.get());
   const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
   record("resolve", event);

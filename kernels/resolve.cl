@@ -527,10 +527,10 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
       __global const float *normals, __global const float *uvs, __global const float *colours,                    \
       __global const uint *triMaterial, __global const Material *materials, __global const TextureDesc *texDescs, \
       __global const uint *texels, __global uint *image, __global const uint *tileSlot, uint visPlane,            \
-      uint prefetchRows, __global const uint *fileTri
+      uint prefetchRows, __global const uint *fileTri, __global uint *tileBlank
 #define CLR_RESOLVE_ARGS                                                                                     \
   params, visIndex, visAttr, tileOffset, setup, source, clipBary, indices, positions, normals, uvs, colours, \
-      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows, fileTri
+      triMaterial, materials, texDescs, texels, image, tileSlot, visPlane, prefetchRows, fileTri, tileBlank
 
 #ifdef CLR_PREFETCH
 /* Prefetch for tiles of many small triangles (> 128 binned), whose scattered records miss the caches. The host asks
@@ -670,24 +670,30 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
  * row's private arrays, not 16 (which overflow L1); the loop is a CLR_KERNEL_BODY. GPU: a work-item per row. */
 #if CLR_LANES == CLR_TILE_SIZE
 /* Fills tile (tileX, tileY) with the background if it has no bin entries, and says whether it did: one test and
- * 16 row stores, without the row functions' set-up. */
+ * 16 row stores, without the row functions' set-up. A tile already background (tileBlank, set here and cleared for
+ * a tile with entries; the host zeroes all when size, background or lines change the image) is left as it is. */
 CLR_INLINE bool resolve_empty_tile(__constant FrameParams* params, __global const uint* tileOffset,
-                                   __global uint* image, uint tileX, uint tileY)
+                                   __global uint* tileBlank, __global uint* image, uint tileX, uint tileY)
 {
   const uint tile = tileY * params->tilesX + tileX;
-  if (tileOffset[tile] != tileOffset[tile + 1]) return false;
+  if (tileOffset[tile] != tileOffset[tile + 1]) {
+    tileBlank[tile] = 0;
+    return false;
+  }
+  if (tileBlank[tile]) return true;
   const uint firstX = tileX * CLR_TILE_SIZE, count = min((uint)CLR_LANES, params->width - firstX);
   const uintL background = (uintL)CLR_BACKGROUND(params->shadeMode);
   const uint rows = min((uint)CLR_TILE_SIZE, params->height - tileY * CLR_TILE_SIZE);
   for (uint row = 0; row < rows; ++row)
     store_row(background, count, clr_image_pixel(params, image, firstX, tileY * CLR_TILE_SIZE + row));
+  tileBlank[tile] = 1;
   return true;
 }
 
 #define CLR_RESOLVE_KERNEL(name, resolveRow)                                                \
   CLR_KERNEL_BODY void name##_body(CLR_RESOLVE_PARAMS, uint tileX, uint tileY)              \
   {                                                                                         \
-    if (resolve_empty_tile(params, tileOffset, image, tileX, tileY)) return;                \
+    if (resolve_empty_tile(params, tileOffset, tileBlank, image, tileX, tileY)) return;     \
     for (uint row = 0; row < CLR_TILE_SIZE; ++row)                                          \
       resolveRow(CLR_RESOLVE_ARGS, (tileX * CLR_TILE_SIZE), (tileY * CLR_TILE_SIZE + row)); \
   }                                                                                         \

@@ -354,6 +354,8 @@ typedef struct VisSample {
  *  fileTri     uint[numTris]                host: each input triangle's index in the file (layout.h; 1 unused
  *                                           element when FrameParams.fileOrder) -> resolve, aov
  *  image       uint[width·height]           resolve, then lines_draw -> host
+ *  tileBlank   uint[tiles]                  host zeroes (size, background, lines changed) -> resolve (CPU shape: 1
+ *                                           = the tile is background since, so an empty tile is not repainted)
  *  lineParams LineParams[1], lineSegs LineSeg[segments], lineTileCount uint[tiles + 1], lineTileCursor uint[tiles],
  *  lineBinEntries uint[total]               lines kernels (below)
  *  aov         float[10·width·height]       aov -> host */

@@ -186,7 +186,8 @@ TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the
   CHECK(later > kW * kH / 4);
 }
 
-TEST_CASE("A frame with nothing in view launches no raster and keeps an image already its background", "[layout][resolve]")
+TEST_CASE("A frame with nothing in view launches no raster and keeps an image already its background",
+          "[layout][resolve]")
 {
   // One triangle over the middle of a 64 x 48 viewport (identity MVP); a
   // translation moves it out of view.
@@ -242,4 +243,45 @@ TEST_CASE("A frame with nothing in view launches no raster and keeps an image al
   pipeline.lines({LineSeg{}});
   CHECK_FALSE(frame(smaller));
   CHECK(all(CLR_BACKGROUND_UNLIT));
+}
+
+TEST_CASE("Tiles left as background are repainted only when the image changed under them", "[layout][resolve]")
+{
+  // A triangle moved between tiles, shade modes, sizes and a wireframe: every
+  // frame of one pipeline equals the same frame from a fresh pipeline, so the
+  // tiles resolve skips as already background (tileBlank) always are.
+  test::Geometry g;
+  g.addTriangle({-0.9f, -0.9f, 0.0f}, {-0.5f, -0.9f, 0.0f}, {-0.7f, -0.5f, 0.0f});
+  clr::FrameSettings base = test::idSettings(96, 64);
+  base.shadeMode = CLR_SHADE_LAMBERT;
+  auto moved = [&](float dx, float dy) {
+    clr::FrameSettings s = base;
+    s.mvp = glm::translate(glm::mat4(1.0f), glm::vec3(dx, dy, 0.0f));
+    return s;
+  };
+  std::vector<clr::FrameSettings> frames = {moved(0, 0), moved(1.2f, 0), moved(1.2f, 1.2f), moved(0, 0),
+                                            moved(5, 0), moved(0.6f, 0.6f)};
+  clr::FrameSettings unlit = moved(1.2f, 0);
+  unlit.shadeMode = CLR_SHADE_NORMAL;
+  frames.push_back(unlit);
+  frames.push_back(moved(0, 0));
+  clr::FrameSettings wire = test::keepingVis(moved(0.6f, 0));
+  wire.wireframe = CLR_WIREFRAME_OVERLAY;
+  frames.push_back(wire);
+  frames.push_back(test::keepingVis(moved(0, 1.2f)));
+  clr::FrameSettings wider = moved(0, 0);
+  wider.width = 128;
+  frames.push_back(wider);
+  frames.push_back(moved(1.2f, 1.2f));
+  clr::Pipeline pipeline(test::context());
+  pipeline.uploadScene(g.mesh());
+  for (size_t i = 0; i < frames.size(); ++i) {
+    INFO("frame " << i);
+    std::vector<uint32_t> image, fresh;
+    pipeline.render(frames[i], image);
+    clr::Pipeline once(test::context());
+    once.uploadScene(g.mesh());
+    once.render(frames[i], fresh);
+    CHECK(image == fresh);
+  }
 }
