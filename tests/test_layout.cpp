@@ -259,8 +259,8 @@ TEST_CASE("Tiles left as background are repainted only when the image changed un
     s.mvp = glm::translate(glm::mat4(1.0f), glm::vec3(dx, dy, 0.0f));
     return s;
   };
-  std::vector<clr::FrameSettings> frames = {moved(0, 0), moved(1.2f, 0), moved(1.2f, 1.2f), moved(0, 0),
-                                            moved(5, 0), moved(0.6f, 0.6f)};
+  std::vector<clr::FrameSettings> frames = {moved(0, 0), moved(1.2f, 0), moved(1.2f, 1.2f),
+                                            moved(0, 0), moved(5, 0),    moved(0.6f, 0.6f)};
   clr::FrameSettings unlit = moved(1.2f, 0);
   unlit.shadeMode = CLR_SHADE_NORMAL;
   frames.push_back(unlit);
