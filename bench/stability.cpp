@@ -103,6 +103,25 @@ FrameSettings methodSettings(const Args& a, const Method& m)
   return s;
 }
 
+// The --csv file with its header line, or a closed stream without --csv.
+std::ofstream openCsv(const Args& a, const char* header)
+{
+  std::ofstream csv;
+  if (a.csv.empty()) return csv;
+  csv.open(a.csv);
+  if (!csv) throw Error(a.csv + ": cannot write");
+  csv << header;
+  return csv;
+}
+
+// One result row to stdout, flushed (a long run shows its progress), and to the CSV.
+void emitRow(const char* line, std::ofstream& csv)
+{
+  std::fputs(line, stdout);
+  std::fflush(stdout);
+  if (csv) csv << line;
+}
+
 int coords(const Args& a)
 {
   ClContext cl("");
@@ -119,12 +138,7 @@ int coords(const Args& a)
   reaches.push_back(guard);
   for (double r = 131072.0; r <= 16777216.0; r *= 2.0) reaches.push_back(r);
   if (!a.reach.empty()) reaches = {a.reach == "guard" ? guard : double(parseUnsigned("--reach", a.reach, 1, 1u << 30))};
-  std::ofstream csv;
-  if (!a.csv.empty()) {
-    csv.open(a.csv);
-    if (!csv) throw Error(a.csv + ": cannot write");
-    csv << "reach,magnitude,clipped,method,holes,doubles,cracked,pixels\n";
-  }
+  std::ofstream csv = openCsv(a, "reach,magnitude,clipped,method,holes,doubles,cracked,pixels\n");
   // Step 2: per reach and method, cracks summed over the seeds.
   for (double reach : reaches)
     for (const Method& m : kMethods) {
@@ -142,9 +156,7 @@ int coords(const Args& a)
       std::snprintf(line, sizeof line, "%.0f,%.1f,%d,%s,%zu,%zu,%zu,%llu\n", reach, magnitude, reach > guard ? 1 : 0,
                     m.name, sum.holes, sum.doubles, sum.total(),
                     (unsigned long long)(uint64_t(a.width) * a.height * a.seeds));
-      std::fputs(line, stdout);
-      std::fflush(stdout);
-      if (csv) csv << line;
+      emitRow(line, csv);
     }
   return 0;
 }
@@ -198,12 +210,7 @@ stab::Scene stripMesh(uint32_t width, uint32_t height, double reach, uint32_t ro
 int walk(const Args& a)
 {
   ClContext cl("");
-  std::ofstream csv;
-  if (!a.csv.empty()) {
-    csv.open(a.csv);
-    if (!csv) throw Error(a.csv + ": cannot write");
-    csv << "case,param,reach,aspect,method,holes,doubles,cracked,pixels\n";
-  }
+  std::ofstream csv = openCsv(a, "case,param,reach,aspect,method,holes,doubles,cracked,pixels\n");
   struct Case {
     std::string name;
     double param, reach;
@@ -237,9 +244,7 @@ int walk(const Args& a)
       std::snprintf(line, sizeof line, "%s,%g,%g,%.0f,%s,%zu,%zu,%zu,%llu\n", c.name.c_str(), c.param, c.reach, aspect,
                     m.name, sum.holes, sum.doubles, sum.total(),
                     (unsigned long long)(uint64_t(a.width) * a.height * a.seeds));
-      std::fputs(line, stdout);
-      std::fflush(stdout);
-      if (csv) csv << line;
+      emitRow(line, csv);
     }
   return 0;
 }

@@ -54,8 +54,7 @@ Pipeline::LinePass Pipeline::settingsLinePass() const
 
 void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
 {
-  blankImage_ = BlankImage{};  // lines and points draw on the image
-  tileBlankValid_ = false;
+  blankImage_ = tileBlankImage_ = BlankImage{};  // lines and points draw on the image
   // Step 1: the line constants.
   const FrameSettings& s = settings_;
   if (!params_.visAttributes)

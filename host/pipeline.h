@@ -387,9 +387,9 @@ class Pipeline {
       return width == o.width && height == o.height && background == o.background;
     }
   } blankImage_;
-  // The size and background tileBlank_'s flags were set under; false once anything but resolve drew on the image.
+  // The size and background tileBlank_'s flags were set under; width 0 (none) once anything but resolve drew on
+  // the image.
   BlankImage tileBlankImage_;
-  bool tileBlankValid_ = false;
   bool resolveSkipped_ = false;   // this frame's image was such a blank one
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead

@@ -9,11 +9,10 @@
 #include "file_rule.h"
 #include "image_io.h"
 
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <sys/stat.h>
+#include <filesystem>
 
 namespace clr {
 
@@ -55,21 +54,11 @@ std::string hex(uint64_t v)
   return text;
 }
 
-std::string cachePath(const cl::Device& device, const std::string& options)
+// The file holding the program of this key ("" without a cache directory).
+std::string cachePath(uint64_t key)
 {
   const std::string dir = programCacheDir();
-  return dir.empty() ? std::string() : dir + "/" + hex(programCacheKey(device, options)) + ".bin";
-}
-
-// mkdir -p for the cache directory (0700: a cache is the user's own).
-void makeDirs(const std::string& dir)
-{
-  for (size_t at = 1; at <= dir.size(); ++at) {
-    if (at < dir.size() && dir[at] != '/') continue;
-    const std::string part = dir.substr(0, at);
-    if (mkdir(part.c_str(), 0700) != 0 && errno != EEXIST)
-      throw Error(userText(part) + ": cannot create the kernel cache directory (" + std::strerror(errno) + ")");
-  }
+  return dir.empty() ? std::string() : dir + "/" + hex(key) + ".bin";
 }
 
 }  // namespace
@@ -99,13 +88,13 @@ uint64_t programCacheKey(const cl::Device& device, const std::string& options)
 
 cl::Program loadCachedProgram(const cl::Context& context, const cl::Device& device, const std::string& options)
 {
-  const std::string path = cachePath(device, options);
-  struct stat st;
-  if (path.empty() || stat(path.c_str(), &st) != 0) return cl::Program();
-  try {
+  const uint64_t key = programCacheKey(device, options);
+  const std::string path = cachePath(key);
+  if (path.empty()) return cl::Program();
+  try {  // a missing file, like any other, is a miss (readInputFile throws)
     const std::string file = readInputFile(path, kProgramCacheInput);
     if (file.size() <= kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0) return cl::Program();
-    if (getU64(file, 8) != programCacheKey(device, options)) return cl::Program();
+    if (getU64(file, 8) != key) return cl::Program();
     if (getU64(file, 16) != file.size() - kHeaderBytes) return cl::Program();
     Fnv64 sum;
     sum.add(file.data() + kHeaderBytes, file.size() - kHeaderBytes);
@@ -121,19 +110,23 @@ cl::Program loadCachedProgram(const cl::Context& context, const cl::Device& devi
 
 std::string storeProgramBinary(const cl::Program& program, const cl::Device& device, const std::string& options)
 {
-  const std::string path = cachePath(device, options);
+  const uint64_t key = programCacheKey(device, options);
+  const std::string path = cachePath(key);
   if (path.empty()) throw Error("no kernel cache directory (CLRASTER_CACHE_DIR is empty, HOME unset)");
   const cl::Program::Binaries binaries = program.getInfo<CL_PROGRAM_BINARIES>();
   if (binaries.size() != 1 || binaries[0].empty()) throw Error("the OpenCL driver gave no program binary to cache");
   const std::vector<unsigned char>& payload = binaries[0];
   std::vector<unsigned char> file(kMagic, kMagic + sizeof kMagic);
-  putU64(file, programCacheKey(device, options));
+  putU64(file, key);
   putU64(file, payload.size());
   Fnv64 sum;
   sum.add(payload.data(), payload.size());
   putU64(file, sum.h);
   file.insert(file.end(), payload.begin(), payload.end());
-  makeDirs(programCacheDir());
+  const std::string dir = programCacheDir();
+  std::error_code failed;
+  std::filesystem::create_directories(dir, failed);
+  if (failed) throw Error(userText(dir) + ": cannot create the kernel cache directory (" + failed.message() + ")");
   writeFileAtomic(path, file);
   return path;
 }

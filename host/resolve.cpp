@@ -53,8 +53,7 @@ void Pipeline::resolve()
   // contents: it is reallocated only to grow, which changes the size.
   const BlankImage blank{params_.width, params_.height, CLR_BACKGROUND(params_.shadeMode)};
   const bool nothing = numBinEntries_ == 0;
-  resolveSkipped_ = nothing && blankImage_.width == blank.width && blankImage_.height == blank.height &&
-                    blankImage_.background == blank.background;
+  resolveSkipped_ = nothing && blankImage_ == blank;
   blankImage_ = nothing ? blank : BlankImage{};
   if (resolveSkipped_) {
     leanResolve_ = timedPrefetch_ = resolvePrefetch_ = false;
@@ -62,9 +61,8 @@ void Pipeline::resolve()
   }
   // The tiles' background flags (resolve.cl) hold while the image keeps its size and background and nothing else
   // drew on it.
-  if (!tileBlankValid_ || !(tileBlankImage_ == blank)) tileBlank_.zero(numTiles_);
+  if (!(tileBlankImage_ == blank)) tileBlank_.zero(numTiles_);
   tileBlankImage_ = blank;
-  tileBlankValid_ = true;
   cl::Event event;
   // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
   const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
