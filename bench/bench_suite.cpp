@@ -1,8 +1,8 @@
 // bench_suite.cpp — clraster_bench: one benchmark case, clraster against Mesa llvmpipe, both shading lambert per
 // pixel (the same image), and llvmpipe again with its fixed-function lighting per vertex.
 //
-//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--no-layout] [--view far|fill|near]
-//                  [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
+//   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--no-layout] [--no-speculation]
+//                  [--view far|fill|near] [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
 //   clraster_bench [the case's arguments] --serve [--shade MODE]
@@ -14,7 +14,8 @@
 // line; --csv appends a row (columns: columns() below); --images writes both lambert images. --serve: turns driven
 // by bench/ab.sh (serveTurns). Every failure is one line on stderr and exit status 1.
 // --shuffle SEED puts the triangles in a random order (layout.h: a file in no spatial order, the same camera);
-// --no-layout keeps the file's order on the device (Pipeline::setLayout(false)), for bench/ab.sh turns.
+// --no-layout keeps the file's order on the device (Pipeline::setLayout(false)), for bench/ab.sh turns;
+// --no-speculation makes every frame wait for its counts mid-frame (Pipeline::setSpeculation(false)), likewise.
 #include "llvmpipe_render.h"
 #include "procedural.h"
 
@@ -51,6 +52,7 @@ struct Args {
   uint32_t gridSide = 0;
   std::optional<uint32_t> shuffleSeed;  // --shuffle
   bool layout = true;                   // --no-layout clears it
+  bool speculation = true;              // --no-speculation clears it
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
   uint32_t warmup = 2, frames = 5, rounds = 4;
@@ -89,6 +91,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.shuffleSeed = uint32_t(parseUnsigned(a, flagValue(args, i), 0, UINT32_MAX));
     } else if (a == "--no-layout") {
       r.layout = false;
+    } else if (a == "--no-speculation") {
+      r.speculation = false;
     } else if (a == "--view") {
       r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "fill" && r.view != "near" && r.view != "away")
@@ -419,6 +423,7 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.setLayout(args.layout);
+  pipeline.setSpeculation(args.speculation);
   pipeline.uploadScene(mesh);
   RenderArgs frameArgs;  // the CLI's defaults, but the shading
   frameArgs.shadeMode = args.shadeMode;
@@ -469,6 +474,7 @@ int run(const Args& args)
   ClContext cl(args.device);
   Pipeline pipeline(cl);
   pipeline.setLayout(args.layout);
+  pipeline.setSpeculation(args.speculation);
   pipeline.uploadScene(mesh);
   const FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);

@@ -18,8 +18,10 @@ void Pipeline::bin()
     enqueueBinScans();
     takeBinTotals(readCounters());
   }
-  numBinEntries_ = binTotal_;
-  numVisSlots_ = uint32_t(slotTotal_);
+  // (A speculative frame's: the capacities, scan.cl checking its totals.)
+  numBinEntries_ = speculate_ ? specCaps_[2] : binTotal_;
+  numVisSlots_ = speculate_ ? specCaps_[3] : uint32_t(slotTotal_);
+  usedVisSlots_ = numVisSlots_;
   if (numBinEntries_ > UINT32_MAX)
     throw Error("the frame needs " + std::to_string(numBinEntries_) +
                 " bin entries, more than the 2^32 a 32-bit offset can address");

@@ -214,6 +214,7 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   fileTriHost_ = std::move(layout.fileTri);
   fileVertex_ = std::move(layout.fileVertex);
   ++sceneUploads_;
+  framedScene_ = false;
   fileOrder_ = true;
   for (uint32_t t = 0; t < fileTriHost_.size() && fileOrder_; ++t) fileOrder_ = fileTriHost_[t] == t;
   if (fileOrder_)
@@ -350,6 +351,93 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, 0, sizeof params_, &params_);
   std::vector<cl::Event> fills;
   counters_.zero(CLR_NUM_COUNTERS, &fills);
+  speculate_ = speculate_ && speculationPays(settings);
+  speculated_ = missed_ = false;  // (runFrame sets them after the frame)
+  if (speculate_)
+    cl_.queue.enqueueWriteBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_SPECULATIVE * sizeof(uint32_t),
+                                 sizeof specCaps_, specCaps_);
+}
+
+bool Pipeline::speculationPays(const FrameSettings& settings)
+{
+  // Step 1: a frame of this scene came before, which neither clipped nor drew lines: setup_clip, bin_fill_clipped
+  // and the lines stage are launched from totals. (A frame with nothing in view waits: it is cheap already.)
+  if (!speculationOn_ || !framedScene_ || clippedLastFrame_ || settings.wireframe != CLR_WIREFRAME_OFF ||
+      !scene_.lines.empty() || !scene_.points.empty() || numSetup_ == 0 || numBinEntries_ == 0)
+    return false;
+  // Step 2: the capacities. Emit is launched over the last total and a quarter more; indices stay 16-bit while the
+  // last frame's were (raster.cpp), and the listing needs a spare entry per scan chunk (scan.cl).
+  const uint64_t chunks = scanChunks(params_.numTris).count;
+  uint64_t records = std::min<uint64_t>(setup_.capacity(),
+                                        setupSource_.capacity() - std::min<uint64_t>(setupSource_.capacity(), chunks));
+  records = std::min<uint64_t>(records, uint64_t(numSetup_) + numSetup_ / 4 + 1024);
+  const bool index16 = numSetup_ < 0xFFFFu && !settings.wideVisIndex;
+  if (index16) records = std::min<uint64_t>(records, 0xFFFEu);
+  const uint64_t tileSamples = uint64_t(CLR_TILE_SIZE) * CLR_TILE_SIZE * params_.samples;
+  uint64_t slots = visIndex_.capacity() * (index16 ? 2 : 1) / tileSamples;
+  if (params_.visAttributes) slots = std::min<uint64_t>(slots, visAttr_.capacity() / (3 * tileSamples));
+  slots = std::min<uint64_t>(slots, numTiles_);
+  const uint64_t bins = std::min<uint64_t>(binEntries_.capacity(), UINT32_MAX);
+  if (records == 0 || slots == 0) return false;
+  specCaps_[0] = 1;
+  specCaps_[1] = uint32_t(records);
+  specCaps_[2] = uint32_t(bins);
+  specCaps_[3] = uint32_t(slots);
+  return true;
+}
+
+bool Pipeline::takeSpeculativeTotals()
+{
+  const std::vector<uint32_t>& c = endCounters_;
+  if (c[CLR_COUNTER_OVERFLOW]) return false;
+  const uint64_t total = counterTotal(c, CLR_COUNTER_SETUP_TOTAL);
+  numSetup_ = uint32_t(total);  // (scan.cl: within specCaps_)
+  numCulledUnclipped_ = uint32_t(params_.numTris - total);
+  takeBinTotals(c);
+  numBinEntries_ = binTotal_;
+  usedVisSlots_ = uint32_t(slotTotal_);  // numVisSlots_ stays the visibility buffer's stride
+  // Nothing binned after all: resolve painted every tile background, as a waiting frame's would (resolve.cpp).
+  if (numBinEntries_ == 0) blankImage_ = BlankImage{params_.width, params_.height, CLR_BACKGROUND(params_.shadeMode)};
+  return true;
+}
+
+void Pipeline::runFrame(const FrameSettings& settings, ImageView* view, std::vector<uint32_t>* rgba)
+{
+  // Step 1: the frame, speculative where it pays: no wait between setup's
+  // count and resolve; its counters come back behind the image.
+  bool missed = false;
+  for (bool speculate = true;; speculate = false) {
+    speculate_ = speculate;
+    try {
+      runStages(settings);
+    } catch (...) {
+      speculate_ = false;  // the stages called one by one never speculate
+      throw;
+    }
+    if (speculate_) {
+      endCounters_.resize(CLR_NUM_COUNTERS);
+      cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, 0, CLR_NUM_COUNTERS * sizeof(uint32_t),
+                                  endCounters_.data());
+    }
+    // Step 2: the image (the blocking map or read waits for every command).
+    if (view) {
+      const uint64_t bytes = uint64_t(params_.width) * params_.height * sizeof(uint32_t);
+      mappedImage_ = cl_.queue.enqueueMapBuffer(image_.get(), CL_TRUE, CL_MAP_READ, 0, bytes);
+      view->pixels = static_cast<const uint32_t*>(mappedImage_);
+      view->width = params_.width;
+      view->height = params_.height;
+    } else {
+      readImage(*rgba);
+    }
+    // Step 3: a speculative frame that did not fit runs again, waiting.
+    speculated_ = speculate_;
+    if (!speculate_ || takeSpeculativeTotals()) break;
+    missed = true;
+    unmapImage();
+  }
+  speculate_ = false;
+  missed_ = missed;
+  framedScene_ = true;
 }
 
 void Pipeline::runStages(const FrameSettings& settings)
@@ -365,19 +453,13 @@ void Pipeline::runStages(const FrameSettings& settings)
 
 FrameStats Pipeline::render(const FrameSettings& settings, std::vector<uint32_t>& rgba)
 {
-  runStages(settings);
-  readImage(rgba);
+  runFrame(settings, nullptr, &rgba);
   return finishFrame();
 }
 
 FrameStats Pipeline::render(const FrameSettings& settings, ImageView& view)
 {
-  runStages(settings);
-  const uint64_t bytes = uint64_t(params_.width) * params_.height * sizeof(uint32_t);
-  mappedImage_ = cl_.queue.enqueueMapBuffer(image_.get(), CL_TRUE, CL_MAP_READ, 0, bytes);
-  view.pixels = static_cast<const uint32_t*>(mappedImage_);
-  view.width = params_.width;
-  view.height = params_.height;
+  runFrame(settings, &view, nullptr);
   return finishFrame();
 }
 
@@ -400,6 +482,8 @@ FrameStats Pipeline::finishFrame()
   }
   if (resolveSkipped_) stats.stageMs["resolve"] += 0.0;  // the image was already the frame's (resolve.cpp)
   stats.imageKept = resolveSkipped_;
+  stats.speculative = speculated_;
+  stats.speculationMissed = missed_;
   if (!events_.empty()) stats.deviceIdleMs = double(lastEnd - firstStart - std::min(busy, lastEnd - firstStart)) * 1e-6;
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];

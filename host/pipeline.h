@@ -176,6 +176,9 @@ struct FrameStats {
   bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
   bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
   bool imageKept = false;        // nothing binned, and the image was already this frame's background: no resolve
+  // Sized from the last frame's totals, without a wait mid-frame (Pipeline::runFrame); and whether such a try did
+  // not fit and the frame ran again, waiting.
+  bool speculative = false, speculationMissed = false;
 };
 
 class Pipeline {
@@ -194,6 +197,9 @@ class Pipeline {
   // Whether uploadScene lays scenes out (default); tests compare with the
   // file's own order.
   void setLayout(bool on) { layoutOn_ = on; }
+  // Whether render() may size a frame from the last one's totals (default;
+  // see runFrame). Off, every frame waits for its counts mid-frame.
+  void setSpeculation(bool on) { speculationOn_ = on; }
   // The milliseconds of the last uploadScene: the layout, the cluster bounds
   // and the uploads (--stats prepare_ms).
   double prepareMs() const { return prepareMs_; }
@@ -277,7 +283,7 @@ class Pipeline {
   {
     const double pixels = double(params_.width) * params_.height;
     const double perSample = (params_.visIndex16 ? 2.0 : 4.0) + (params_.visAttributes ? 12.0 : 0.0);
-    return perSample * params_.samples * numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
+    return perSample * params_.samples * usedVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
   const ClContext& cl() const { return cl_; }
@@ -285,6 +291,17 @@ class Pipeline {
  private:
   // beginFrame to resolve (and lines): the frame of both render()s.
   void runStages(const FrameSettings& settings);
+  // The frame of both render()s, its image mapped (view) or read (rgba):
+  // sized from the last frame's totals where speculationPays, else waiting
+  // for its counts; a speculative frame that did not fit is run again so.
+  void runFrame(const FrameSettings& settings, ImageView* view, std::vector<uint32_t>* rgba);
+  // Whether this frame may be sized from the last one's: a frame of this
+  // scene without clipping, lines or points came before, and the buffers hold
+  // some records, bins and tile slots. Sets the capacities (specCaps_).
+  bool speculationPays(const FrameSettings& settings);
+  // After a speculative frame's image: whether it fitted (then its totals
+  // become the frame's, as a waiting frame reads them).
+  bool takeSpeculativeTotals();
   // Unmaps the image an ImageView showed (before any kernel may write it).
   void unmapImage();
   // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total,
@@ -398,8 +415,16 @@ class Pipeline {
   uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
   uint64_t numBinEntries_ = 0;
-  uint32_t numVisSlots_ = 0;  // non-empty tiles: blocks of the visibility buffer (shared.h)
-  Mesh scene_;                // host copy, laid out: lazy uploads read it
+  uint32_t numVisSlots_ = 0;   // tile slots of the visibility buffer's stride: its non-empty tiles, or more (shared.h)
+  uint32_t usedVisSlots_ = 0;  // the frame's non-empty tiles (bytesPerPixel)
+  // Speculative frames (runFrame): on, this frame's, whether one of this
+  // scene ran and its capacities (the CLR_COUNTER_SPECULATIVE words:
+  // flag, records, bins, slots), the counters read after its image, and
+  // the last frame's outcome (FrameStats).
+  bool speculationOn_ = true, speculate_ = false, framedScene_ = false, speculated_ = false, missed_ = false;
+  uint32_t specCaps_[4] = {};
+  std::vector<uint32_t> endCounters_;
+  Mesh scene_;  // host copy, laid out: lazy uploads read it
   bool layoutOn_ = true;
   double prepareMs_ = 0;
   std::vector<uint32_t> fileTriHost_, fileVertex_;  // the layout's maps (layout.h)

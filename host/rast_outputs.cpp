@@ -13,6 +13,7 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   if (numTris > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("too many triangles");
   if (numVerts > UINT32_MAX / 4) throw Error("too many vertices");
   ++sceneUploads_;
+  framedScene_ = false;
   positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
   indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
   // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).

@@ -17,6 +17,16 @@ CLR_INLINE void scan_store_total(__global uint* counters, uint totalAt, ulong to
   counters[totalAt + 1] = (uint)(total >> 32);
 }
 
+/* Whether a frame sized from the last one's totals (counters[CLR_COUNTER_SPECULATIVE], Pipeline::beginFrame) fits
+ * what the host gave it: nothing clipped (setup_clip did not run), and the setup records (the listing's total, copied
+ * before the tile scan), bin entries and tile slots within the capacities among the counters. */
+CLR_INLINE bool scan_frame_fits(__global const uint* counters, ulong bins, ulong slots)
+{
+  const ulong records = counters[CLR_COUNTER_SETUP_TOTAL] | (ulong)counters[CLR_COUNTER_SETUP_TOTAL + 1] << 32;
+  return counters[CLR_COUNTER_CLIPPED_TRIS] == 0 && records <= counters[CLR_COUNTER_CAP_RECORDS] &&
+         bins <= counters[CLR_COUNTER_CAP_BINS] && slots <= counters[CLR_COUNTER_CAP_SLOTS];
+}
+
 /* CLR_SCAN_PARTIALS: exclusive scan of partials[0 .. numChunks), total into partials[numChunks]. GPU: one
  * work-group with barriers. CPU: one work-item scans the <= 4096 sums, no barrier (barriers slow PoCL's compile). */
 #if CLR_LANES == 1
@@ -97,7 +107,7 @@ CLR_INLINE uint scan_value(__global const uint* src, __global const uchar* byteC
 CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
                                  __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
                                  __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources,
-                                 __local ulong* steps)
+                                 uint keep, bool write, __local ulong* steps)
 {
   const uint g = get_group_id(0), lid = get_local_id(0);
   const uint begin = g * chunk, end = min(begin + chunk, n);
@@ -109,15 +119,15 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
     const ulong packed = ((ulong)v << 8) | (ulong)(v != 0);
     const ulong inclusive = scan_group_inclusive(packed, steps), exclusive = inclusive - packed;
     const ulong stepTotal = steps[CLR_SCAN_GROUP(1) - 1];
-    if (apply && i < end) {
+    if (apply && i < end && write) {
       if (listSources) {
         // A culled triangle stores nothing: a shared spare entry would take many work-items' stores at once.
         const ulong record = running + (exclusive >> 8);
         if (v == 1) second[record] = i;
         for (uint k = 0; v == CLR_MAX_SUBTRIS && k < CLR_MAX_SUBTRIS; ++k) second[record + k] = CLR_SOURCE_CLIPPED | i;
       } else {
-        dst[i] = (uint)(running + (exclusive >> 8));
-        if (alsoNonZero) second[i] = (uint)(runningNonZero + (exclusive & 0xFF));
+        dst[i] = (uint)(running + (exclusive >> 8)) & keep;
+        if (alsoNonZero) second[i] = (uint)(runningNonZero + (exclusive & 0xFF)) & keep;
       }
     }
     running += stepTotal >> 8;
@@ -128,8 +138,8 @@ CLR_INLINE void scan_chunk_group(__global const uint* src, __global uint* dst, u
     partials[g] = running;
     if (alsoNonZero) nonZeroPartials[g] = runningNonZero;
   } else if (g == numChunks - 1 && !listSources) {
-    dst[n] = (uint)partials[numChunks];
-    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+    dst[n] = (uint)partials[numChunks] & keep;
+    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks] & keep;
   }
 }
 #else
@@ -150,7 +160,8 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
 /* CPU shape of reduce and apply: work-item g walks chunk g alone. */
 CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
                                 __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
-                                __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources)
+                                __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources,
+                                uint keep, bool write)
 {
   const uint g = get_global_id(0);
   if (g >= numChunks) return;
@@ -173,7 +184,7 @@ CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, ui
   }
   ulong running = partials[g];
   if (listSources) {
-    scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
+    if (write) scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
     return;
   }
   if (!alsoNonZero) {
@@ -186,15 +197,15 @@ CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, ui
     ulong runningNonZero = nonZeroPartials[g];
     for (uint i = begin; i < end; ++i) {
       const uint v = src[i];
-      dst[i] = (uint)running;
-      second[i] = (uint)runningNonZero;
+      dst[i] = (uint)running & keep;
+      second[i] = (uint)runningNonZero & keep;
       running += v;
       runningNonZero += v != 0;
     }
   }
   if (g == numChunks - 1) {
-    dst[n] = (uint)partials[numChunks];
-    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks];
+    dst[n] = (uint)partials[numChunks] & keep;
+    if (alsoNonZero) second[n] = (uint)nonZeroPartials[numChunks] & keep;
   }
 }
 #endif
@@ -211,6 +222,18 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
   __local ulong groupSums[CLR_SCAN_GROUP(1)];
 #endif
   __global ulong* nonZeroPartials = partials + numChunks + 1;
+  // A speculative frame that does not fit (scan_frame_fits): the tile scan writes every offset and slot as 0, so
+  // that raster and resolve see empty tiles, and the listing writes nothing; the host redoes the frame.
+  uint keep = ~0u;
+  bool write = true;
+  if (phase == CLR_SCAN_APPLY && counters[CLR_COUNTER_SPECULATIVE]) {
+    if (listSources) {
+      write = !counters[CLR_COUNTER_OVERFLOW];
+    } else if (alsoNonZero && !scan_frame_fits(counters, partials[numChunks], nonZeroPartials[numChunks])) {
+      keep = 0u;
+      if (get_global_id(0) == 0) counters[CLR_COUNTER_OVERFLOW] = 1u;
+    }
+  }
   if (phase == CLR_SCAN_PARTIALS) {  // the same phase for the whole group, so its barriers are safe
 #if CLR_LANES == 1
     scan_partials(partials, numChunks, groupSums, counters, totalAt);
@@ -223,10 +246,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
   } else {
 #if CLR_LANES == 1
     scan_chunk_group(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
-                     listSources, groupSums);
+                     listSources, keep, write, groupSums);
 #else
     scan_chunk_item(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
-                    listSources);
+                    listSources, keep, write);
 #endif
   }
 }

@@ -370,6 +370,10 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   // records and past the end are not written).
   const uint first = item * CLR_LANES;
   const bool emit = pass == CLR_SETUP_PASS_EMIT;
+  // A speculative frame launches emit over its capacity: the records end at the scan's total, and a frame that does
+  // not fit emits nothing (scan.cl, scan_frame_fits).
+  if (emit && counters[CLR_COUNTER_OVERFLOW]) return;
+  if (emit) numSetup = min(numSetup, counters[CLR_COUNTER_SETUP_TOTAL]);
   if (first >= (emit ? numSetup : params->numTris)) return;
   uint tri[CLR_LANES], from[CLR_LANES];
   if (emit) {

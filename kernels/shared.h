@@ -163,14 +163,20 @@ typedef uint32_t uint;
 #define CLR_SCAN_APPLY 1u    /* each chunk rescanned from its offset */
 
 /* counters: uint[CLR_NUM_COUNTERS], zeroed per frame; setup kernels and the scans write, the host reads at its
- * wait (one read). The host adds the count pass's culls, derived from the scan total (Pipeline::setup). */
+ * wait (one read), or after the image in a frame sized from the last one's totals (speculative, Pipeline::beginFrame,
+ * which writes the capacities). The host adds the count pass's culls, derived from the scan total (Pipeline::setup). */
 #define CLR_COUNTER_CLIPPED_TRIS 0 /* input triangles that needed clipping (clip list length) */
 #define CLR_COUNTER_CULLED_TRIS 1  /* clipped input triangles that produced nothing */
 #define CLR_COUNTER_DEAD_RECORDS 2 /* padding records written by setup_clip */
 #define CLR_COUNTER_SETUP_TOTAL 3  /* 2 words: setup records (the setup counts' scan) */
 #define CLR_COUNTER_SLOT_TOTAL 5   /* 2 words: visibility-buffer tile slots (bin_scan's non-zero counts) */
 #define CLR_COUNTER_BIN_TOTAL 7    /* 2 words: bin entries (bin_scan) */
-#define CLR_NUM_COUNTERS 9
+#define CLR_COUNTER_SPECULATIVE 9  /* host: 1 when the frame is sized from the last one's totals */
+#define CLR_COUNTER_CAP_RECORDS 10 /* host, speculative: the most setup records the buffers and emit's launch hold */
+#define CLR_COUNTER_CAP_BINS 11    /* host, speculative: binEntries' capacity */
+#define CLR_COUNTER_CAP_SLOTS 12   /* host, speculative: the tile slots of the visibility buffer's stride */
+#define CLR_COUNTER_OVERFLOW 13    /* bin_scan, speculative: 1 when the frame does not fit (scan.cl); host redoes it */
+#define CLR_NUM_COUNTERS 14
 #define CLR_SCAN_NO_TOTAL 0xFFFFFFFFu /* scan_chunks' totalAt: no copy among the counters */
 
 /* FrameParams[1], 368 bytes: the host writes it per frame; every kernel reads it. */
