@@ -404,7 +404,7 @@ bool Pipeline::takeSpeculativeTotals()
 void Pipeline::runFrame(const FrameSettings& settings, ImageView* view, std::vector<uint32_t>* rgba)
 {
   // Step 1: the frame, speculative where it pays: no wait between setup's
-  // count and resolve; its counters come back behind the image.
+  // count and resolve.
   bool missed = false;
   for (bool speculate = true;; speculate = false) {
     speculate_ = speculate;
@@ -413,11 +413,6 @@ void Pipeline::runFrame(const FrameSettings& settings, ImageView* view, std::vec
     } catch (...) {
       speculate_ = false;  // the stages called one by one never speculate
       throw;
-    }
-    if (speculate_) {
-      endCounters_.resize(CLR_NUM_COUNTERS);
-      cl_.queue.enqueueReadBuffer(counters_.get(), CL_FALSE, 0, CLR_NUM_COUNTERS * sizeof(uint32_t),
-                                  endCounters_.data());
     }
     // Step 2: the image (the blocking map or read waits for every command).
     if (view) {
@@ -429,7 +424,9 @@ void Pipeline::runFrame(const FrameSettings& settings, ImageView* view, std::vec
     } else {
       readImage(*rgba);
     }
-    // Step 3: a speculative frame that did not fit runs again, waiting.
+    // Step 3: a speculative frame's counters, read once the queue is idle (an asynchronous read ahead of the
+    // image slowed NVIDIA's driver, docs/gpu.md); one that did not fit runs again, waiting.
+    if (speculate_) endCounters_ = readCounters();
     speculated_ = speculate_;
     if (!speculate_ || takeSpeculativeTotals()) break;
     missed = true;
