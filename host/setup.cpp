@@ -23,30 +23,9 @@ void Pipeline::setup()
   // When the previous frame clipped nothing, bin()'s tile scans go before the
   // wait too, so that a frame without clipping waits once; a frame that does clip counts
   // again without them, since setup_clip adds to the tile counts they scan.
-  // A speculative frame (Pipeline::runFrame) does not wait: its sizes are
-  // the capacities beginFrame chose, and scan.cl empties its tiles when the
-  // totals exceed them.
-  if (speculate_) {
-    std::vector<cl::Event> fills;
-    tileCount_.zero(numTiles_ + 1, &fills);
-    cl::Event countEvent;
-    setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
-            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get());
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(countItems),
-                                   cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
-    record("setup_count", countEvent);
-    scanListingBegin(triCount_, numTris, "setup_scan", CLR_COUNTER_SETUP_TOTAL);
-    enqueueBinScans();
-    binScanned_ = true;
-    numSetup_ = specCaps_[1];
-    numClipped_ = 0;
-    scanListingFinish(triCount_, numTris, numSetup_, setupSource_, "setup_scan");
-    return;
-  }
   uint32_t clipped = 0;
   cl_ulong total = 0;
-  bool scanTiles = !clippedLastFrame_;
+  bool scanTiles = speculate_ || !clippedLastFrame_;
   for (;;) {
     std::vector<cl::Event> fills;
     tileCount_.zero(numTiles_ + 1, &fills);
@@ -64,6 +43,16 @@ void Pipeline::setup()
     record("setup_count", countEvent);
     scanListingBegin(triCount_, numTris, "setup_scan", CLR_COUNTER_SETUP_TOTAL);
     if (scanTiles) enqueueBinScans();
+    // A speculative frame (Pipeline::runFrame) does not wait: its sizes are
+    // the capacities beginFrame chose, and scan.cl empties its tiles when the
+    // totals exceed them.
+    if (speculate_) {
+      binScanned_ = true;
+      numSetup_ = specCaps_[1];
+      numClipped_ = 0;
+      scanListingFinish(triCount_, numTris, numSetup_, setupSource_, "setup_scan");
+      return;
+    }
     const std::vector<uint32_t> counters = readCounters();
     clipped = counters[CLR_COUNTER_CLIPPED_TRIS];
     total = counterTotal(counters, CLR_COUNTER_SETUP_TOTAL);
