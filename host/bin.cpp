@@ -35,7 +35,8 @@ void Pipeline::bin()
   cl::Event emitEvent;
   setArgs(setupEmitKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
           clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-          binEntries_.get(), setupSource_.get(), numSetup_, uint32_t(CLR_SETUP_PASS_EMIT), clusterBounds_.get());
+          binEntries_.get(), setupSource_.get(), numSetup_, uint32_t(CLR_SETUP_PASS_EMIT), clusterBounds_.get(),
+          clusterCount_.get());
   cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches),
                                  cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &emitEvent);
   record("setup_emit", emitEvent);

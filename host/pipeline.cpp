@@ -102,6 +102,7 @@ Pipeline::Pipeline(ClContext& cl)
       uvs_(memory_, "vertex texture coordinates"),
       colors_(memory_, "vertex colours"),
       clusterBounds_(memory_, "cluster bounds"),
+      clusterCount_(memory_, "cluster counts"),
       indices_(memory_, "triangle indices"),
       triMaterial_(memory_, "triangle materials"),
       fileTri_(memory_, "triangles' file order"),
@@ -225,6 +226,7 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   indices_.upload(scene_.indices);
   const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
   clusterBounds_.upload(bounds);
+  clusterCount_.reserve(std::max<size_t>(1, bounds.size() / 6), true);
   sceneMin_ = glm::vec3(INFINITY);
   sceneMax_ = glm::vec3(-INFINITY);
   for (size_t c = 0; c + 5 < bounds.size(); c += 6)
@@ -367,7 +369,7 @@ bool Pipeline::speculationPays(const FrameSettings& settings)
     return false;
   // Step 2: the capacities. Emit is launched over the last total and a quarter more; indices stay 16-bit while the
   // last frame's were (raster.cpp), and the listing needs a spare entry per scan chunk (scan.cl).
-  const uint64_t chunks = scanChunks(params_.numTris).count;
+  const uint64_t chunks = scanChunks(listingItems()).count;
   uint64_t records = std::min<uint64_t>(setup_.capacity(),
                                         setupSource_.capacity() - std::min<uint64_t>(setupSource_.capacity(), chunks));
   records = std::min<uint64_t>(records, uint64_t(numSetup_) + numSetup_ / 4 + 1024);

@@ -313,14 +313,14 @@ class Pipeline {
   // copied to the counters at nonZeroTotalAt).
   void scanWithNonZero(DeviceBuffer<uint32_t>& data, DeviceBuffer<uint32_t>& nonZero, uint32_t n, const char* stage,
                        uint32_t totalAt, uint32_t nonZeroTotalAt);
-  // The scan of the setup counts (one byte per input triangle), which lists
-  // the input triangle behind each setup record into `sources` (shared.h,
-  // setupSource), in two calls: Begin sums the chunks and copies the total
-  // to the counters at totalAt; Finish sizes `sources` to it and lists.
+  // The scan of the setup counts (triCount_, one byte per input triangle,
+  // or clusterCount_ where listsClusters), which lists the input triangle
+  // behind each setup record into setupSource_, in two calls: Begin sums
+  // the chunks and copies the total to the counters at
+  // CLR_COUNTER_SETUP_TOTAL; Finish sizes setupSource_ to it and lists.
   // Other scans may run between the two.
-  void scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, uint32_t totalAt);
-  void scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
-                         DeviceBuffer<uint32_t>& sources, const char* stage);
+  void scanListingBegin(const char* stage);
+  void scanListingFinish(uint64_t total, const char* stage);
   // scan_chunks' arguments (scan.cl): src into dst, with alsoNonZero the
   // non-zero counts into `second` too; a listing reads the byte counts
   // `bytes` and writes the sources into `second`; the totals go to the
@@ -330,9 +330,20 @@ class Pipeline {
     const cl::Buffer& dst;
     const cl::Buffer& second;
     const cl::Buffer& bytes;
-    uint32_t alsoNonZero, listing;
+    uint32_t alsoNonZero, listing;  // listing: CLR_SCAN_LIST_*
     uint32_t totalAt, nonZeroTotalAt;
+    uint32_t listEnd = 0;  // CLR_SCAN_LIST_CLUSTERS: the input triangles
   };
+  ScanJob listingJob() const;  // the listing's arguments (scanListingBegin)
+  // Whether setup's listing scans the clusters' totals (CPU shape, scene
+  // input: the count pass runs a work-item per cluster), and over how many
+  // values (clusters, else input triangles).
+  bool listsClusters() const { return cl_.lanes > 1 && !cl_.clipInput; }
+  uint32_t listingItems() const
+  {
+    return listsClusters() ? uint32_t((uint64_t(params_.numTris) + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS)
+                           : params_.numTris;
+  }
   // scan_chunks' phases: the chunk sums and their scan into `partials`,
   // then the rescan of every chunk.
   void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
@@ -440,7 +451,8 @@ class Pipeline {
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
-  DeviceBuffer<float> clusterBounds_;  // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
+  DeviceBuffer<float> clusterBounds_;    // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
+  DeviceBuffer<uint32_t> clusterCount_;  // their setup counts' sums (shared.h), CPU work shape; else a dummy
   // The bounds of the scene's finite vertices (empty: min > max), for
   // FrameParams.clusterMargin.
   glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};

@@ -23,6 +23,7 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   fileTri_.reserve(1);
   // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
   clusterBounds_.upload(std::vector<float>(6, NAN));
+  clusterCount_.reserve(1);
   sceneMin_ = glm::vec3(INFINITY);
   sceneMax_ = glm::vec3(-INFINITY);
   paintOrder_.clear();

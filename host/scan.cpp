@@ -1,10 +1,11 @@
 // scan.cpp — host side of kernels/scan.cl: an exclusive in-place prefix sum
 // over n counts (data has n + 1 slots; data[n] receives the total), also of
 // the non-zero counts into another buffer in the same launches
-// (scanWithNonZero), or of the setup counts' bytes listing each record's
-// input triangle (scanListingBegin, then scanListingFinish once the total is
+// (scanWithNonZero), or of the setup counts listing each record's input
+// triangle (scanListingBegin, then scanListingFinish once the total is
 // known, with partial sums of its own so that other scans may run between
-// the two). The 64-bit total is read back, so callers size buffers exactly
+// the two): the bytes, or in the CPU shape the clusters' sums, so that a
+// cluster the count pass skipped costs one value. The 64-bit total is read back, so callers size buffers exactly
 // and detect totals that do not fit in 32 bits; or it is copied among the
 // frame's counters, so that several scans and setup's counters come back
 // with one read (each read of its own leaves the device idle).
@@ -31,11 +32,12 @@ void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& 
   const cl::NDRange group(CLR_SCAN_GROUP(cl_.lanes));
   cl::Event reduceEvent, partialsEvent;
   setArgs(scanReduceKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_REDUCE, job.alsoNonZero, job.listing);
+          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_REDUCE, job.alsoNonZero, job.listing, job.listEnd);
   cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count), group, nullptr,
                                  &reduceEvent);
   setArgs(scanPartialsKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_PARTIALS, job.alsoNonZero, job.listing);
+          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_PARTIALS, job.alsoNonZero, job.listing,
+          job.listEnd);
   cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, group, group, nullptr, &partialsEvent);
   record(stage, reduceEvent);
   record(stage, partialsEvent);
@@ -46,7 +48,7 @@ void Pipeline::scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_u
   const ScanChunks c = scanChunks(n);
   cl::Event applyEvent;
   setArgs(scanApplyKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_APPLY, job.alsoNonZero, job.listing);
+          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_APPLY, job.alsoNonZero, job.listing, job.listEnd);
   cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count),
                                  cl::NDRange(CLR_SCAN_GROUP(cl_.lanes)), nullptr, &applyEvent);
   record(stage, applyEvent);
@@ -71,21 +73,29 @@ void Pipeline::scanWithNonZero(DeviceBuffer<uint32_t>& data, DeviceBuffer<uint32
   scanApply(job, n, scanPartials_, stage);
 }
 
-void Pipeline::scanListingBegin(const DeviceBuffer<uint8_t>& counts, uint32_t n, const char* stage, uint32_t totalAt)
+void Pipeline::scanListingBegin(const char* stage)
 {
-  // (src, dst and second are not read here: any buffer of the frame will do.)
-  const ScanJob job{counts.get(), counts.get(), counts.get(), counts.get(), 0u, 1u, totalAt, CLR_SCAN_NO_TOTAL};
-  scanSums(job, n, listingPartials_, stage);
+  // (dst is not written: any buffer of the frame will do.)
+  const ScanJob job = listingJob();
+  scanSums(job, listingItems(), listingPartials_, stage);
 }
 
-void Pipeline::scanListingFinish(const DeviceBuffer<uint8_t>& counts, uint32_t n, uint64_t total,
-                                 DeviceBuffer<uint32_t>& sources, const char* stage)
+void Pipeline::scanListingFinish(uint64_t total, const char* stage)
 {
-  if (total == 0) return;                        // no record to list (a frame with nothing in view)
-  sources.reserve(total + scanChunks(n).count);  // + a spare entry per chunk (scan.cl)
-  const uint32_t none = CLR_SCAN_NO_TOTAL;       // the total was copied by Begin
-  const ScanJob job{counts.get(), counts.get(), sources.get(), counts.get(), 0u, 1u, none, none};
-  scanApply(job, n, listingPartials_, stage);
+  if (total == 0) return;                                          // no record to list (nothing in view)
+  setupSource_.reserve(total + scanChunks(listingItems()).count);  // + a spare entry per chunk (scan.cl)
+  ScanJob job = listingJob();
+  job.totalAt = CLR_SCAN_NO_TOTAL;  // (Begin copied it)
+  scanApply(job, listingItems(), listingPartials_, stage);
+}
+
+Pipeline::ScanJob Pipeline::listingJob() const
+{
+  if (listsClusters())
+    return {clusterCount_.get(),    clusterCount_.get(),     setupSource_.get(), triCount_.get(), 0u,
+            CLR_SCAN_LIST_CLUSTERS, CLR_COUNTER_SETUP_TOTAL, CLR_SCAN_NO_TOTAL,  params_.numTris};
+  return {triCount_.get(),     triCount_.get(),         setupSource_.get(), triCount_.get(), 0u,
+          CLR_SCAN_LIST_BYTES, CLR_COUNTER_SETUP_TOTAL, CLR_SCAN_NO_TOTAL};
 }
 
 }  // namespace clr

@@ -37,11 +37,12 @@ void Pipeline::setup()
     setupSource_.reserve(1);
     setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
             clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get());
+            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get(),
+            clusterCount_.get());
     cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(countItems),
                                    cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
     record("setup_count", countEvent);
-    scanListingBegin(triCount_, numTris, "setup_scan", CLR_COUNTER_SETUP_TOTAL);
+    scanListingBegin("setup_scan");
     if (scanTiles) enqueueBinScans();
     // A speculative frame (Pipeline::runFrame) does not wait: its sizes are
     // the capacities beginFrame chose, and scan.cl empties its tiles when the
@@ -50,7 +51,7 @@ void Pipeline::setup()
       binScanned_ = true;
       numSetup_ = specCaps_[1];
       numClipped_ = 0;
-      scanListingFinish(triCount_, numTris, numSetup_, setupSource_, "setup_scan");
+      scanListingFinish(numSetup_, "setup_scan");
       return;
     }
     const std::vector<uint32_t> counters = readCounters();
@@ -69,7 +70,7 @@ void Pipeline::setup()
   // Step 2: the sizes of this frame's outputs, and the listing of the input
   // triangle behind each record, for the emit pass.
   if (total > UINT32_MAX) throw Error("more than 2^32 screen triangles after clipping");
-  scanListingFinish(triCount_, numTris, total, setupSource_, "setup_scan");
+  scanListingFinish(total, "setup_scan");
   numSetup_ = uint32_t(total);
   numClipped_ = clipped;
   if (uint64_t(clipped) * CLR_MAX_SUBTRIS > CLR_MAX_CLIP_SLOTS)

@@ -5,7 +5,8 @@
  * Sums are 64-bit; totals land in partials[numChunks] and, unless CLR_SCAN_NO_TOTAL, counters[totalAt..+1] (low,
  * high), so the host fails loudly on a total over 32 bits and reads all totals at once. One kernel, scan_chunks,
  * runs three phases (CLR_SCAN_REDUCE, _PARTIALS, _APPLY): one compile. With listSources the apply phase over the
- * byte counts (0, 1 or CLR_MAX_SUBTRIS) lists each setup record's input triangle (setupSource) instead of offsets.
+ * byte counts (0, 1 or CLR_MAX_SUBTRIS) lists each setup record's input triangle (setupSource) instead of offsets;
+ * CLR_SCAN_LIST_CLUSTERS scans the clusters' totals instead, and reads the bytes of non-empty clusters only.
  */
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
@@ -157,11 +158,12 @@ CLR_INLINE void scan_list_sources(__global const uchar* counts, uint begin, uint
   }
 }
 
-/* CPU shape of reduce and apply: work-item g walks chunk g alone. */
+/* CPU shape of reduce and apply: work-item g walks chunk g alone. With CLR_SCAN_LIST_CLUSTERS the values are the
+ * clusters' totals and apply lists the bytes of triangles [c · CLR_CLUSTER_TRIS, listEnd) of non-empty clusters c. */
 CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, uint n, uint chunk, uint numChunks,
                                 __global ulong* partials, __global ulong* nonZeroPartials, __global uint* second,
                                 __global const uchar* byteCounts, uint phase, uint alsoNonZero, uint listSources,
-                                uint keep, bool write)
+                                uint listEnd, uint keep, bool write)
 {
   const uint g = get_global_id(0);
   if (g >= numChunks) return;
@@ -169,7 +171,7 @@ CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, ui
   const uint end = min(begin + chunk, n);
   if (phase == CLR_SCAN_REDUCE) {
     ulong sum = 0, nonZero = 0;
-    if (listSources) {
+    if (listSources == CLR_SCAN_LIST_BYTES) {
       for (uint i = begin; i < end; ++i) sum += byteCounts[i];
     } else {
       for (uint i = begin; i < end; ++i) {
@@ -183,6 +185,17 @@ CLR_INLINE void scan_chunk_item(__global const uint* src, __global uint* dst, ui
     return;
   }
   ulong running = partials[g];
+  if (listSources == CLR_SCAN_LIST_CLUSTERS) {
+    for (uint c = begin; write && c < end; ++c) {
+      const uint v = src[c];
+      if (v == 0) continue;  // a cluster beside the view: its bytes were not written (setup.cl)
+      const uint first = c * CLR_CLUSTER_TRIS;
+      scan_list_sources(byteCounts, first, min(first + CLR_CLUSTER_TRIS, listEnd), running, partials[numChunks] + g,
+                        second);
+      running += v;
+    }
+    return;
+  }
   if (listSources) {
     if (write) scan_list_sources(byteCounts, begin, end, running, partials[numChunks] + g, second);
     return;
@@ -216,7 +229,9 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
     __global uint* second,             // listSources: the sources (setup records); alsoNonZero: n + 1; else unused
     __global const uchar* byteCounts,  // listSources: n, read instead of src; else unused
     __global uint* counters,           // CLR_NUM_COUNTERS: the partials phase copies the totals there
-    uint totalAt, uint nonZeroTotalAt, uint phase, uint alsoNonZero, uint listSources)
+    uint totalAt, uint nonZeroTotalAt, uint phase, uint alsoNonZero,
+    uint listSources,  // CLR_SCAN_LIST_*; CLR_SCAN_LIST_CLUSTERS in the CPU shape only
+    uint listEnd)      // CLR_SCAN_LIST_CLUSTERS: the input triangles (the last cluster's end)
 {
 #if CLR_LANES == 1
   __local ulong groupSums[CLR_SCAN_GROUP(1)];
@@ -249,7 +264,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SCAN_GROUP(CLR_LANES), 1, 1))) 
                      listSources, keep, write, groupSums);
 #else
     scan_chunk_item(src, dst, n, chunk, numChunks, partials, nonZeroPartials, second, byteCounts, phase, alsoNonZero,
-                    listSources, keep, write);
+                    listSources, listEnd, keep, write);
 #endif
   }
 }

@@ -438,16 +438,17 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global uint* binEntries,  // pass 2: tileOffset[tiles]
     __global uint* source,      // pass 2: numSetup (the scan lists them; winding added)
     uint numSetup, uint pass,
-    __global const float* clusterBounds)  // pass 1, CPU work shape (a work-item per cluster): 6 · clusters
+    __global const float* clusterBounds,  // pass 1, CPU work shape (a work-item per cluster): 6 · clusters
+    __global uint* clusterCount)          // pass 1, CPU work shape: clusters (the listing scans them, scan.cl)
 {
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
-  // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded.
+  // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded,
+  // its total 0 and its bytes unwritten. The cluster's total is its bytes' sum.
   if (pass == CLR_SETUP_PASS_COUNT) {
     const uint cluster = get_global_id(0), first = cluster * CLR_CLUSTER_TRIS;
     if (first >= params->numTris) return;
     if (params->clusterMargin > 0.0f && setup_cluster_outside(params, clusterBounds + 6 * cluster)) {
-      const uint end = min(first + CLR_CLUSTER_TRIS, params->numTris);
-      for (uint t = first; t < end; ++t) triCount[t] = 0;
+      clusterCount[cluster] = 0;
       return;
     }
     CLR_NO_UNROLL
@@ -455,6 +456,10 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
       setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
                            tileCursor, binEntries, source, numSetup, pass,
                            cluster * (CLR_CLUSTER_TRIS / CLR_LANES) + k);
+    const uint end = min(first + CLR_CLUSTER_TRIS, params->numTris);
+    uint sum = 0;
+    for (uint t = first; t < end; ++t) sum += triCount[t];
+    clusterCount[cluster] = sum;
     return;
   }
 #endif

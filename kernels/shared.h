@@ -161,6 +161,11 @@ typedef uint32_t uint;
 #define CLR_SCAN_REDUCE 0u   /* a sum per chunk */
 #define CLR_SCAN_PARTIALS 2u /* one work-group scans the chunk sums */
 #define CLR_SCAN_APPLY 1u    /* each chunk rescanned from its offset */
+/* The listSources argument of scan_chunks: no listing, the setup counts' bytes (one per input triangle), or the
+ * clusters' totals (setup.cl, CPU shape), whose listing reads the bytes of non-empty clusters only. */
+#define CLR_SCAN_LIST_NONE 0u
+#define CLR_SCAN_LIST_BYTES 1u
+#define CLR_SCAN_LIST_CLUSTERS 2u
 
 /* counters: uint[CLR_NUM_COUNTERS], zeroed per frame; setup kernels and the scans write, the host reads at its
  * wait (one read), or after the image in a frame sized from the last one's totals (speculative, Pipeline::beginFrame,
@@ -348,7 +353,9 @@ typedef struct VisSample {
  *  triMaterial uint[numTris], materials, texDescs, texels uint[all levels]   host -> resolve
  *  indices     uint[3·numTris]              host -> setup, resolve
  *  clipPos     float4[numVerts]             transform_vertices -> painter's sort, tests
- *  triCount    uchar[numTris]               setup count pass (0, 1 or CLR_MAX_SUBTRIS) -> scan
+ *  triCount    uchar[numTris]               setup count pass (0, 1 or CLR_MAX_SUBTRIS; CPU shape: a skipped
+ *                                           cluster's bytes are not written) -> scan
+ *  clusterCount uint[clusters]              setup count pass, CPU shape (the sum of the cluster's bytes) -> scan
  *  setupSource uint[numSetup + chunks]      scan, emit, bin_fill_clipped -> setup_clip, raster, resolve, lines, aov
  *  clipList    uint[CLIPPED_TRIS]           count pass (host grows and recounts), setup_clip -> bin_fill_clipped
  *  tileCount   uint[tiles + 1]              count pass, setup_clip; scanned -> emit, bin_fill_clipped, raster, resolve

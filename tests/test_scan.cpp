@@ -13,17 +13,22 @@ TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup 
   // in the device's work shape, against sums computed here: plain scans of
   // uint counts (with values near 2^26, so sums pass 2^32 and the 64-bit
   // total and the uint entries' wrap are checked), the same with the
-  // non-zero counts, and the setup counts' listing (bytes 0, 1 or
-  // CLR_MAX_SUBTRIS). Sizes around a step (64 values) and a chunk, and one
-  // past 4096 chunks of 64, where a chunk spans several steps.
+  // non-zero counts, the setup counts' listing (bytes 0, 1 or
+  // CLR_MAX_SUBTRIS), and in the CPU shape the listing over clusters' sums,
+  // where a third of the clusters are skipped (sum 0) and their bytes are
+  // garbage it must not read. Sizes around a step (64 values) and a chunk,
+  // and one past 4096 chunks of 64, where a chunk spans several steps.
   const clr::ClContext& ctx = test::context();
   std::mt19937 rng(23);
   for (uint32_t n : {1u, 63u, 64u, 65u, 1000u, 4096u * 64u + 4321u}) {
     INFO("n = " << n);
-    const clr::ScanChunks c = clr::scanChunks(n);
-    for (int mode = 0; mode < 3; ++mode) {  // plain, with non-zero counts, listing
+    const uint32_t clusters = (n + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS;
+    for (int mode = 0; mode < 4; ++mode) {  // plain, with non-zero counts, listing bytes, listing clusters
       INFO("mode " << mode);
-      const bool alsoNonZero = mode == 1, listing = mode == 2;
+      const bool alsoNonZero = mode == 1, listing = mode >= 2, byCluster = mode == 3;
+      if (byCluster && ctx.lanes == 1) continue;  // (the GPU shape counts no clusters: Pipeline::listsClusters)
+      const uint32_t items = byCluster ? clusters : n;
+      const clr::ScanChunks c = clr::scanChunks(items);
       // Step 1: counts, mostly zero or small, some large.
       std::vector<uint32_t> values(size_t(n) + 1, 0u);
       std::vector<uint8_t> bytes(n);
@@ -33,9 +38,20 @@ TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup 
         values[i] = k < 4 ? 0u : k < 8 ? uint32_t(k) : (1u << 26) + uint32_t(k);
         bytes[i] = uint8_t(k < 3 ? 0 : k < 8 ? 1 : CLR_MAX_SUBTRIS);
       }
+      if (byCluster) {  // every third cluster skipped: sum 0, garbage bytes
+        values.assign(size_t(clusters) + 1, 0u);
+        for (uint32_t i = 0; i < n; ++i) {
+          const uint32_t cluster = i / CLR_CLUSTER_TRIS;
+          if (cluster % 3 == 1)
+            bytes[i] = 0xAB;
+          else
+            values[cluster] += bytes[i];
+        }
+      }
+      const auto skipped = [&](uint32_t i) { return byCluster && (i / CLR_CLUSTER_TRIS) % 3 == 1; };
       // Step 2: the three phases.
       uint64_t listed = 0;
-      for (uint8_t b : bytes) listed += b;
+      for (uint32_t i = 0; i < n; ++i) listed += skipped(i) ? 0 : bytes[i];
       const size_t secondSize = listing ? size_t(listed) + c.count : size_t(n) + 1;
       cl::Buffer data(ctx.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, values.size() * 4, values.data());
       cl::Buffer counts(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes.size(), bytes.data());
@@ -48,11 +64,15 @@ TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup 
       for (uint32_t phase : {CLR_SCAN_REDUCE, CLR_SCAN_PARTIALS, CLR_SCAN_APPLY}) {
         cl::Kernel kernel(ctx.program, "scan_chunks");
         cl_uint a = 0;
-        kernel.setArg(a++, data), kernel.setArg(a++, data), kernel.setArg(a++, n), kernel.setArg(a++, c.size);
+        kernel.setArg(a++, data), kernel.setArg(a++, data), kernel.setArg(a++, items), kernel.setArg(a++, c.size);
         kernel.setArg(a++, c.count), kernel.setArg(a++, partials), kernel.setArg(a++, second);
         kernel.setArg(a++, counts), kernel.setArg(a++, counters);
         kernel.setArg(a++, uint32_t(CLR_COUNTER_SETUP_TOTAL)), kernel.setArg(a++, uint32_t(CLR_COUNTER_SLOT_TOTAL));
-        kernel.setArg(a++, phase), kernel.setArg(a++, uint32_t(alsoNonZero)), kernel.setArg(a++, uint32_t(listing));
+        const uint32_t listMode = byCluster ? CLR_SCAN_LIST_CLUSTERS
+                                  : listing ? CLR_SCAN_LIST_BYTES
+                                            : CLR_SCAN_LIST_NONE;
+        kernel.setArg(a++, phase), kernel.setArg(a++, uint32_t(alsoNonZero)), kernel.setArg(a++, listMode);
+        kernel.setArg(a++, n);
         const cl::NDRange items = phase == CLR_SCAN_PARTIALS ? group : clr::scanChunkItems(ctx.lanes, c.count);
         ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, items, group);
       }
@@ -66,6 +86,7 @@ TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup 
       size_t wrongSums = 0, wrongNonZero = 0, wrongSources = 0;
       for (uint32_t i = 0; i < n; ++i) {
         if (listing) {
+          if (skipped(i)) continue;
           for (uint32_t k = 0; k < bytes[i]; ++k)
             wrongSources += seconds[sum + k] != (bytes[i] == 1 ? i : CLR_SOURCE_CLIPPED | i);
           sum += bytes[i];
