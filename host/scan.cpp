@@ -5,10 +5,11 @@
 // triangle (scanListingBegin, then scanListingFinish once the total is
 // known, with partial sums of its own so that other scans may run between
 // the two): the bytes, or in the CPU shape the clusters' sums, so that a
-// cluster the count pass skipped costs one value. The 64-bit total is read back, so callers size buffers exactly
-// and detect totals that do not fit in 32 bits; or it is copied among the
-// frame's counters, so that several scans and setup's counters come back
-// with one read (each read of its own leaves the device idle).
+// cluster the count pass skipped costs one value. The 64-bit total is read
+// back, so callers size buffers exactly and detect totals that do not fit
+// in 32 bits; or it is copied among the frame's counters, so that several
+// scans and setup's counters come back with one read (each read of its own
+// leaves the device idle).
 #include "pipeline.h"
 
 namespace clr {

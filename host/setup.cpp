@@ -13,10 +13,9 @@ namespace clr {
 void Pipeline::setup()
 {
   const uint32_t numTris = params_.numTris;
-  // The count pass's work-items: one per cluster in the CPU shape (setup_triangles), else CLR_LANES triangles each.
-  const bool perCluster = cl_.lanes > 1 && !cl_.clipInput;
-  const uint32_t countItems = perCluster ? uint32_t((uint64_t(numTris) + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS)
-                                         : (numTris + cl_.lanes - 1) / cl_.lanes;
+  // The count pass's work-items: one per cluster where the listing scans clusters (setup_triangles), else
+  // CLR_LANES triangles each.
+  const uint32_t countItems = listsClusters() ? listingItems() : (numTris + cl_.lanes - 1) / cl_.lanes;
   // Step 1: count, and sum the counts, reading the clip-list length and the
   // total with one wait (one read of the counters, where the scans copy
   // their totals); if the clip list was too short, grow it and redo.
