@@ -214,6 +214,8 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   scene_ = std::move(layout.mesh);
   fileTriHost_ = std::move(layout.fileTri);
   fileVertex_ = std::move(layout.fileVertex);
+  oneMaterial_ = std::all_of(scene_.triMaterial.begin(), scene_.triMaterial.end(),
+                             [&](uint32_t m) { return m == scene_.triMaterial[0]; });
   ++sceneUploads_;
   framedScene_ = false;
   fileOrder_ = true;
@@ -264,9 +266,15 @@ uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
     colors_.upload(scene_.colors);
     resident_ |= kResidentColors;
   }
+  // One material for every triangle (assimp gives a file without materials one): no per-triangle buffer.
+  const bool oneMaterial = materials && oneMaterial_;
   if (materials && !(resident_ & kResidentMaterials)) {
-    triMaterial_.upload(scene_.triMaterial);
-    materials_.upload(scene_.materials);
+    if (oneMaterial) {
+      materials_.upload({scene_.materials[scene_.triMaterial[0]]});
+    } else {
+      triMaterial_.upload(scene_.triMaterial);
+      materials_.upload(scene_.materials);
+    }
     resident_ |= kResidentMaterials;
   }
   if (textures && !(resident_ & kResidentTextures)) {
@@ -277,7 +285,7 @@ uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
   }
   // Step 2: the flags resolve follows.
   return (colors ? CLR_SCENE_COLORS : 0u) | (materials ? CLR_SCENE_MATERIALS : 0u) |
-         (textures ? CLR_SCENE_TEXTURES : 0u);
+         (materials && !oneMaterial ? CLR_SCENE_TRI_MATERIALS : 0u) | (textures ? CLR_SCENE_TEXTURES : 0u);
 }
 
 cl::Kernel& Pipeline::extraKernel(cl::Kernel& kernel, const char* name)

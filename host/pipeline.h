@@ -209,7 +209,7 @@ class Pipeline {
     kResidentNormals = 1,
     kResidentUvs = 2,
     kResidentColors = 4,
-    kResidentMaterials = 8,  // triangle materials and the materials
+    kResidentMaterials = 8,  // the materials, and each triangle's unless they are all one
     kResidentTextures = 16,  // descriptors and texels, once per scene
   };
   uint32_t resident() const { return resident_; }
@@ -441,6 +441,7 @@ class Pipeline {
   std::vector<uint32_t> fileTriHost_, fileVertex_;  // the layout's maps (layout.h)
   bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
   uint32_t resident_ = 0;                           // kResident* bits
+  bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,

@@ -159,7 +159,7 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* index
   g->needColours = (flags & CLR_SCENE_COLORS) != 0;
   g->needPositions = CLR_NEEDS_POSITIONS(mode, params->pointLightOn);
   g->needGradients = (flags & CLR_SCENE_TEXTURES) && params->texFilter == CLR_FILTER_TRILINEAR;
-  g->needMaterial = (flags & CLR_SCENE_MATERIALS) != 0;
+  g->needMaterial = (flags & CLR_SCENE_TRI_MATERIALS) != 0;
   g->material = 0u;
   // Step 2: the lanes that start a covered run.
   uint starts = 0;

@@ -37,7 +37,7 @@ CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const
     CLR_TAKE(f->scale, (floatL)CLR_RECORD_INV_AREA2(*t));
   }
   const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
-  const Material m = materials[materialsOn ? triMaterial[triId] : 0];
+  const Material m = materials[params->sceneFlags & CLR_SCENE_TRI_MATERIALS ? triMaterial[triId] : 0];
   const float grey[3] = {CLR_GREY_R, CLR_GREY_G, CLR_GREY_B};
   for (int j = 0; j < 3; ++j) {
     const float3 n = vload3(indices[3 * triId + j], normals);
@@ -73,10 +73,11 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
       }
   }
   const bool materialsOn = (params->sceneFlags & CLR_SCENE_MATERIALS) != 0;
+  const bool perTriangle = (params->sceneFlags & CLR_SCENE_TRI_MATERIALS) != 0;
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
     for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * triId[lane] + j];
-    material[lane] = materialsOn ? triMaterial[triId[lane]] : 0;
+    material[lane] = perTriangle ? triMaterial[triId[lane]] : 0;
   }
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {

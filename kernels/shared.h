@@ -112,8 +112,10 @@ typedef uint32_t uint;
 
 /* FrameParams.sceneFlags: which optional attributes the frame binds. */
 #define CLR_SCENE_COLORS 1u    /* the colours buffer holds vertex colours */
-#define CLR_SCENE_MATERIALS 2u /* triMaterial and materials hold the scene's materials */
+#define CLR_SCENE_MATERIALS 2u /* materials holds the scene's materials (else albedo is grey) */
 #define CLR_SCENE_TEXTURES 4u  /* texDescs, texels and uvs hold the base-colour textures */
+/* triMaterial holds each triangle's material; without it every triangle has material 0 (one material). */
+#define CLR_SCENE_TRI_MATERIALS 8u
 
 /* Most samples per pixel (FrameParams.samples). */
 #define CLR_MAX_SAMPLES 16
@@ -350,7 +352,8 @@ typedef struct VisSample {
  * 1-element dummy when the frame's mode does not read them.
  *  positions float[3·numVerts], normals float[3·numVerts], uvs float[2·numVerts], colors float[4·numVerts]
  *                                           host -> setup, transform_vertices (positions); resolve (all)
- *  triMaterial uint[numTris], materials, texDescs, texels uint[all levels]   host -> resolve
+ *  triMaterial uint[numTris] (with CLR_SCENE_TRI_MATERIALS), materials, texDescs, texels uint[all levels]
+ *                                           host -> resolve
  *  indices     uint[3·numTris]              host -> setup, resolve
  *  clipPos     float4[numVerts]             transform_vertices -> painter's sort, tests
  *  triCount    uchar[numTris]               setup count pass (0, 1 or CLR_MAX_SUBTRIS; CPU shape: a skipped

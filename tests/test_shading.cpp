@@ -401,6 +401,42 @@ TEST_CASE("the lean lambert resolve gives the general resolve's pixels bit for b
   CHECK_FALSE(pipeline.render(settings, general).leanResolve);
 }
 
+TEST_CASE("a scene of one material binds no per-triangle materials and shades as with them", "[shade]")
+{
+  // Step 1: the grazing grid with every triangle on material 2 (one material), and again with every other
+  // triangle on material 3, an exact copy of material 2 (per-triangle materials).
+  const GrazingGrid grid = grazingGrid(100, 70);
+  clr::Mesh one = grid.mesh, copies = grid.mesh;
+  copies.materials.push_back(copies.materials[2]);
+  for (size_t t = 0; t < one.triMaterial.size(); ++t) {
+    one.triMaterial[t] = 2;
+    copies.triMaterial[t] = t % 2 ? 3 : 2;
+  }
+  clr::Mesh grey = one;
+  grey.materials.clear();
+  grey.triMaterial.clear();
+  // Step 2: each mode that reads materials, through both resolve kernels: identical pixels, and the one-material
+  // scene holds 4 bytes per triangle less (the per-triangle buffer).
+  for (const uint32_t mode : {CLR_SHADE_LAMBERT, CLR_SHADE_TEXTURE, CLR_SHADE_FLAT, CLR_SHADE_PHONG})
+    for (const bool lean : {true, false}) {
+      CAPTURE(mode, lean);
+      clr::FrameSettings settings = grid.settings;
+      settings.shadeMode = mode;
+      settings.leanResolve = lean;
+      clr::Pipeline a(test::context()), b(test::context()), c(test::context());
+      a.uploadScene(one);
+      b.uploadScene(copies);
+      c.uploadScene(grey);
+      std::vector<uint32_t> imageA, imageB, imageGrey;
+      a.render(settings, imageA);
+      b.render(settings, imageB);
+      c.render(settings, imageGrey);
+      CHECK(imageA == imageB);
+      CHECK(imageA != imageGrey);  // the material's colour, not the grey of a scene without materials
+      CHECK(b.deviceBytes() >= a.deviceBytes() + 4 * one.numTris());
+    }
+}
+
 namespace {
 
 struct RecomputeCase {
