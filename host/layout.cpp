@@ -80,9 +80,17 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
     if (newVertex[v] == ~0u) newVertex[v] = uint32_t(used++);
   for (size_t v = 0; v < verts; ++v) out.fileVertex[newVertex[v]] = uint32_t(v);
   for (uint32_t& i : sortedIndices) i = newVertex[i];
-  // Step 3: the copy.
+  // Step 3: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
+  // replaced here, a quarter of a 10M-triangle upload's time.
+  static_assert(sizeof(Mesh) == 11 * sizeof(std::vector<float>) + sizeof(MeshFacts),
+                "a new Mesh field must be copied or reordered here");
   Mesh& m = out.mesh;
-  m = file;  // every field; the reordered ones are replaced below
+  m.lines = file.lines;
+  m.points = file.points;
+  m.materials = file.materials;
+  m.textures = file.textures;
+  m.warnings = file.warnings;
+  m.facts = file.facts;
   m.indices = std::move(sortedIndices);
   m.positions = gather(file.positions, out.fileVertex, 3);
   m.normals = gather(file.normals, out.fileVertex, 3);
