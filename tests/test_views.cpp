@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -318,6 +319,11 @@ TEST_CASE("views: --stats prints one JSON line for the run", "[views]")
   CHECK_THAT(r.out, Contains("\"views\":5,\"shard\":\"0/2\",\"frames\":3,"));
   CHECK_THAT(r.out, Contains("\"total_ms\":"));
   CHECK_THAT(r.out, Contains("\"frame_ms\":"));
+  // The scene's upload is reported on its own, and is part of the start-up.
+  std::smatch m;
+  REQUIRE(std::regex_search(r.out, m, std::regex("\"startup_ms\":([0-9.]+),\"prepare_ms\":([0-9.]+),")));
+  CHECK(std::stod(m[2].str()) > 0.0);
+  CHECK(std::stod(m[2].str()) <= std::stod(m[1].str()));
   CHECK_THAT(r.out, Contains("\"write_ms\":"));
   CHECK(countFiles(dir) == 3);
 }
