@@ -188,9 +188,8 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
   auto hi = [](std::vector<double> ms) { return *std::max_element(ms.begin(), ms.end()); };
   return format(
       "{\"device\":\"%s\",\"views\":%zu,\"shard\":\"%u/%u\",\"frames\":%zu,\"startup_ms\":%.3f,"
-      "\"prepare_ms\":%.3f,\"total_ms\":%.3f,\"frames_per_s\":%.3f,\"frame_ms\":%.3f,\"frame_ms_min\":%.3f,\"frame_ms_"
-      "max\":%.3f,"
-      "\"write_ms\":%.3f}\n",
+      "\"prepare_ms\":%.3f,\"total_ms\":%.3f,\"frames_per_s\":%.3f,"
+      "\"frame_ms\":%.3f,\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"write_ms\":%.3f}\n",
       jsonEscape(cl.info.name).c_str(), views.size(), args.shard.index, args.shard.count, selected.size(), startupMs,
       pipeline.prepareMs(), totalMs, totalMs > 0.0 ? selected.size() * 1000.0 / totalMs : 0.0, stat(frameMs, median),
       stat(frameMs, lo), stat(frameMs, hi), stat(writeMs, median));
