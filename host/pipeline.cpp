@@ -22,6 +22,7 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
     throw Error("viewport " + std::to_string(s.width) + "x" + std::to_string(s.height) + " outside 1.." +
                 std::to_string(CLR_MAX_VIEWPORT));
   FrameParams p{};
+  p.visIndexBits = 32;  // until raster sizes the visibility buffer
   std::memcpy(p.mvp, glm::value_ptr(s.mvp), sizeof p.mvp);
   const glm::vec3 light = glm::normalize(s.lightDir);
   p.lightDir[0] = light.x;
@@ -375,16 +376,16 @@ bool Pipeline::speculationPays(const FrameSettings& settings)
   if (!speculationOn_ || !framedScene_ || clippedLastFrame_ || settings.wireframe != CLR_WIREFRAME_OFF ||
       !scene_.lines.empty() || !scene_.points.empty() || numSetup_ == 0 || numBinEntries_ == 0)
     return false;
-  // Step 2: the capacities. Emit is launched over the last total and a quarter more; indices stay 16-bit while the
-  // last frame's were (raster.cpp), and the listing needs a spare entry per scan chunk (scan.cl).
+  // Step 2: the capacities. Emit is launched over the last total and a quarter more; the visibility indices keep the
+  // last frame's width (raster.cpp), and the listing needs a spare entry per scan chunk (scan.cl).
   const uint64_t chunks = scanChunks(listingItems()).count;
   uint64_t records = std::min<uint64_t>(setup_.capacity(),
                                         setupSource_.capacity() - std::min<uint64_t>(setupSource_.capacity(), chunks));
   records = std::min<uint64_t>(records, uint64_t(numSetup_) + numSetup_ / 4 + 1024);
-  const bool index16 = numSetup_ < 0xFFFFu && !settings.wideVisIndex;
-  if (index16) records = std::min<uint64_t>(records, 0xFFFEu);
+  const uint64_t bits = visIndexBits(settings);
+  if (bits < 32) records = std::min<uint64_t>(records, (uint64_t(1) << bits) - 2);
   const uint64_t tileSamples = uint64_t(CLR_TILE_SIZE) * CLR_TILE_SIZE * params_.samples;
-  uint64_t slots = visIndex_.capacity() * (index16 ? 2 : 1) / tileSamples;
+  uint64_t slots = visIndex_.capacity() * 32 / bits / tileSamples;
   if (params_.visAttributes) slots = std::min<uint64_t>(slots, visAttr_.capacity() / (3 * tileSamples));
   slots = std::min<uint64_t>(slots, numTiles_);
   const uint64_t bins = std::min<uint64_t>(binEntries_.capacity(), UINT32_MAX);
@@ -556,14 +557,19 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
   if (sample >= params_.samples) throw Error("readVis: no sample " + std::to_string(sample));
   const uint64_t n = uint64_t(params_.width) * params_.height, v = visPlane();
   std::vector<uint32_t> index(v);
-  if (params_.visIndex16) {  // two 16-bit entries per word; v is a whole number of tiles, so even
-    const std::vector<uint32_t> words = visIndex_.download(v / 2, sample * v / 2);
-    for (uint64_t i = 0; i < v; ++i) {
-      const uint32_t entry = (words[i / 2] >> (16 * (i % 2))) & 0xFFFFu;  // little-endian device
-      index[i] = entry == 0xFFFFu ? CLR_NONE : entry;
-    }
-  } else {
+  const uint32_t bits = params_.visIndexBits;
+  if (bits == 32) {
     index = visIndex_.download(v, sample * v);
+  } else {  // 16-bit low halves, then 24 bits' high bytes (shared.h); v is a whole number of tiles, so a word multiple
+    const std::vector<uint32_t> low = visIndex_.download(v / 2, sample * v / 2);
+    const std::vector<uint32_t> high =
+        bits == 24 ? visIndex_.download(v / 4, (2 * uint64_t(params_.visEntries) + sample * v) / 4) : low;
+    const uint32_t none = bits == 24 ? 0xFFFFFFu : 0xFFFFu;
+    for (uint64_t i = 0; i < v; ++i) {
+      uint32_t entry = (low[i / 2] >> (16 * (i % 2))) & 0xFFFFu;  // little-endian device
+      if (bits == 24) entry |= ((high[i / 4] >> (8 * (i % 4))) & 0xFFu) << 16;
+      index[i] = entry == none ? CLR_NONE : entry;
+    }
   }
   const bool attributes = params_.visAttributes != 0;
   const std::vector<float> attr = attributes ? visAttr_.download(3 * v, 3 * sample * v) : std::vector<float>();

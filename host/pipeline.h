@@ -144,9 +144,9 @@ struct FrameSettings {
   // Lets resolve use its lean lambert kernel when the frame qualifies
   // (Pipeline::resolve); tests turn it off to compare the two kernels.
   bool leanResolve = true;
-  // 32-bit visibility indices even when 16 bits would do (fewer than 0xFFFF
-  // setup records, shared.h); tests compare the two.
-  bool wideVisIndex = false;
+  // The fewest bits of a visibility index (16, 24 or 32; more when the
+  // frame's setup records need them, shared.h): tests compare the widths.
+  uint32_t minVisIndexBits = 16;
   // Lets setup cull a small triangle that covers no pixel centre (shared.h,
   // FrameParams.cullSampleFree); tests turn it off to show that the pixels
   // do not change.
@@ -276,13 +276,13 @@ class Pipeline {
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
   // Bytes per pixel of the per-sample buffers and the image of this frame:
-  // per sample of a covered tile 2 or 4 (the visibility buffer's setup
-  // index, 16 bits wide when the frame has fewer than 0xFFFF setup records),
-  // 12 more with its depth and barycentric planes, and 4 for the image.
+  // per sample of a covered tile 2, 3 or 4 (the visibility buffer's setup
+  // index, visIndexBits), 12 more with its depth and barycentric planes,
+  // and 4 for the image.
   double bytesPerPixel() const
   {
     const double pixels = double(params_.width) * params_.height;
-    const double perSample = (params_.visIndex16 ? 2.0 : 4.0) + (params_.visAttributes ? 12.0 : 0.0);
+    const double perSample = params_.visIndexBits / 8.0 + (params_.visAttributes ? 12.0 : 0.0);
     return perSample * params_.samples * usedVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
@@ -299,6 +299,8 @@ class Pipeline {
   // scene without clipping, lines or points came before, and the buffers hold
   // some records, bins and tile slots. Sets the capacities (specCaps_).
   bool speculationPays(const FrameSettings& settings);
+  // The visibility buffer's index width for this frame's setup records: 16, 24 or 32 (shared.h, visIndex).
+  uint32_t visIndexBits(const FrameSettings& settings) const;
   // After a speculative frame's image: whether it fitted (then its totals
   // become the frame's, as a waiting frame reads them).
   bool takeSpeculativeTotals();

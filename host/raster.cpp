@@ -47,20 +47,28 @@ void Pipeline::sortForPainter()
   for (uint32_t& t : paintOrder_) t = fileTriHost_[t];  // as the file numbers them
 }
 
+uint32_t Pipeline::visIndexBits(const FrameSettings& settings) const
+{
+  // The fewest bits that hold every setup index of the frame and the all-ones "none" (shared.h, visIndex).
+  const uint32_t needed = numSetup_ < 0xFFFFu ? 16 : numSetup_ < 0xFFFFFFu ? 24 : 32;
+  return std::max(needed, settings.minVisIndexBits <= 16 ? 16u : settings.minVisIndexBits <= 24 ? 24u : 32u);
+}
+
 void Pipeline::raster()
 {
   // The visibility buffer: a block per non-empty tile and sample (shared.h),
-  // with 16-bit indices when setup made fewer than 0xFFFF records (0xFFFF
-  // stands for none), which the parameters learn only now.
+  // its index entries as narrow as the frame's records allow, which the
+  // parameters learn only now.
   const uint64_t samples = uint64_t(visPlane()) * params_.samples;
   if (samples > UINT32_MAX / 3)
     throw Error("the frame needs " + std::to_string(samples) + " visibility samples, more than 32-bit offsets address");
-  params_.visIndex16 = numSetup_ < 0xFFFFu && !settings_.wideVisIndex ? 1u : 0u;
+  params_.visIndexBits = visIndexBits(settings_);
+  params_.visEntries = uint32_t(samples);
   // At most the whole viewport's tiles: no growth slack past that. (The
-  // buffer counts 32-bit words: two 16-bit indices each.)
+  // buffer counts 32-bit words.)
   const uint64_t most = uint64_t(numTiles_) * CLR_TILE_SIZE * CLR_TILE_SIZE * params_.samples;
-  const uint64_t perWord = params_.visIndex16 ? 2 : 1;
-  visIndex_.reserve((samples + perWord - 1) / perWord, false, (most + perWord - 1) / perWord);
+  const uint64_t bits = params_.visIndexBits;
+  visIndex_.reserve((samples * bits + 31) / 32, false, (most * bits + 31) / 32);
   visAttr_.reserve(params_.visAttributes ? 3 * samples : 1, false, 3 * most);  // else a 1-element dummy
   paintRank_.reserve(1);
   // Nothing binned: no tile has a block to write, and resolve paints background only.
@@ -68,8 +76,9 @@ void Pipeline::raster()
     paintOrder_.clear();
     return;
   }
-  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, offsetof(FrameParams, visIndex16), sizeof params_.visIndex16,
-                               &params_.visIndex16);
+  static_assert(offsetof(FrameParams, visEntries) == offsetof(FrameParams, visIndexBits) + sizeof(uint32_t));
+  cl_.queue.enqueueWriteBuffer(paramsBuf_.get(), CL_FALSE, offsetof(FrameParams, visIndexBits), 2 * sizeof(uint32_t),
+                               &params_.visIndexBits);
   const bool painter = params_.visibility == CLR_VISIBILITY_PAINTER;
   if (painter)
     sortForPainter();

@@ -16,6 +16,7 @@
 #if CLR_LANES == 1
 typedef long longL;
 typedef ushort ushortL;
+typedef uchar ucharL;
 typedef int intL;
 typedef uint uintL;
 typedef float floatL;
@@ -25,6 +26,7 @@ typedef float floatL;
 #define convert_intL convert_int
 #define convert_uintL convert_uint
 #define convert_ushortL convert_ushort
+#define convert_ucharL convert_uchar
 #define convert_floatL convert_float
 #define convert_intL_rte convert_int_rte
 #define convert_uintL_sat_rte convert_uint_sat_rte
@@ -44,6 +46,7 @@ CLR_INLINE float clr_max_lanes(float v)
 #elif CLR_LANES == 16
 typedef long16 longL;
 typedef ushort16 ushortL;
+typedef uchar16 ucharL;
 typedef int16 intL;
 typedef uint16 uintL;
 typedef float16 floatL;
@@ -76,6 +79,7 @@ CLR_INLINE float clr_max_lanes(float16 v)
 #define convert_intL convert_int16
 #define convert_uintL convert_uint16
 #define convert_ushortL convert_ushort16
+#define convert_ucharL convert_uchar16
 #define convert_floatL convert_float16
 #define convert_intL_rte convert_int16_rte
 #define convert_uintL_sat_rte convert_uint16_sat_rte

@@ -485,15 +485,22 @@ CLR_INLINE bool raster_segment_rows(CLR_RECORD_SPACE const TriSetup* t, int firs
   return (fits.x & fits.y & fits.z) != 0;
 }
 
-/* The visibility buffer's index planes (shared.h): 16-bit entries (0xFFFF
- * for none) when FrameParams.visIndex16, else 32-bit; i counts entries.
+/* The visibility buffer's index entries (shared.h, visIndex): 16 or 24 bits
+ * (all ones for none, 24 as a low half and a high byte in planes of their
+ * own) or 32, by FrameParams.visIndexBits; i counts entries.
  * vis_load_index_lanes returns the lanes as a vector too: use that, not a
  * reload of `lanes`, which would wait for the split store. */
 CLR_INLINE uint vis_index_at(__constant FrameParams* params, __global const uint* visIndex, uint i)
 {
-  if (!params->visIndex16) return visIndex[i];
-  const uint v = ((__global const ushort*)visIndex)[i];
-  return v == 0xFFFFu ? CLR_NONE : v;
+  const uint bits = params->visIndexBits;
+  if (bits == 16) {
+    const uint v = ((__global const ushort*)visIndex)[i];
+    return v == 0xFFFFu ? CLR_NONE : v;
+  }
+  if (bits == 32) return visIndex[i];
+  const uint v =
+      ((__global const ushort*)visIndex)[i] | (uint)((__global const uchar*)visIndex)[2 * params->visEntries + i] << 16;
+  return v == 0xFFFFFFu ? CLR_NONE : v;
 }
 CLR_INLINE uintL vis_load_index_lanes(__constant FrameParams* params, __global const uint* visIndex, uint i, uint count,
                                       uint* lanes)
@@ -503,28 +510,39 @@ CLR_INLINE uintL vis_load_index_lanes(__constant FrameParams* params, __global c
       lanes[lane] = lane < count ? vis_index_at(params, visIndex, i + lane) : CLR_NONE;
     return CLR_LOAD_LANES(lanes);  // the viewport's edge
   }
+  const uint bits = params->visIndexBits;
   uintL v;
-  if (params->visIndex16) {
+  if (bits == 16) {
     const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i));
     v = select(wide, (uintL)CLR_NONE, wide == 0xFFFFu);
-  } else {
+  } else if (bits == 32) {
     v = CLR_LOAD_LANES(visIndex + i);
+  } else {
+    const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i)) |
+                       convert_uintL(CLR_LOAD_LANES((__global const uchar*)visIndex + 2 * params->visEntries + i))
+                           << 16;
+    v = select(wide, (uintL)CLR_NONE, wide == 0xFFFFFFu);
   }
   CLR_STORE_LANES(v, lanes);
   return v;
 }
 CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL index, __global uint* visIndex, uint i)
 {
-  if (!params->visIndex16) {
+  const uint bits = params->visIndexBits;
+  if (bits == 32) {
     CLR_STORE_LANES(index, visIndex + i);
     return;
   }
+  // The low halves, then for 24 bits the high bytes (conversions keep the low bits: CLR_NONE gives all ones).
 #if CLR_LANES == 16
-  // One aligned vector store (i is a multiple of 16: vis_address); vstore16
-  // of ushorts compiles to 16 scalar stores on PoCL.
+  // One aligned vector store each (i is a multiple of 16: vis_address; so is
+  // 2·visEntries); vstore16 of ushorts compiles to 16 scalar stores on PoCL.
   *(__global ushort16*)((__global ushort*)visIndex + i) = convert_ushort16(index);
+  if (bits == 24)
+    *(__global uchar16*)((__global uchar*)visIndex + 2 * params->visEntries + i) = convert_uchar16(index >> 16);
 #else
   CLR_STORE_LANES(convert_ushortL(index), (__global ushort*)visIndex + i);
+  if (bits == 24) CLR_STORE_LANES(convert_ucharL(index >> 16), (__global uchar*)visIndex + 2 * params->visEntries + i);
 #endif
 }
 

@@ -222,8 +222,9 @@ typedef struct FrameParams {
   /* Sample k at the pixel centre + (sampleX[k], sampleY[k]), fixed units, y up (host/aa.cpp). */
   int sampleX[CLR_MAX_SAMPLES];
   int sampleY[CLR_MAX_SAMPLES];
-  uint visibility; /* CLR_VISIBILITY_* */
-  uint visIndex16; /* 1: the visibility buffer's index planes are 16 bits wide (shared.h) */
+  uint visibility;   /* CLR_VISIBILITY_* */
+  uint visIndexBits; /* 16, 24 or 32: the visibility buffer's index entries (visIndex below) */
+  uint visEntries;   /* S·V, the index entries of all sample planes (the 24-bit entries' high bytes follow) */
   /* 1: setup culls a small triangle covering no pixel centre (setup_covers_a_sample); 1 sample, fixed, no lines. */
   uint cullSampleFree;
   /* > 0: clip-space margin of the cluster test (setup_cluster_outside); 0 skips it (Pipeline::clusterMargin). */
@@ -326,8 +327,10 @@ typedef struct TextureDesc {
 /* The visibility buffer, one sample per entry, only for tiles with a non-empty bin: tile t owns slot tileSlot[t],
  * a row-major block of CLR_TILE_SIZE² entries. With S samples and V = slots·CLR_TILE_SIZE² (visPlane), sample k of
  * pixel (x, y) at a = vis_address(tileSlot[t], x, y):
- *  visIndex uint[S·V] (ushort, 0xFFFF = none, when visIndex16)  at k·V + a: setup index or CLR_NONE;
- *           raster writes; resolve, lines_draw, aov read (vis_index_at, raster.cl)
+ *  visIndex entry k·V + a: the setup index or CLR_NONE; raster writes; resolve, lines_draw, aov read (vis_index_at,
+ *           raster.cl). By visIndexBits (Pipeline::visIndexBits: the fewest that hold every record of the frame):
+ *           32 uint[S·V]; 16 ushort[S·V], 0xFFFF none; 24 ushort[S·V] low halves, then uchar[S·V] high bytes,
+ *           0xFFFFFF none
  *  visAttr  float[3·S·V], only when visAttributes  at (3k + c)·V + a: c = 0 depth (as stored; paint rank bits with
  *           CLR_VISIBILITY_PAINTER), 1 b1, 2 b2; raster writes; without it resolve recomputes b1, b2 (vis_barycentrics)
  * Entries of a block outside the viewport are written but never read. */
@@ -423,7 +426,7 @@ typedef struct LineParams {
 #define CLR_AOV_CHANNELS 10
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 372, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 376, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 48, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 44, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");

@@ -588,7 +588,7 @@ TEST_CASE(
 }
 
 // (Not under Oclgrind: every small test scene there takes the 16-bit planes.)
-TEST_CASE("the visibility buffer's indices are 16 bits wide below 0xFFFF setup records, with the frames of 32-bit ones",
+TEST_CASE("the visibility buffer's indices are 16 bits wide below 0xFFFF records, with the frames of 24 and 32 bits",
           "[vis]")
 {
   // Step 1: the grazing grid (clipped triangles, back faces, materials), in
@@ -608,70 +608,75 @@ TEST_CASE("the visibility buffer's indices are 16 bits wide below 0xFFFF setup r
                         Case{"general phong", CLR_SHADE_PHONG, 1, false, CLR_WIREFRAME_OFF},
                         Case{"msaa 4", CLR_SHADE_LAMBERT, 4, true, CLR_WIREFRAME_OFF},
                         Case{"id msaa 4", CLR_SHADE_ID, 4, true, CLR_WIREFRAME_OFF},
-                        Case{"lines overlay", CLR_SHADE_LAMBERT, 1, true, CLR_WIREFRAME_OVERLAY}}) {
-    INFO(c.name);
-    clr::FrameSettings settings = grid.settings;
-    settings.shadeMode = c.shadeMode;
-    settings.samples = c.samples;
-    settings.leanResolve = c.lean;
-    settings.wireframe = c.wireframe;
-    settings.keepVisAttributes = c.wireframe == CLR_WIREFRAME_OFF;  // for the AOVs (lines keep the planes anyway)
-    std::vector<uint32_t> narrowImage, wideImage;
-    narrow.render(settings, narrowImage);
-    settings.wideVisIndex = true;
-    wide.render(settings, wideImage);
-    // Step 2: 2 against 4 bytes per sample, and the same pixels and samples.
-    REQUIRE(narrow.params().visIndex16 == 1u);
-    REQUIRE(wide.params().visIndex16 == 0u);
-    const double pixels = 160.0 * 100.0;
-    CHECK(wide.bytesPerPixel() - narrow.bytesPerPixel() == Approx(2.0 * narrow.visPlane() * c.samples / pixels));
-    CHECK(narrowImage == wideImage);
-    for (uint32_t k = 0; k < c.samples; ++k) {
-      const std::vector<VisSample> a = narrow.readVis(k), b = wide.readVis(k);
-      REQUIRE(a.size() == b.size());
-      size_t covered = 0;
-      for (size_t p = 0; p < a.size(); ++p) {
-        REQUIRE(a[p].setupIndex == b[p].setupIndex);
-        covered += a[p].setupIndex != CLR_NONE;
+                        Case{"lines overlay", CLR_SHADE_LAMBERT, 1, true, CLR_WIREFRAME_OVERLAY}})
+    for (const uint32_t bits : {24u, 32u}) {
+      INFO(c.name << ", against " << bits << " bits");
+      clr::FrameSettings settings = grid.settings;
+      settings.shadeMode = c.shadeMode;
+      settings.samples = c.samples;
+      settings.leanResolve = c.lean;
+      settings.wireframe = c.wireframe;
+      settings.keepVisAttributes = c.wireframe == CLR_WIREFRAME_OFF;  // for the AOVs (lines keep the planes anyway)
+      std::vector<uint32_t> narrowImage, wideImage;
+      narrow.render(settings, narrowImage);
+      settings.minVisIndexBits = bits;
+      wide.render(settings, wideImage);
+      // Step 2: 2 against 3 or 4 bytes per sample, and the same pixels and samples.
+      REQUIRE(narrow.params().visIndexBits == 16u);
+      REQUIRE(wide.params().visIndexBits == bits);
+      const double pixels = 160.0 * 100.0;
+      CHECK(wide.bytesPerPixel() - narrow.bytesPerPixel() ==
+            Approx((bits / 8.0 - 2.0) * narrow.visPlane() * c.samples / pixels));
+      CHECK(narrowImage == wideImage);
+      for (uint32_t k = 0; k < c.samples; ++k) {
+        const std::vector<VisSample> a = narrow.readVis(k), b = wide.readVis(k);
+        REQUIRE(a.size() == b.size());
+        size_t covered = 0;
+        for (size_t p = 0; p < a.size(); ++p) {
+          REQUIRE(a[p].setupIndex == b[p].setupIndex);
+          covered += a[p].setupIndex != CLR_NONE;
+        }
+        CHECK(covered > 1000);
       }
-      CHECK(covered > 1000);
+      if (settings.keepVisAttributes) {
+        narrow.aov();
+        wide.aov();
+        CHECK(narrow.readAov() == wide.readAov());
+      }
     }
-    if (settings.keepVisAttributes) {
-      narrow.aov();
-      wide.aov();
-      CHECK(narrow.readAov() == wide.readAov());
-    }
-  }
 }
 
-TEST_CASE("16-bit visibility indices reach index 0xFFFE and 0xFFFF setup records take 32 bits", "[vis]")
+TEST_CASE("16-bit visibility indices reach index 0xFFFE and more setup records take 24 bits", "[vis]")
 {
-  // One small triangle around each pixel centre of a 256 x 256 viewport, for
+  // One small triangle around each pixel centre of a 512 x 256 viewport, for
   // the first n pixels: n setup records, pixel i showing record i (the
   // records keep input order: no layout, Pipeline::setLayout). n = 0xFFFE is
-  // the most 16 bits hold besides 0xFFFF (none); one more record takes the
-  // 32-bit planes.
-  const uint32_t size = 256;
-  for (const uint32_t n : {0xFFFEu, 0xFFFFu}) {
-    INFO("setup records: " << n);
+  // the most 16 bits hold besides 0xFFFF (none); one more record takes 24
+  // bits, whose high bytes reach 1 here; the wide setting takes 32.
+  const uint32_t w = 512, h = 256;
+  for (const uint32_t n : {0xFFFEu, 0xFFFFu, 0x1A001u}) {
     test::Geometry g;
     for (uint32_t i = 0; i < n; ++i) {
-      const float x = float(i % size), y = float(i / size);
-      g.addTriangle(test::screen(x + 0.25f, y + 0.25f, 0.5f, size, size),
-                    test::screen(x + 0.75f, y + 0.25f, 0.5f, size, size),
-                    test::screen(x + 0.5f, y + 0.75f, 0.5f, size, size));
+      const float x = float(i % w), y = float(i / w);
+      g.addTriangle(test::screen(x + 0.25f, y + 0.25f, 0.5f, w, h), test::screen(x + 0.75f, y + 0.25f, 0.5f, w, h),
+                    test::screen(x + 0.5f, y + 0.75f, 0.5f, w, h));
     }
     clr::Pipeline pipeline(test::context());
     pipeline.setLayout(false);
     pipeline.uploadScene(g.mesh());
-    const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(size, size));
-    CHECK(pipeline.params().visIndex16 == (n < 0xFFFFu ? 1u : 0u));
-    const std::vector<VisSample> vis = pipeline.readVis();
-    size_t wrong = 0;
-    for (uint32_t p = 0; p < size * size; ++p) {
-      const uint32_t expected = p < n ? p : CLR_NONE;
-      wrong += vis[p].setupIndex != expected || ids[p] != (p < n ? p : ref::kNone);
+    for (const bool wide : {false, true}) {
+      INFO("setup records: " << n << (wide ? ", 32-bit indices" : ""));
+      clr::FrameSettings settings = test::idSettings(w, h);
+      settings.minVisIndexBits = wide ? 32 : 16;
+      const std::vector<uint32_t> ids = test::renderTriIds(pipeline, settings);
+      CHECK(pipeline.params().visIndexBits == (wide ? 32u : n < 0xFFFFu ? 16u : 24u));
+      const std::vector<VisSample> vis = pipeline.readVis();
+      size_t wrong = 0;
+      for (uint32_t p = 0; p < w * h; ++p) {
+        const uint32_t expected = p < n ? p : CLR_NONE;
+        wrong += vis[p].setupIndex != expected || ids[p] != (p < n ? p : ref::kNone);
+      }
+      CHECK(wrong == 0);
     }
-    CHECK(wrong == 0);
   }
 }

@@ -266,7 +266,7 @@ TEST_CASE("stability: a thousand full-screen triangles at 1920x1080, none droppe
   const clr::FrameStats smallStats = small.render(test::idSettings(W, H), rgba);
   CHECK(smallStats.binEntries == n);
   const uint64_t fullVis = tiles * 256, smallVis = 256;  // entries per sample plane
-  CHECK(full.params().visIndex16 == 1u);
+  CHECK(full.params().visIndexBits == 16u);
   CHECK(full.deviceBytes() - small.deviceBytes() == 4 * stats.binEntries - 4 * n + 2 * fullVis - 2 * smallVis);
 }
 
