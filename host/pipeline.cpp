@@ -562,8 +562,8 @@ std::vector<VisSample> Pipeline::readVis(uint32_t sample) const
     index = visIndex_.download(v, sample * v);
   } else {  // 16-bit low halves, then 24 bits' high bytes (shared.h); v is a whole number of tiles, so a word multiple
     const std::vector<uint32_t> low = visIndex_.download(v / 2, sample * v / 2);
-    const std::vector<uint32_t> high =
-        bits == 24 ? visIndex_.download(v / 4, (2 * uint64_t(params_.visEntries) + sample * v) / 4) : low;
+    std::vector<uint32_t> high;
+    if (bits == 24) high = visIndex_.download(v / 4, (2 * uint64_t(params_.visEntries) + sample * v) / 4);
     const uint32_t none = bits == 24 ? 0xFFFFFFu : 0xFFFFu;
     for (uint64_t i = 0; i < v; ++i) {
       uint32_t entry = (low[i / 2] >> (16 * (i % 2))) & 0xFFFFu;  // little-endian device

@@ -92,11 +92,18 @@ void Pipeline::scanListingFinish(uint64_t total, const char* stage)
 
 Pipeline::ScanJob Pipeline::listingJob() const
 {
-  if (listsClusters())
-    return {clusterCount_.get(),    clusterCount_.get(),     setupSource_.get(), triCount_.get(), 0u,
-            CLR_SCAN_LIST_CLUSTERS, CLR_COUNTER_SETUP_TOTAL, CLR_SCAN_NO_TOTAL,  params_.numTris};
-  return {triCount_.get(),     triCount_.get(),         setupSource_.get(), triCount_.get(), 0u,
-          CLR_SCAN_LIST_BYTES, CLR_COUNTER_SETUP_TOTAL, CLR_SCAN_NO_TOTAL};
+  // The values scanned: the clusters' sums, or the bytes themselves (the listing reads the bytes either way).
+  const bool clusters = listsClusters();
+  const cl::Buffer& values = clusters ? clusterCount_.get() : triCount_.get();
+  return {values,
+          values,
+          setupSource_.get(),
+          triCount_.get(),
+          0u,
+          clusters ? CLR_SCAN_LIST_CLUSTERS : CLR_SCAN_LIST_BYTES,
+          CLR_COUNTER_SETUP_TOTAL,
+          CLR_SCAN_NO_TOTAL,
+          clusters ? params_.numTris : 0u};
 }
 
 }  // namespace clr
