@@ -301,6 +301,8 @@ std::string fraction(double value, const std::optional<double>& peak)
 // glFinish into OSMesa's buffer with LP_NUM_THREADS threads (the core count when unset), first with a GLSL program of
 // clraster's lambert (llvm_ms, ratio, shade_mad), then lit per vertex (llvm_vertex_ms, ratio_vertex,
 // shade_mad_vertex; llvmpipe_render.h). Derived columns:
+//   vertices      = the mesh's distinct vertices (weldVertices, layout.h: a file's vertices equal in every attribute
+//                   count once).
 //   min_bytes     = 24 B per vertex (position + normal) + 12 B per triangle + 4 B per pixel: what any renderer must
 //                   hold on the device; mem_ratio = device_bytes / min_bytes.
 //   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time, the nominal edge evaluations; raster steps each
@@ -519,7 +521,8 @@ int run(const Args& args)
   r.mesaRelease = mesaRelease(llvm.version);
   r.pixels = uint64_t(args.width) * args.height;
   r.triangles = mesh.numTris();
-  r.vertices = mesh.numVerts();
+  std::vector<uint32_t> weld;
+  r.vertices = weldVertices(mesh, weld);
   r.clr = frameTimes(clr.frameMs);
   r.llvm = frameTimes(llvm.frameMs);
   r.llvmVertex = frameTimes(llvmVertex.frameMs);

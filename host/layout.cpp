@@ -1,5 +1,5 @@
-// layout.cpp — layOutScene (layout.h): the spatial order of the triangles
-// and the first-use order of the vertices, from meshoptimizer.
+// layout.cpp — layOutScene (layout.h): the spatial order of the triangles,
+// the welded vertices in first-use order, from meshoptimizer.
 #include "layout.h"
 
 #include <meshoptimizer.h>
@@ -38,14 +38,33 @@ static double meanStep(const std::vector<float>& centroids, const std::vector<ui
   return order.size() > 1 ? sum / double(order.size() - 1) : 0.0;
 }
 
+size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld)
+{
+  const size_t verts = mesh.numVerts();
+  std::vector<meshopt_Stream> streams = {{mesh.positions.data(), 3 * sizeof(float), 3 * sizeof(float)}};
+  if (!mesh.normals.empty()) streams.push_back({mesh.normals.data(), 3 * sizeof(float), 3 * sizeof(float)});
+  if (!mesh.uvs.empty()) streams.push_back({mesh.uvs.data(), 2 * sizeof(float), 2 * sizeof(float)});
+  if (!mesh.colors.empty()) streams.push_back({mesh.colors.data(), 4 * sizeof(float), 4 * sizeof(float)});
+  // Each vertex once, padded with vertex 0 to whole triangles (meshoptimizer asks for them), so the welded
+  // vertices follow the first of each in the file's order and none is dropped.
+  std::vector<uint32_t> every(verts + 2, 0);
+  std::iota(every.begin(), every.begin() + verts, 0u);
+  weld.assign(verts, 0);
+  if (verts == 0) return 0;
+  return meshopt_generateVertexRemapMulti(weld.data(), every.data(), verts + 2 - (verts + 2) % 3, verts, streams.data(),
+                                          streams.size());
+}
+
 SceneLayout layOutScene(const Mesh& file, bool enabled)
 {
   SceneLayout out;
   const size_t tris = file.numTris(), verts = file.numVerts();
   out.fileTri.resize(tris);
   out.fileVertex.resize(verts);
+  out.laidVertex.resize(verts);
   std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
   std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
+  std::iota(out.laidVertex.begin(), out.laidVertex.end(), 0u);
   // An index past the vertices (the loader rejects such files) keeps the
   // file's order: meshoptimizer may not see it.
   for (uint32_t i : file.indices) enabled = enabled && i < verts;
@@ -72,15 +91,22 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
   if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
-  // Step 2: the vertices in the order the sorted triangles first use them,
-  // then the unused ones.
-  std::vector<uint32_t> newVertex(verts);  // file vertex -> laid-out, ~0u unused
-  size_t used = meshopt_optimizeVertexFetchRemap(newVertex.data(), sortedIndices.data(), sortedIndices.size(), verts);
-  for (size_t v = 0; v < verts; ++v)
+  // Step 2: vertices equal in every attribute become one.
+  std::vector<uint32_t> weld;  // file vertex -> welded
+  const size_t unique = weldVertices(file, weld);
+  for (uint32_t& i : sortedIndices) i = weld[i];
+  // Step 3: the welded vertices in the order the sorted triangles first use them, then the unused ones.
+  std::vector<uint32_t> newVertex(unique);  // welded vertex -> laid-out, ~0u unused
+  size_t used = meshopt_optimizeVertexFetchRemap(newVertex.data(), sortedIndices.data(), sortedIndices.size(), unique);
+  for (size_t v = 0; v < unique; ++v)
     if (newVertex[v] == ~0u) newVertex[v] = uint32_t(used++);
-  for (size_t v = 0; v < verts; ++v) out.fileVertex[newVertex[v]] = uint32_t(v);
+  out.fileVertex.resize(unique);
+  for (size_t v = verts; v-- > 0;) {  // the first file vertex of each laid-out one
+    out.laidVertex[v] = newVertex[weld[v]];
+    out.fileVertex[out.laidVertex[v]] = uint32_t(v);
+  }
   for (uint32_t& i : sortedIndices) i = newVertex[i];
-  // Step 3: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
+  // Step 4: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
   // replaced here, a quarter of a 10M-triangle upload's time.
   static_assert(sizeof(Mesh) == 11 * sizeof(std::vector<float>) + sizeof(MeshFacts),
                 "a new Mesh field must be copied or reordered here");
@@ -97,8 +123,8 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   m.uvs = gather(file.uvs, out.fileVertex, 2);
   m.colors = gather(file.colors, out.fileVertex, 4);
   m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
-  for (uint32_t& v : m.lines) v = newVertex[v];  // a file's own lines and points name vertices too
-  for (uint32_t& v : m.points) v = newVertex[v];
+  for (uint32_t& v : m.lines) v = out.laidVertex[v];  // a file's own lines and points name vertices too
+  for (uint32_t& v : m.points) v = out.laidVertex[v];
   return out;
 }
 

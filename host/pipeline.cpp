@@ -214,7 +214,7 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   SceneLayout layout = layOutScene(fileMesh, layoutOn_);
   scene_ = std::move(layout.mesh);
   fileTriHost_ = std::move(layout.fileTri);
-  fileVertex_ = std::move(layout.fileVertex);
+  laidVertex_ = std::move(layout.laidVertex);
   oneMaterial_ = std::all_of(scene_.triMaterial.begin(), scene_.triMaterial.end(),
                              [&](uint32_t m) { return m == scene_.triMaterial[0]; });
   ++sceneUploads_;
@@ -240,7 +240,7 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   paintOrder_.clear();
   resident_ = 0;
   triCount_.reserve(mesh.numTris(), true);
-  params_.numVerts = uint32_t(mesh.numVerts());
+  params_.numVerts = uint32_t(scene_.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
   cl_.queue.finish();
   prepareMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -507,9 +507,9 @@ FrameStats Pipeline::finishFrame()
 std::vector<cl_float4> Pipeline::readClipPositions() const
 {
   const std::vector<cl_float4> laidOut = clipPos_.download(params_.numVerts);
-  if (fileVertex_.empty()) return laidOut;  // a clip-space scene: no layout
-  std::vector<cl_float4> out(laidOut.size());
-  for (size_t v = 0; v < out.size(); ++v) out[fileVertex_[v]] = laidOut[v];
+  if (laidVertex_.empty()) return laidOut;  // a clip-space scene: no layout
+  std::vector<cl_float4> out(laidVertex_.size());
+  for (size_t v = 0; v < out.size(); ++v) out[v] = laidOut[laidVertex_[v]];
   return out;
 }
 std::vector<SetupRecord> Pipeline::readSetup() const

@@ -440,7 +440,7 @@ class Pipeline {
   Mesh scene_;  // host copy, laid out: lazy uploads read it
   bool layoutOn_ = true;
   double prepareMs_ = 0;
-  std::vector<uint32_t> fileTriHost_, fileVertex_;  // the layout's maps (layout.h)
+  std::vector<uint32_t> fileTriHost_, laidVertex_;  // the layout's maps (layout.h)
   bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
   uint32_t resident_ = 0;                           // kResident* bits
   bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)

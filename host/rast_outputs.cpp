@@ -18,7 +18,7 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
   // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
   fileTriHost_.clear();
-  fileVertex_.clear();
+  laidVertex_.clear();
   fileOrder_ = true;
   fileTri_.reserve(1);
   // No cluster test (setup.cl compiles it out): empty bounds, margin 0.

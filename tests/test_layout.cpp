@@ -4,7 +4,8 @@
 // as it was before layouts), the triangle IDs, the AOVs, the id shading and
 // the shaded images are the same, IDs speaking of each file's own order, and
 // an exact depth tie goes to the triangle earlier in the file; on real
-// models, for every method and camera.
+// models, for every method and camera. Vertices are welded only where every
+// attribute is equal.
 #include "test_support.h"
 
 #include "camera.h"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <numeric>
@@ -214,6 +216,112 @@ TEST_CASE("The layout changes no output of real models for any method or camera"
     }
   }
   CHECK(covered > 3 * methods.size() * 160 * 120 / 50);  // the views are not empty
+}
+
+// Whether vertex a of mesh x and vertex b of mesh y agree bit for bit in
+// every attribute.
+bool sameVertex(const clr::Mesh& x, uint32_t a, const clr::Mesh& y, uint32_t b)
+{
+  const auto same = [](const std::vector<float>& p, uint32_t i, const std::vector<float>& q, uint32_t j, size_t n) {
+    return (p.empty() && q.empty()) || std::memcmp(&p[n * i], &q[n * j], n * sizeof(float)) == 0;
+  };
+  return same(x.positions, a, y.positions, b, 3) && same(x.normals, a, y.normals, b, 3) &&
+         same(x.uvs, a, y.uvs, b, 2) && same(x.colors, a, y.colors, b, 4);
+}
+
+TEST_CASE("The layout welds vertices equal in every attribute and no others", "[layout]")
+{
+  // Step 1: a file whose faces have vertices of their own (as assimp loads
+  // OBJ, STL and Blender files): a shuffled grid of quads, each corner
+  // repeated per triangle, with lines and points on the repeats. Some
+  // repeats differ in one bit of one attribute: -0 against 0 in the normal,
+  // the texture coordinate or colour one ulp apart; those stay apart.
+  clr::Mesh file;
+  constexpr int kSide = 40;
+  std::mt19937 random(5);
+  const auto corner = [&](int i, int j, uint32_t variant) {
+    file.positions.insert(file.positions.end(), {float(i), float(j), 0.5f * float((i * j) % 3)});
+    file.normals.insert(file.normals.end(), {0.0f, variant == 1 ? -0.0f : 0.0f, 1.0f});
+    file.uvs.insert(file.uvs.end(), {float(i) / kSide, variant == 2 ? std::nextafter(0.25f, 1.0f) : 0.25f});
+    file.colors.insert(file.colors.end(), {1.0f, 0.5f, variant == 3 ? std::nextafter(0.5f, 1.0f) : 0.5f, 1.0f});
+    return uint32_t(file.numVerts() - 1);
+  };
+  std::vector<std::array<uint32_t, 3>> tris;
+  for (int i = 0; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j) {
+      const uint32_t variant = random() % 8;  // 1..3: one corner differs
+      tris.push_back({corner(i, j, 0), corner(i + 1, j, 0), corner(i + 1, j + 1, variant)});
+      tris.push_back({corner(i, j, 0), corner(i + 1, j + 1, 0), corner(i, j + 1, 0)});
+    }
+  std::shuffle(tris.begin(), tris.end(), random);
+  for (const auto& t : tris) file.indices.insert(file.indices.end(), t.begin(), t.end());
+  file.lines = {file.indices[0], file.indices[4], file.indices[7], file.indices[9]};
+  file.points = {file.indices[5], file.indices[11], corner(kSide + 1, 0, 0)};  // the last one only a point's
+  std::vector<uint32_t> weld;
+  const size_t distinct = clr::weldVertices(file, weld);
+  std::set<std::vector<float>> kinds;  // the distinct vertices, counted independently
+  for (uint32_t v = 0; v < file.numVerts(); ++v) {
+    std::vector<float> key(&file.positions[3 * v], &file.positions[3 * v + 3]);
+    key.push_back(std::signbit(file.normals[3 * v + 1]) ? 1.0f : 0.0f);
+    key.insert(key.end(), &file.uvs[2 * v], &file.uvs[2 * v + 2]);
+    key.insert(key.end(), &file.colors[4 * v], &file.colors[4 * v + 4]);
+    kinds.insert(key);
+  }
+  REQUIRE(distinct == kinds.size());
+  REQUIRE(distinct < file.numVerts() / 3);              // 6 corners per quad, about 1.4 distinct
+  REQUIRE(distinct > size_t(kSide + 1) * (kSide + 1));  // the variants stayed apart
+  // Step 2: the laid-out copy holds the distinct vertices, and each corner,
+  // line end and point names one equal to the file's, bit for bit.
+  const clr::SceneLayout layout = clr::layOutScene(file);
+  const clr::Mesh& laid = layout.mesh;
+  CHECK(laid.numVerts() == distinct);
+  CHECK(laid.normals.size() == 3 * distinct);
+  CHECK(laid.uvs.size() == 2 * distinct);
+  CHECK(laid.colors.size() == 4 * distinct);
+  REQUIRE(layout.laidVertex.size() == file.numVerts());
+  size_t unequal = 0;
+  for (uint32_t v = 0; v < file.numVerts(); ++v) {
+    unequal += !sameVertex(file, v, laid, layout.laidVertex[v]);
+    unequal += weld[v] != weld[layout.fileVertex[layout.laidVertex[v]]];
+  }
+  for (uint32_t t = 0; t < laid.numTris(); ++t)
+    for (int k = 0; k < 3; ++k)
+      unequal += !sameVertex(file, file.indices[3 * layout.fileTri[t] + k], laid, laid.indices[3 * t + k]);
+  REQUIRE(laid.lines.size() == file.lines.size());
+  REQUIRE(laid.points.size() == file.points.size());
+  for (size_t i = 0; i < file.lines.size(); ++i) unequal += !sameVertex(file, file.lines[i], laid, laid.lines[i]);
+  for (size_t i = 0; i < file.points.size(); ++i) unequal += !sameVertex(file, file.points[i], laid, laid.points[i]);
+  CHECK(unequal == 0);
+  // Step 3: without the layout nothing is welded.
+  CHECK(clr::layOutScene(file, false).mesh.numVerts() == file.numVerts());
+}
+
+TEST_CASE("A welded OBJ file holds fewer bytes and reads back the file's clip positions", "[layout]")
+{
+  // assimp's OBJ import gives each face corner a vertex of its own.
+  const clr::Mesh file = clr::loadScene("/usr/share/assimp/models/OBJ/WusonOBJ.obj");
+  std::vector<uint32_t> weld;
+  const size_t distinct = clr::weldVertices(file, weld);
+  REQUIRE(distinct < file.numVerts() / 2);
+  const clr::Camera camera = clr::frameCamera(clr::CameraArgs{}, clr::meshBounds(file));
+  const clr::FrameSettings settings = clr::makeFrameSettings(clr::RenderArgs{}, camera, kW, kH, clr::meshBounds(file));
+  std::vector<cl_float4> clip[2];
+  std::vector<uint32_t> image[2];
+  size_t bytes[2];
+  for (int layout = 0; layout < 2; ++layout) {
+    clr::Pipeline pipeline(test::context());
+    pipeline.setLayout(layout == 1);
+    pipeline.uploadScene(file);
+    pipeline.render(settings, image[layout]);
+    bytes[layout] = pipeline.deviceBytes();
+    pipeline.transform();
+    clip[layout] = pipeline.readClipPositions();
+  }
+  // Positions and normals of the vertices welded away, at least.
+  CHECK(bytes[0] - bytes[1] >= 24 * (file.numVerts() - distinct));
+  CHECK(differing(image[1], image[0]) == 0);
+  REQUIRE(clip[1].size() == file.numVerts());
+  CHECK(differing(clip[1], clip[0]) == 0);
 }
 
 TEST_CASE("An exact depth tie goes to the triangle earlier in the file under the layout", "[layout]")

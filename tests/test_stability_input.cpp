@@ -355,7 +355,10 @@ TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and
       const float z = -0.5f + 0.01f * float(t);
       g.addTriangle({-0.95f, -0.95f, z}, {-0.85f, -0.95f, z}, {-0.95f, -0.85f, z});
     }
-    for (uint32_t t = 0; t < outside; ++t) g.addTriangle({2.0f, 0.0f, 0.0f}, {3.0f, 0.0f, 0.0f}, {2.0f, 1.0f, 0.0f});
+    for (uint32_t t = 0; t < outside; ++t) {  // each its own vertices (equal ones are welded, layout.h)
+      const float x = 2.0f + 0.01f * float(t);
+      g.addTriangle({x, 0.0f, 0.0f}, {x + 1.0f, 0.0f, 0.0f}, {x, 1.0f, 0.0f});
+    }
     auto pipeline = std::make_unique<clr::Pipeline>(test::context());
     pipeline->uploadScene(g.mesh());
     std::vector<uint32_t> rgba;
