@@ -60,16 +60,15 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   SceneLayout out;
   const size_t tris = file.numTris(), verts = file.numVerts();
   out.fileTri.resize(tris);
-  out.fileVertex.resize(verts);
-  out.laidVertex.resize(verts);
   std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
-  std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
-  std::iota(out.laidVertex.begin(), out.laidVertex.end(), 0u);
   // An index past the vertices (the loader rejects such files) keeps the
   // file's order: meshoptimizer may not see it.
   for (uint32_t i : file.indices) enabled = enabled && i < verts;
   if (!enabled || tris < 2) {
     out.mesh = file;
+    out.fileVertex.resize(verts);
+    std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
+    out.laidVertex = out.fileVertex;
     return out;
   }
   // Step 1: the triangles by the Morton order of their centroids (a
@@ -91,18 +90,24 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
   if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
-  // Step 2: vertices equal in every attribute become one.
-  std::vector<uint32_t> weld;  // file vertex -> welded
-  const size_t unique = weldVertices(file, weld);
-  for (uint32_t& i : sortedIndices) i = weld[i];
+  // Step 2: vertices equal in every attribute become one, where the mesh has more vertices than triangles: faces
+  // with vertices of their own have two or three per triangle, a shared mesh about half of one, and the weld's
+  // pass over every vertex (its tables' first touch) would cost a 10M-triangle upload a third more for nothing.
+  std::vector<uint32_t> weld;  // file vertex -> welded; empty: none welded
+  size_t unique = verts;
+  if (verts > tris) {
+    unique = weldVertices(file, weld);
+    for (uint32_t& i : sortedIndices) i = weld[i];
+  }
   // Step 3: the welded vertices in the order the sorted triangles first use them, then the unused ones.
   std::vector<uint32_t> newVertex(unique);  // welded vertex -> laid-out, ~0u unused
   size_t used = meshopt_optimizeVertexFetchRemap(newVertex.data(), sortedIndices.data(), sortedIndices.size(), unique);
   for (size_t v = 0; v < unique; ++v)
     if (newVertex[v] == ~0u) newVertex[v] = uint32_t(used++);
   out.fileVertex.resize(unique);
+  out.laidVertex.resize(verts);
   for (size_t v = verts; v-- > 0;) {  // the first file vertex of each laid-out one
-    out.laidVertex[v] = newVertex[weld[v]];
+    out.laidVertex[v] = newVertex[weld.empty() ? v : weld[v]];
     out.fileVertex[out.laidVertex[v]] = uint32_t(v);
   }
   for (uint32_t& i : sortedIndices) i = newVertex[i];

@@ -5,14 +5,15 @@
 // (docs/architecture.md, "Scene layout and locality"). layOutScene returns a
 // copy of a mesh with its triangles in spatial order (meshoptimizer's Morton
 // sort of the centroids, meshopt_spatialSortRemap, as
-// meshopt_spatialSortTriangles does) and its vertices welded and in
-// first-use order (weldVertices, then meshopt_optimizeVertexFetchRemap;
-// vertices no triangle uses follow, so none is dropped). fileTri maps each
-// laid-out triangle to its index in the file, laidVertex each file vertex
-// to the laid-out one: what a user sees (--shade id, the triangle_id AOV,
-// depth ties, read-backs) speaks of the file's order through them. The same
-// geometry, attributes and materials, bit for bit, only reordered and
-// shared; an identity layout when `enabled` is false.
+// meshopt_spatialSortTriangles does) and its vertices welded (weldVertices,
+// for a mesh of more vertices than triangles) and in first-use order
+// (meshopt_optimizeVertexFetchRemap; vertices no triangle uses follow, so
+// none is dropped). fileTri maps each laid-out triangle to its index in the
+// file, laidVertex each file vertex to the laid-out one: what a user sees
+// (--shade id, the triangle_id AOV, depth ties, read-backs) speaks of the
+// file's order through them. The same geometry, attributes and materials,
+// bit for bit, only reordered and shared; an identity layout when `enabled`
+// is false.
 #pragma once
 
 #include "scene.h"
