@@ -4,6 +4,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -13,6 +14,8 @@ namespace clr {
 // How much longer than the sorted order's the file's mean step between
 // consecutive triangles may be for the file to keep its order.
 constexpr double kCoherentSteps = 8.0;
+// How many sorted triangles' vertices show whether welding pays (weldPays).
+constexpr size_t kWeldSample = 16384;
 
 // Copies per-element arrays (`width` values per element) into the new order.
 template <typename T>
@@ -55,6 +58,26 @@ size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld)
                                           streams.size());
 }
 
+// Whether welding pays: in a mesh of more vertices than triangles (faces with vertices of their own have two or three
+// per triangle, a shared mesh about half of one), whose vertices of the first kWeldSample sorted triangles (neighbours
+// in space, whatever the file's order) weld by at least a 64th (an STL file's facet normals keep its vertices apart).
+// The weld's pass over every vertex would otherwise cost a large upload a third more for nothing.
+static bool weldPays(const Mesh& file, const std::vector<uint32_t>& sortedIndices)
+{
+  if (file.numVerts() <= file.numTris()) return false;
+  std::vector<uint32_t> ids(sortedIndices.begin(),
+                            sortedIndices.begin() + std::min(sortedIndices.size(), 3 * kWeldSample));
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  Mesh sample;
+  sample.positions = gather(file.positions, ids, 3);
+  sample.normals = gather(file.normals, ids, 3);
+  sample.uvs = gather(file.uvs, ids, 2);
+  sample.colors = gather(file.colors, ids, 4);
+  std::vector<uint32_t> weld;
+  return weldVertices(sample, weld) < ids.size() - ids.size() / 64;
+}
+
 SceneLayout layOutScene(const Mesh& file, bool enabled)
 {
   SceneLayout out;
@@ -90,12 +113,10 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
   if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
-  // Step 2: vertices equal in every attribute become one, where the mesh has more vertices than triangles: faces
-  // with vertices of their own have two or three per triangle, a shared mesh about half of one, and the weld's
-  // pass over every vertex (its tables' first touch) would cost a 10M-triangle upload a third more for nothing.
+  // Step 2: vertices equal in every attribute become one, where that pays (weldPays).
   std::vector<uint32_t> weld;  // file vertex -> welded; empty: none welded
   size_t unique = verts;
-  if (verts > tris) {
+  if (weldPays(file, sortedIndices)) {
     unique = weldVertices(file, weld);
     for (uint32_t& i : sortedIndices) i = weld[i];
   }

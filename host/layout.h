@@ -6,7 +6,7 @@
 // copy of a mesh with its triangles in spatial order (meshoptimizer's Morton
 // sort of the centroids, meshopt_spatialSortRemap, as
 // meshopt_spatialSortTriangles does) and its vertices welded (weldVertices,
-// for a mesh of more vertices than triangles) and in first-use order
+// where that pays: see layOutScene) and in first-use order
 // (meshopt_optimizeVertexFetchRemap; vertices no triangle uses follow, so
 // none is dropped). fileTri maps each laid-out triangle to its index in the
 // file, laidVertex each file vertex to the laid-out one: what a user sees
