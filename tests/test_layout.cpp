@@ -86,6 +86,20 @@ uint32_t idColour(uint32_t tri)
   return tri == ref::kNone ? 0xFF000000u : 0xFF000000u | ((tri + 1u) & 0xFFFFFFu);
 }
 
+// Renders one frame of two pipelines of the same mesh (without and with the
+// layout) and checks that their ids and images are the same; returns how
+// many pixels the frame covers.
+size_t sameFrame(clr::Pipeline& before, clr::Pipeline& laid, const clr::FrameSettings& settings)
+{
+  std::vector<uint32_t> imageBefore, imageLaid;
+  before.render(settings, imageBefore);
+  laid.render(settings, imageLaid);
+  const std::vector<uint32_t> ids = test::readTriIds(before);
+  CHECK(differing(test::readTriIds(laid), ids) == 0);
+  CHECK(differing(imageLaid, imageBefore) == 0);
+  return size_t(std::count_if(ids.begin(), ids.end(), [](uint32_t id) { return id != ref::kNone; }));
+}
+
 }  // namespace
 
 TEST_CASE("A shuffled mesh and its file order render the same with and without the layout", "[layout]")
@@ -202,18 +216,12 @@ TEST_CASE("The layout changes no output of real models for any method or camera"
       words.insert(words.end(), {"-o", "x.png"});
       const clr::FrameSettings settings =
           test::keepingVis(clr::makeFrameSettings(clr::parseRenderArgs(words), camera, 160, 120, bounds));
-      std::vector<uint32_t> imageBefore, imageLaid;
-      before.render(settings, imageBefore);
-      laid.render(settings, imageLaid);
-      const std::vector<uint32_t> ids = test::readTriIds(before);
-      CHECK(differing(test::readTriIds(laid), ids) == 0);
-      CHECK(differing(imageLaid, imageBefore) == 0);
+      covered += sameFrame(before, laid, settings);
       if (settings.wireframe == CLR_WIREFRAME_OFF) {  // (the AOVs are of triangles only)
         before.aov();
         laid.aov();
         CHECK(differing(laid.readAov(), before.readAov()) == 0);
       }
-      for (uint32_t id : ids) covered += id != ref::kNone;
     }
   }
   CHECK(covered > 3 * methods.size() * 160 * 120 / 50);  // the views are not empty
@@ -354,13 +362,7 @@ TEST_CASE("The layout changes no output of any model assimp's corpus renders", "
       INFO(shade);
       const clr::FrameSettings settings = test::keepingVis(
           clr::makeFrameSettings(clr::parseRenderArgs({"--shade", shade, "-o", "x.png"}), camera, 64, 48, bounds));
-      std::vector<uint32_t> imageBefore, imageLaid;
-      before.render(settings, imageBefore);
-      laid.render(settings, imageLaid);
-      const std::vector<uint32_t> ids = test::readTriIds(before);
-      CHECK(differing(test::readTriIds(laid), ids) == 0);
-      CHECK(differing(imageLaid, imageBefore) == 0);
-      for (uint32_t id : ids) covered += id != ref::kNone;
+      covered += sameFrame(before, laid, settings);
     }
   }
   CHECK(models > 250);
