@@ -308,7 +308,7 @@ std::string fraction(double value, const std::optional<double>& peak)
 //   edge_gevals_s = bin_entries x CLR_TILE_SIZE^2 x 3 / raster time, the nominal edge evaluations; raster steps each
 //                   with one add per lane, so edge_frac_lane_ops = edge_gevals_s / the device's 32-bit lane ops per
 //                   second (--peak-lane-gops: half clraster_peak's fp32 FLOP peak, one FMA per lane).
-//   rr_gbs        = (12 B per pixel: setup index written and read, image written; plus a 48 B TriSetup per bin
+//   rr_gbs        = (12 B per pixel: setup index written and read, image written; plus a 36 B TriSetup per bin
 //                   entry) / (raster + resolve time); rr_frac_copy = rr_gbs / the peak copy bandwidth.
 //   mesa          = the Mesa release llvmpipe's GL_VERSION names (the library that ran).
 //   ratio_round_min, ratio_round_max = the least and greatest rounds' own ratios (clraster's median over

@@ -26,14 +26,11 @@ void Pipeline::aov()
     resident_ |= kResidentNormals;
   }
   aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
-  if (!(resident_ & kResidentNormals)) {  // the normal plane reads them whatever the frame's shading read
-    normals_.upload(scene_.normals);
-    resident_ |= kResidentNormals;
-  }
   cl::Event event;
   cl::Kernel& kernel = extraKernel(aovKernel_, "aov");
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
-          clipBary_.get(), indices_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane(), fileTri_.get());
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setupSource_.get(),
+          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane(),
+          fileTri_.get());
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
                                  cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);

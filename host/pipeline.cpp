@@ -517,6 +517,15 @@ std::vector<SetupRecord> Pipeline::readSetup() const
   const std::vector<TriSetup> setup = setup_.download(numSetup_);
   const std::vector<uint32_t> source = setupSource_.download(numSetup_);
   const std::vector<ClipBary> clip = readClipBary();
+  // 1/w, which records do not hold: record_clip_w (transform.cl) in the same float operations.
+  const size_t stride = cl_.clipInput ? 4 : 3;
+  const std::vector<float> positions = positions_.download(stride * params_.numVerts);
+  const std::vector<uint32_t> indices = indices_.download(3 * uint64_t(params_.numTris));
+  const float* m = params_.mvp;
+  auto clipW = [&](uint32_t v) {
+    const float* p = &positions[stride * v];
+    return stride == 4 ? p[3] : m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+  };
   std::vector<SetupRecord> out(numSetup_);
   for (size_t s = 0; s < out.size(); ++s) {
     const TriSetup& t = setup[s];
@@ -525,12 +534,14 @@ std::vector<SetupRecord> Pipeline::readSetup() const
       r.x[v] = t.x[v];
       r.y[v] = t.y[v];
       r.z[v] = t.z[v];
-      r.invW[v] = t.invW[v];
     }
     r.invArea2 = CLR_RECORD_INV_AREA2(t);
     r.clipSlot = clr_source_clip_slot(source[s]);
     const bool clipped = r.clipSlot != CLR_NOT_CLIPPED;
     const uint32_t tri = source[s] & CLR_SOURCE_TRIANGLE;
+    const bool back = (source[s] & CLR_SOURCE_BACKFACING) != 0;
+    for (int v = 0; v < 3 && !clipped; ++v) r.invW[v] = 1.0f / clipW(indices[3 * tri + (back && v != 0 ? 3 - v : v)]);
+    for (int v = 0; v < 3 && clipped; ++v) r.invW[v] = 1.0f / clip.at(r.clipSlot).clipW[v];
     r.triId = clipped ? clip.at(r.clipSlot).triId : fileTriHost_.empty() ? tri : fileTriHost_.at(tri);
     r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
   }

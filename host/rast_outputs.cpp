@@ -46,7 +46,7 @@ void Pipeline::rastOutputs(bool ids, bool derivatives)
   rastDbWritten_ = derivatives;
   cl::Event event;
   cl::Kernel& kernel = extraKernel(rastOutputsKernel_, "rast_outputs");
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setupSource_.get(),
           clipBary_.get(), indices_.get(), positions_.get(), tileSlot_.get(), visPlane(), rastOut_.get(),
           rastIds_.get(), rastDb_.get(), (ids ? 1u : 0u) | (derivatives ? 2u : 0u));  // CLR_RAST_OUT_*
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,

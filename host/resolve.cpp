@@ -16,12 +16,13 @@ bool resolveIsLean(uint32_t shadeMode, uint32_t samples, uint32_t interpMode, bo
 bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t numBinEntries)
 {
   // What resolve gathers per covered run of pixels: the setup record and its
-  // source word, the input triangle's vertex indices and, where the mode
-  // reads them, its vertex normals. Below 2 MB they stay cached; a larger
-  // triangle (more tiles) repeats in the rows of its tiles and stays cached
-  // too, where prefetching only costs (bench/ab.sh).
+  // source word, the input triangle's vertex indices and positions (for
+  // 1/w) and, where the mode reads them, its vertex normals. Below 2 MB they
+  // stay cached; a larger triangle (more tiles) repeats in the rows of its
+  // tiles and stays cached too, where prefetching only costs (bench/ab.sh).
   const uint64_t normalBytes = CLR_NEEDS_NORMALS(params.shadeMode) ? 12 * uint64_t(params.numVerts) : 0;
-  const uint64_t gathered = uint64_t(numSetup) * (sizeof(TriSetup) + 4) + 12 * uint64_t(params.numTris) + normalBytes;
+  const uint64_t gathered = uint64_t(numSetup) * (sizeof(TriSetup) + 4) + 12 * uint64_t(params.numTris) +
+                            12 * uint64_t(params.numVerts) + normalBytes;
   return gathered > (2u << 20) && numBinEntries <= 2 * uint64_t(numSetup);
 }
 

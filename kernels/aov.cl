@@ -14,13 +14,13 @@ __kernel void aov(__constant FrameParams* params,
                   __global const uint* visIndex,    // sample plane 0 (shared.h)
                   __global const float* visAttr,    // its depth, b1, b2 planes
                   __global const uint* tileOffset,  // tiles + 1
-                  __global const TriSetup* setup,
-                  __global const uint* source,  // setup's source words
+                  __global const uint* source,      // setup's source words
                   __global const ClipBary* clipBary,
-                  __global const uint* indices,   // 3·numTris
-                  __global const float* normals,  // 3·numVerts
-                  __global float* out,            // CLR_AOV_CHANNELS · width · height
-                  __global const uint* tileSlot,  // tiles + 1: visibility-buffer slots (shared.h)
+                  __global const uint* indices,     // 3·numTris
+                  __global const float* positions,  // 3·numVerts, for 1/w (record_clip_w)
+                  __global const float* normals,    // 3·numVerts
+                  __global float* out,              // CLR_AOV_CHANNELS · width · height
+                  __global const uint* tileSlot,    // tiles + 1: visibility-buffer slots (shared.h)
                   uint visPlane,
                   __global const uint* fileTri)  // numTris: each input triangle's index in the file
 {
@@ -39,12 +39,14 @@ __kernel void aov(__constant FrameParams* params,
     out[CLR_AOV_EYE_DEPTH * plane + p] = INFINITY;
     return;
   }
-  const TriSetup t = setup[index];
   const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
   // Step 2: screen and perspective-correct barycentrics of the setup vertices.
   const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
                       visAttr[2 * visPlane + v]};
-  const float q[3] = {b[0] * t.invW[0], b[1] * t.invW[1], b[2] * t.invW[2]};
+  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
+  float w[3];
+  record_clip_w(params, positions, clipBary, from, vertex, w);
+  const float q[3] = {b[0] * (1.0f / w[0]), b[1] * (1.0f / w[1]), b[2] * (1.0f / w[2])};
   const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
   // Step 3: weights of the input vertices in each setup vertex (resolve.cl).
   const bool clipped = clipSlot != CLR_NOT_CLIPPED;
@@ -59,7 +61,7 @@ __kernel void aov(__constant FrameParams* params,
     }
   // Step 4: the interpolated normal.
   float3 n = (float3)(0.0f);
-  for (int j = 0; j < 3; ++j) n += mu[j] * vload3(indices[3 * triId + j], normals);
+  for (int j = 0; j < 3; ++j) n += mu[j] * vload3(vertex[j], normals);
   // Not length(): its rounding is the driver's; each operation here is IEEE, so every device agrees.
   const float len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   n = len > 0.0f ? n / len : (float3)(0.0f);

@@ -38,8 +38,7 @@ __kernel void rast_outputs(__constant FrameParams* params,
                            __global const uint* visIndex,    // sample plane 0 (shared.h)
                            __global const float* visAttr,    // its depth, b1, b2 planes
                            __global const uint* tileOffset,  // tiles + 1
-                           __global const TriSetup* setup, __global const uint* source,
-                           __global const ClipBary* clipBary,
+                           __global const uint* source, __global const ClipBary* clipBary,
                            __global const uint* indices,     // 3·numTris
                            __global const float* positions,  // 4·numVerts, clip space
                            __global const uint* tileSlot,    // tiles + 1
@@ -63,13 +62,15 @@ __kernel void rast_outputs(__constant FrameParams* params,
     if (outputs & CLR_RAST_OUT_DB) db[p] = (float4)(0.0f);
     return;
   }
-  __global const TriSetup* t = &setup[index];
   const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
   // Step 2: perspective-correct weights of the setup vertices, then of the
   // input vertices (aov.cl, steps 2 and 3).
   const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
                       visAttr[2 * visPlane + v]};
-  const float q[3] = {b[0] * t->invW[0], b[1] * t->invW[1], b[2] * t->invW[2]};
+  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
+  float w[3];
+  record_clip_w(params, positions, clipBary, from, vertex, w);
+  const float q[3] = {b[0] * (1.0f / w[0]), b[1] * (1.0f / w[1]), b[2] * (1.0f / w[2])};
   const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
   const bool clipped = clipSlot != CLR_NOT_CLIPPED;
   const bool swapped = !clipped && clr_source_backfacing(from, clipBary);

@@ -34,9 +34,9 @@ CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
 typedef struct ResolveLanes {
   bool needNormals, needUvs, needColours, needPositions, needGradients, needMaterial;
   intL covered;
-  uintL source;    // the source words (shared.h)
-  uintL material;  // the materials' indices (0 without materials)
-  floatL invW[3];
+  uintL source;         // the source words (shared.h)
+  uintL material;       // the materials' indices (0 without materials)
+  floatL clipW[3];      // w_clip at the setup vertices (record_clip_w)
   floatL normal[3][3];  // [input vertex][component]
   floatL uv[3][2];      // [input vertex][component]
   floatL colour[3][4];  // [input vertex][RGBA]
@@ -55,7 +55,7 @@ CLR_INLINE float resolve_gradient(__global const TriSetup* t, int i, int d)
 
 /* Reads what the shading needs of setup record s (record, source, indices, material, attributes) into the lanes
  * of `in` by a select (every lane when `in` is all lanes), keeping values in registers (bench/ab.sh --shade). */
-CLR_HOT void resolve_take(__global const TriSetup* setup, __global const uint* source,
+CLR_HOT void resolve_take(__constant FrameParams* params, __global const TriSetup* setup, __global const uint* source,
                           __global const ClipBary* clipBary, __global const uint* indices,
                           __global const float* positions, __global const float* normals, __global const float* uvs,
                           __global const float* colours, __global const uint* triMaterial, uint s, intL in,
@@ -64,13 +64,16 @@ CLR_HOT void resolve_take(__global const TriSetup* setup, __global const uint* s
 #define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
   __global const TriSetup* t = &setup[s];
   const uint word = source[s], tri = clr_source_triangle(word, clipBary);
+  const uint vertex[3] = {indices[3 * tri], indices[3 * tri + 1], indices[3 * tri + 2]};
+  float w[3];
+  record_clip_w(params, positions, clipBary, word, vertex, w);
   CLR_TAKE(g->source, (uintL)word);
-  for (int i = 0; i < 3; ++i) CLR_TAKE(g->invW[i], (floatL)t->invW[i]);
+  for (int i = 0; i < 3; ++i) CLR_TAKE(g->clipW[i], (floatL)w[i]);
   for (int i = 0; g->needGradients && i < 3; ++i)
     for (int d = 0; d < 2; ++d) CLR_TAKE(g->grad[i][d], (floatL)resolve_gradient(t, i, d));
   if (g->needMaterial) CLR_TAKE(g->material, (uintL)triMaterial[tri]);
   for (int j = 0; j < 3; ++j) {
-    const uint v = indices[3 * tri + j];
+    const uint v = vertex[j];
     for (int k = 0; g->needNormals && k < 3; ++k) CLR_TAKE(g->normal[j][k], (floatL)normals[3 * v + k]);
     for (int k = 0; g->needPositions && k < 3; ++k) CLR_TAKE(g->pos[j][k], (floatL)positions[3 * v + k]);
     for (int k = 0; g->needUvs && k < 2; ++k) CLR_TAKE(g->uv[j][k], (floatL)uvs[2 * v + k]);
@@ -93,32 +96,60 @@ CLR_INLINE void resolve_gather_attribute(__global const float* values, uint comp
 }
 
 /* Step 1 of the lane-by-lane gathers (also resolve_lambert_gather): lane `lane`'s record (0 if uncovered: a tile
- * with a bin has one), source word, input triangle and 1/w into the per-lane arrays. */
+ * with a bin has one), source word and input triangle into the per-lane arrays. */
 CLR_HOT __global const TriSetup* resolve_lane_record(__global const TriSetup* setup, __global const uint* source,
                                                      __global const ClipBary* clipBary, const uint* index, uint lane,
-                                                     uint* from, uint* tri, float invW[3][CLR_LANES])
+                                                     uint* from, uint* tri)
 {
   const uint s = index[lane] != CLR_NONE ? index[lane] : 0;
   from[lane] = source[s];
   tri[lane] = clr_source_triangle(from[lane], clipBary);
-  for (int i = 0; i < 3; ++i) invW[i][lane] = setup[s].invW[i];
   return &setup[s];
+}
+
+/* record_clip_w (transform.cl) for every lane: from[lane] the source words, vertex[j][lane] the input vertices. */
+CLR_HOT void resolve_clip_w_lanes(__constant FrameParams* params, __global const float* positions,
+                                  __global const ClipBary* clipBary, const uint* from, const uint vertex[3][CLR_LANES],
+                                  floatL clipW[3])
+{
+  float w[3][CLR_LANES];
+  uint clipped = 0;  // bit lane: a clipped record
+  CLR_NO_UNROLL
+  for (uint lane = 0; lane < CLR_LANES; ++lane) {
+    for (int j = 0; j < 3; ++j) w[j][lane] = transform_w(params, positions, vertex[j][lane]);
+    clipped |= (clr_source_clip_slot(from[lane]) != CLR_NOT_CLIPPED ? 1u : 0u) << lane;
+  }
+  const uintL word = CLR_LOAD_LANES(from);
+  const intL back = (word & CLR_SOURCE_BACKFACING) != 0;
+  const floatL w0 = CLR_LOAD_LANES(w[0]), w1 = CLR_LOAD_LANES(w[1]), w2 = CLR_LOAD_LANES(w[2]);
+  clipW[0] = w0;
+  clipW[1] = select(w1, w2, back);
+  clipW[2] = select(w2, w1, back);
+  if (!clipped) return;
+  float q[3][CLR_LANES];
+  for (int i = 0; i < 3; ++i) CLR_STORE_LANES(clipW[i], q[i]);
+  for (; clipped; clipped &= clipped - 1) {
+    const uint lane = 31 - clz(clipped & (0u - clipped));  // the lowest set bit
+    for (int i = 0; i < 3; ++i) q[i][lane] = clipBary[clr_source_clip_slot(from[lane])].clipW[i];
+  }
+  for (int i = 0; i < 3; ++i) clipW[i] = CLR_LOAD_LANES(q[i]);
 }
 
 /* resolve_take for every lane, for rows of many runs: staged gathers with independent loads (their cache misses
  * overlap): records and sources, then indices and materials, then attributes. Uncovered lanes read record 0. */
-CLR_HOT void resolve_gather_lanes(__global const TriSetup* setup, __global const uint* source,
-                                  __global const ClipBary* clipBary, __global const uint* indices,
-                                  __global const float* positions, __global const float* normals,
-                                  __global const float* uvs, __global const float* colours,
-                                  __global const uint* triMaterial, const uint* index, ResolveLanes* g)
+CLR_HOT void resolve_gather_lanes(__constant FrameParams* params, __global const TriSetup* setup,
+                                  __global const uint* source, __global const ClipBary* clipBary,
+                                  __global const uint* indices, __global const float* positions,
+                                  __global const float* normals, __global const float* uvs,
+                                  __global const float* colours, __global const uint* triMaterial, const uint* index,
+                                  ResolveLanes* g)
 {
   // Step 1: the records and source words.
   uint from[CLR_LANES], tri[CLR_LANES], material[CLR_LANES], vertex[3][CLR_LANES];
-  float invW[3][CLR_LANES], grad[3][2][CLR_LANES];
+  float grad[3][2][CLR_LANES];
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, tri, invW);
+    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, tri);
     for (int i = 0; g->needGradients && i < 3; ++i)
       for (int d = 0; d < 2; ++d) grad[i][d][lane] = resolve_gradient(t, i, d);
   }
@@ -128,17 +159,16 @@ CLR_HOT void resolve_gather_lanes(__global const TriSetup* setup, __global const
     for (int j = 0; j < 3; ++j) vertex[j][lane] = indices[3 * tri[lane] + j];
     material[lane] = g->needMaterial ? triMaterial[tri[lane]] : 0u;
   }
-  // Step 3: the attributes, and everything into lane types.
+  // Step 3: 1/w, the attributes, and everything into lane types.
+  resolve_clip_w_lanes(params, positions, clipBary, from, vertex, g->clipW);
   if (g->needNormals) resolve_gather_attribute(normals, 3, vertex, &g->normal[0][0]);
   if (g->needPositions) resolve_gather_attribute(positions, 3, vertex, &g->pos[0][0]);
   if (g->needUvs) resolve_gather_attribute(uvs, 2, vertex, &g->uv[0][0]);
   if (g->needColours) resolve_gather_attribute(colours, 4, vertex, &g->colour[0][0]);
   g->source = CLR_LOAD_LANES(from);
   g->material = CLR_LOAD_LANES(material);
-  for (int i = 0; i < 3; ++i) {
-    g->invW[i] = CLR_LOAD_LANES(invW[i]);
+  for (int i = 0; i < 3; ++i)
     for (int d = 0; g->needGradients && d < 2; ++d) g->grad[i][d] = CLR_LOAD_LANES(grad[i][d]);
-  }
 }
 
 /* The fragments of a row with a covered lane (index: setup indices, CLR_NONE past the viewport; indexLanes as a
@@ -166,17 +196,18 @@ CLR_CALLED void resolve_gather(__constant FrameParams* params, const uint* index
   for (uint lane = 0; lane < CLR_LANES; ++lane)
     starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
   if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
-    resolve_gather_lanes(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index, g);
+    resolve_gather_lanes(params, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index,
+                         g);
     return;
   }
   // Step 3: run by run.
   uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
-  resolve_take(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane], (intL)(-1),
-               g);
+  resolve_take(params, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane],
+               (intL)(-1), g);
   CLR_NO_UNROLL
   for (starts &= starts - 1; starts; starts &= starts - 1) {
     lane = 31 - clz(starts & (0u - starts));
-    resolve_take(setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane],
+    resolve_take(params, setup, source, clipBary, indices, positions, normals, uvs, colours, triMaterial, index[lane],
                  indexLanes == index[lane], g);
   }
 }
@@ -379,7 +410,7 @@ CLR_CALLED ColourL resolve_shade(__constant FrameParams* params, __global const 
   // Step 1: the 1/w rule or affine; then q_i holds q_i·w, q_i = 1/w_i (1 when affine), so λ_i = b_i·q_i.
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL q[3], lambda[3], eyeDepth;
-  for (int i = 0; i < 3; ++i) q[i] = g->invW[i];
+  for (int i = 0; i < 3; ++i) q[i] = 1.0f / g->clipW[i];  // setup_make's 1/w (record_clip_w)
   if (params->interpMode == CLR_INTERP_AFFINE) {
     eyeDepth = b[0] / q[0] + b[1] / q[1] + b[2] / q[2];  // w interpolated in screen space
     for (int i = 0; i < 3; ++i) {
@@ -541,7 +572,7 @@ CLR_INLINE uintL resolve_id(__constant FrameParams* params, __global const uint*
 CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const uint* visIndex, uint p, uint rowInTile,
                                  __global const TriSetup* setup, __global const uint* source,
                                  __global const ClipBary* clipBary, __global const uint* indices,
-                                 __global const float* normals)
+                                 __global const float* positions, __global const float* normals)
 {
   uint previous = CLR_NONE;
   for (uint lane = 0; lane < CLR_LANES && rowInTile + 3 < CLR_TILE_SIZE; ++lane) {
@@ -560,13 +591,17 @@ CLR_CALLED void resolve_prefetch(__constant FrameParams* params, __global const 
     previous = next;
   }
   previous = CLR_NONE;
-  // (The normals buffer is a placeholder in modes that do not read it.)
+  // Positions (for 1/w) always; the normals buffer is a placeholder in modes that do not read it.
   const bool normalsBound = CLR_NEEDS_NORMALS(params->shadeMode);
-  for (uint lane = 0; lane < CLR_LANES && normalsBound && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
+  for (uint lane = 0; lane < CLR_LANES && rowInTile + 1 < CLR_TILE_SIZE; ++lane) {
     const uint next = vis_index_at(params, visIndex, p + CLR_TILE_SIZE + lane);
     if (next != CLR_NONE && next != previous) {
       const uint tri = clr_source_triangle(source[next], clipBary);
-      for (int v = 0; v < 3; ++v) __builtin_prefetch(&normals[3 * indices[3 * tri + v]]);
+      for (int v = 0; v < 3; ++v) {
+        const uint vertex = indices[3 * tri + v];
+        __builtin_prefetch(&positions[CLR_POSITION_STRIDE * vertex]);
+        if (normalsBound) __builtin_prefetch(&normals[3 * vertex]);
+      }
     }
     previous = next;
   }
@@ -579,11 +614,11 @@ CLR_INLINE void resolve_prefetch_rows(__constant FrameParams* params, uint prefe
                                       __global const uint* tileOffset, uint tile, __global const uint* visIndex, uint p,
                                       uint py, __global const TriSetup* setup, __global const uint* source,
                                       __global const ClipBary* clipBary, __global const uint* indices,
-                                      __global const float* normals)
+                                      __global const float* positions, __global const float* normals)
 {
 #ifdef CLR_PREFETCH
   if (prefetchRows && tileOffset[tile + 1] - tileOffset[tile] > 128)
-    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices, normals);
+    resolve_prefetch(params, visIndex, p, py % CLR_TILE_SIZE, setup, source, clipBary, indices, positions, normals);
 #endif
 }
 
@@ -606,7 +641,7 @@ CLR_INLINE void resolve_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   const uint plane = visPlane, p = vis_address(tileSlot[tile], firstX, py);
   const uint samples = params->samples;
   resolve_prefetch_rows(params, prefetchRows, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices,
-                        normals);
+                        positions, normals);
   uintL colour;
   const ColourL backgroundColour = colour_unpack(background);
   const ShadeInputs inputs = {materials, texDescs, texels};

@@ -8,8 +8,8 @@
 
 /* What resolve_lambert reads of the lanes' fragments. */
 typedef struct LambertLanes {
-  uintL source;  // the source words (shared.h)
-  floatL invW[3];
+  uintL source;         // the source words (shared.h)
+  floatL clipW[3];      // w_clip at the setup vertices (record_clip_w)
   floatL normal[3][3];  // [input vertex][component]
   floatL albedo[3];
   intL x[3], y[3];  // the setup vertices, read only when the barycentrics are recomputed
@@ -20,15 +20,18 @@ typedef struct LambertLanes {
  * lanes of `in`; into every lane without a select when `in` is the first run's constant all-lanes mask. */
 CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const TriSetup* setup,
                                   __global const uint* source, __global const ClipBary* clipBary,
-                                  __global const uint* indices, __global const float* normals,
-                                  __global const uint* triMaterial, __global const Material* materials, uint s, intL in,
-                                  bool vertices, LambertLanes* f)
+                                  __global const uint* indices, __global const float* positions,
+                                  __global const float* normals, __global const uint* triMaterial,
+                                  __global const Material* materials, uint s, intL in, bool vertices, LambertLanes* f)
 {
 #define CLR_TAKE(lanes, value) (lanes) = select((lanes), (value), in)
   __global const TriSetup* t = &setup[s];
   const uint from = source[s], triId = clr_source_triangle(from, clipBary);
+  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
+  float w[3];
+  record_clip_w(params, positions, clipBary, from, vertex, w);
   CLR_TAKE(f->source, (uintL)from);
-  for (int i = 0; i < 3; ++i) CLR_TAKE(f->invW[i], (floatL)t->invW[i]);
+  for (int i = 0; i < 3; ++i) CLR_TAKE(f->clipW[i], (floatL)w[i]);
   if (vertices) {
     for (int i = 0; i < 3; ++i) {
       CLR_TAKE(f->x[i], (intL)t->x[i]);
@@ -40,7 +43,7 @@ CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const
   const Material m = materials[params->sceneFlags & CLR_SCENE_TRI_MATERIALS ? triMaterial[triId] : 0];
   const float grey[3] = {CLR_GREY_R, CLR_GREY_G, CLR_GREY_B};
   for (int j = 0; j < 3; ++j) {
-    const float3 n = vload3(indices[3 * triId + j], normals);
+    const float3 n = vload3(vertex[j], normals);
     CLR_TAKE(f->normal[j][0], (floatL)n.x);
     CLR_TAKE(f->normal[j][1], (floatL)n.y);
     CLR_TAKE(f->normal[j][2], (floatL)n.z);
@@ -55,17 +58,17 @@ CLR_HOT void resolve_lambert_take(__constant FrameParams* params, __global const
  * is three statements: a loop over the greys compiles to an inner loop per lane. */
 CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global const TriSetup* setup,
                                     __global const uint* source, __global const ClipBary* clipBary,
-                                    __global const uint* indices, __global const float* normals,
-                                    __global const uint* triMaterial, __global const Material* materials,
-                                    const uint* index, uintL indexLanes, uint firstX, uint py, bool vertices,
-                                    LambertLanes* f, floatL* b1, floatL* b2)
+                                    __global const uint* indices, __global const float* positions,
+                                    __global const float* normals, __global const uint* triMaterial,
+                                    __global const Material* materials, const uint* index, uintL indexLanes,
+                                    uint firstX, uint py, bool vertices, LambertLanes* f, floatL* b1, floatL* b2)
 {
   uint triId[CLR_LANES], from[CLR_LANES], vertex[3][CLR_LANES], material[CLR_LANES];
-  float invW[3][CLR_LANES], normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
+  float normal[3][3][CLR_LANES], albedo[3][CLR_LANES];
   int vx[3][CLR_LANES], vy[3][CLR_LANES];
   CLR_NO_UNROLL
   for (uint lane = 0; lane < CLR_LANES; ++lane) {
-    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, triId, invW);
+    __global const TriSetup* t = resolve_lane_record(setup, source, clipBary, index, lane, from, triId);
     if (vertices)
       for (int i = 0; i < 3; ++i) {
         vx[i][lane] = t->x[i];
@@ -92,6 +95,7 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
     albedo[1][lane] = materialsOn ? m.baseColor[1] : CLR_GREY_G;
     albedo[2][lane] = materialsOn ? m.baseColor[2] : CLR_GREY_B;
   }
+  resolve_clip_w_lanes(params, positions, clipBary, from, vertex, f->clipW);
   if (vertices) {
     // All lanes at once (clr_inv_area2L), not run by run with a division and seven selects per run.
     const intL x0 = CLR_LOAD_LANES(vx[0]), x1 = CLR_LOAD_LANES(vx[1]), x2 = CLR_LOAD_LANES(vx[2]);
@@ -101,7 +105,6 @@ CLR_HOT void resolve_lambert_gather(__constant FrameParams* params, __global con
   }
   f->source = CLR_LOAD_LANES(from);
   for (int i = 0; i < 3; ++i) {
-    f->invW[i] = CLR_LOAD_LANES(invW[i]);
     f->albedo[i] = CLR_LOAD_LANES(albedo[i]);
     for (int k = 0; k < 3; ++k) f->normal[i][k] = CLR_LOAD_LANES(normal[i][k]);
   }
@@ -113,7 +116,7 @@ CLR_HOT uintL resolve_lambert_colour(__constant FrameParams* params, __global co
                                      const LambertLanes* f, floatL b1, floatL b2, intL covered, uint background)
 {
   // Step 1: the 1/w rule,
-  const floatL* q = f->invW;
+  const floatL q[3] = {1.0f / f->clipW[0], 1.0f / f->clipW[1], 1.0f / f->clipW[2]};  // setup_make's 1/w
   const floatL b[3] = {1.0f - b1 - b2, b1, b2};
   floatL lambda[3];
   const floatL eyeDepth = 1.0f / (b[0] * q[0] + b[1] * q[1] + b[2] * q[2]);
@@ -157,7 +160,7 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
   uint index[CLR_LANES];
   const uintL indexLanes = vis_load_index_lanes(params, visIndex, p, count, index);
   resolve_prefetch_rows(params, prefetchRows, tileOffset, tile, visIndex, p, py, setup, source, clipBary, indices,
-                        normals);
+                        positions, normals);
   const intL covered = indexLanes != CLR_NONE;
   uintL colour = (uintL)background;
   if (CLR_ANY(covered)) {
@@ -171,8 +174,8 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
     if (!CLR_ANY(indexLanes != index[0])) {  // a vector compare, not a branch per lane
       // A uniform row has its own copy of the steps: its LambertLanes stays in registers, the runs' goes to memory.
       LambertLanes one;
-      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[0],
-                           (intL)(-1), vertices, &one);
+      resolve_lambert_take(params, setup, source, clipBary, indices, positions, normals, triMaterial, materials,
+                           index[0], (intL)(-1), vertices, &one);
       if (vertices)
         vis_barycentrics(one.x[0], one.y[0], one.x[1], one.y[1], one.x[2], one.y[2], one.scale, covered,
                          resolve_sample_x(params, firstX, 0), resolve_sample_y(params, py, 0), &b1, &b2);
@@ -184,17 +187,17 @@ CLR_HOT void resolve_lambert_row(CLR_RESOLVE_PARAMS, uint firstX, uint py)
       starts |= (index[lane] != CLR_NONE && (lane == 0 || index[lane] != index[lane - 1]) ? 1u : 0u) << lane;
     LambertLanes f;
     if (popcount(starts) > CLR_RESOLVE_MAX_RUNS) {
-      resolve_lambert_gather(params, setup, source, clipBary, indices, normals, triMaterial, materials, index,
-                             indexLanes, firstX, py, vertices, &f, &b1, &b2);
+      resolve_lambert_gather(params, setup, source, clipBary, indices, positions, normals, triMaterial, materials,
+                             index, indexLanes, firstX, py, vertices, &f, &b1, &b2);
     } else {
       uint lane = 31 - clz(starts & (0u - starts));  // the lowest set bit
-      resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
-                           (intL)(-1), vertices, &f);
+      resolve_lambert_take(params, setup, source, clipBary, indices, positions, normals, triMaterial, materials,
+                           index[lane], (intL)(-1), vertices, &f);
       CLR_NO_UNROLL
       for (starts &= starts - 1; starts; starts &= starts - 1) {
         lane = 31 - clz(starts & (0u - starts));
-        resolve_lambert_take(params, setup, source, clipBary, indices, normals, triMaterial, materials, index[lane],
-                             indexLanes == index[lane], vertices, &f);
+        resolve_lambert_take(params, setup, source, clipBary, indices, positions, normals, triMaterial, materials,
+                             index[lane], indexLanes == index[lane], vertices, &f);
       }
       if (vertices)
         vis_barycentrics(f.x[0], f.y[0], f.x[1], f.y[1], f.x[2], f.y[2], f.scale, covered,

@@ -20,7 +20,7 @@ typedef struct ClipBatch {
 /* CLR_LANES screen triangles, one lane per triangle (TriSetup, transposed). */
 typedef struct SetupBatch {
   intL x[3], y[3];
-  floatL z[3], invW[3];
+  floatL z[3];
   intL back;                            // mask: wound clockwise, vertices 1 and 2 swapped
   intL tileX0, tileY0, tileX1, tileY1;  // tiles of the pixel bounds (bin_tile_range)
 } SetupBatch;
@@ -28,7 +28,7 @@ typedef struct SetupBatch {
 /* The same, unpacked to arrays so single lanes can be read. */
 typedef struct SetupLanes {
   int x[3][CLR_LANES], y[3][CLR_LANES];
-  float z[3][CLR_LANES], invW[3][CLR_LANES];
+  float z[3][CLR_LANES];
   int back[CLR_LANES];
   int tileX0[CLR_LANES], tileY0[CLR_LANES], tileX1[CLR_LANES], tileY1[CLR_LANES];
 } SetupLanes;
@@ -196,7 +196,6 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
     out->z[v] = reversed ? c->z[v] * invW : c->z[v] * invW * 0.5f + 0.5f;
     out->x[v] = convert_intL(clr_rint(xs * (float)CLR_FIXED_ONE));  // = convert_intL_rte, cheaper (lanes.h)
     out->y[v] = convert_intL(clr_rint(ys * (float)CLR_FIXED_ONE));
-    out->invW[v] = invW;
   }
   // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
   const longL area2 = clr_area2L(out->x[0], out->y[0], out->x[1], out->y[1], out->x[2], out->y[2]);
@@ -204,15 +203,13 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   valid = valid & convert_intL(area2 != 0) & CLR_NOT(params->cullBack ? back : (intL)0);
   // Step 3: orient counter-clockwise by swapping vertices 1 and 2.
   const intL x1 = out->x[1], y1 = out->y[1];
-  const floatL z1 = out->z[1], w1 = out->invW[1];
+  const floatL z1 = out->z[1];
   out->x[1] = select(x1, out->x[2], back);
   out->x[2] = select(out->x[2], x1, back);
   out->y[1] = select(y1, out->y[2], back);
   out->y[2] = select(out->y[2], y1, back);
   out->z[1] = select(z1, out->z[2], back);
   out->z[2] = select(out->z[2], z1, back);
-  out->invW[1] = select(w1, out->invW[2], back);
-  out->invW[2] = select(out->invW[2], w1, back);
   out->back = back;
   // Step 4: cull bounds holding no sample (as bin_pixel_bounds); keep the bounds' tiles for binning.
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
@@ -240,7 +237,6 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
     CLR_STORE_LANES(b->x[v], l->x[v]);
     CLR_STORE_LANES(b->y[v], l->y[v]);
     CLR_STORE_LANES(b->z[v], l->z[v]);
-    CLR_STORE_LANES(b->invW[v], l->invW[v]);
   }
   CLR_STORE_LANES(b->back, l->back);
   CLR_STORE_LANES(b->tileX0, l->tileX0);
@@ -251,14 +247,13 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
 
 /* One lane as a TriSetup, field by field into *t: a returned struct leaves a marker Oclgrind cannot run, and a
  * private record copied whole stalls the CPU (wide load after narrow stores). */
-#define CLR_SETUP_LANE(l, lane, t)       \
-  do {                                   \
-    for (int v = 0; v < 3; ++v) {        \
-      (t)->x[v] = (l)->x[v][lane];       \
-      (t)->y[v] = (l)->y[v][lane];       \
-      (t)->z[v] = (l)->z[v][lane];       \
-      (t)->invW[v] = (l)->invW[v][lane]; \
-    }                                    \
+#define CLR_SETUP_LANE(l, lane, t) \
+  do {                             \
+    for (int v = 0; v < 3; ++v) {  \
+      (t)->x[v] = (l)->x[v][lane]; \
+      (t)->y[v] = (l)->y[v][lane]; \
+      (t)->z[v] = (l)->z[v][lane]; \
+    }                              \
   } while (0)
 CLR_INLINE void setup_lane(const SetupLanes* l, int lane, TriSetup* t)
 {
@@ -522,13 +517,13 @@ __kernel void setup_clip(__constant FrameParams* params,
     if (!made[0]) continue;
     SetupLanes l;
     setup_unpack(&b, &l);
-    const float3 sb[3] = {poly[0].bary, l.back[0] ? poly[k + 1].bary : poly[k].bary,
-                          l.back[0] ? poly[k].bary : poly[k + 1].bary};
+    const int order[3] = {0, l.back[0] ? k + 1 : k, l.back[0] ? k : k + 1};  // setup_make's vertex order
     __global ClipBary* bary = &clipBary[i * CLR_MAX_SUBTRIS + count];
     for (int v = 0; v < 3; ++v) {
-      bary->w[v][0] = sb[v].x;
-      bary->w[v][1] = sb[v].y;
-      bary->w[v][2] = sb[v].z;
+      bary->w[v][0] = poly[order[v]].bary.x;
+      bary->w[v][1] = poly[order[v]].bary.y;
+      bary->w[v][2] = poly[order[v]].bary.z;
+      bary->clipW[v] = poly[order[v]].pos.w;  // setup_make's divisor
     }
     bary->triId = tri;
     bary->flags = l.back[0] ? CLR_FLAG_BACKFACING : 0u;
@@ -539,8 +534,8 @@ __kernel void setup_clip(__constant FrameParams* params,
   }
   // Step 3: flag the reservation's unused slots, whose records binning skips.
   for (uint k = count; k < CLR_MAX_SUBTRIS; ++k) {
-    const TriSetup deadRecord = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-    const ClipBary deadSlot = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, tri, CLR_FLAG_DEAD};
+    const TriSetup deadRecord = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    const ClipBary deadSlot = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, {0, 0, 0}, tri, CLR_FLAG_DEAD};
     setup[base + k] = deadRecord;
     clipBary[i * CLR_MAX_SUBTRIS + k] = deadSlot;
   }

@@ -242,14 +242,14 @@ CLR_INLINE __global uint* clr_image_pixel(__constant FrameParams* params, __glob
 }
 #endif
 
-/* TriSetup[scanned setup count], 48 bytes: one clipped, snapped, counter-clockwise screen triangle. Written by
+/* TriSetup[scanned setup count], 36 bytes: one clipped, snapped, counter-clockwise screen triangle. Written by
  * setup emit and setup_clip; read by bin_fill_clipped, raster, resolve, lines_from_setup, aov. Source, winding and
- * clip slot live in setupSource; 1 / (2·area) is recomputed (clr_inv_area2). Dead-slot records are padding. */
+ * clip slot live in setupSource; 1 / (2·area) is recomputed (clr_inv_area2), and so is w_clip from the input vertices
+ * (record_clip_w, transform.cl; a clipped record's ClipBary slot holds it). Dead-slot records are padding. */
 typedef struct TriSetup {
-  int x[3];      /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
-  int y[3];      /* snapped fixed-point screen y */
-  float z[3];    /* window depth in [0, 1] (reversed with CLR_DEPTH_REVERSED) */
-  float invW[3]; /* 1 / w_clip, for the perspective correction */
+  int x[3];   /* snapped fixed-point screen x, CLR_SUBPIXEL_BITS */
+  int y[3];   /* snapped fixed-point screen y */
+  float z[3]; /* window depth in [0, 1] (reversed with CLR_DEPTH_REVERSED) */
 } TriSetup;
 
 /* 1 / (2·signed area), fixed units⁻²: edge functions to barycentrics. 2·area is exact in 64 bits (fixed.h) and the
@@ -274,13 +274,14 @@ inline float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
   ((int4)(min((t).x[0], min((t).x[1], (t).x[2])), min((t).y[0], min((t).y[1], (t).y[2])), \
           max((t).x[0], max((t).x[1], (t).x[2])), max((t).y[0], max((t).y[1], (t).y[2]))))
 
-/* ClipBary[CLR_MAX_SUBTRIS per clipped triangle], 44 bytes: w[i][j] = weight of input vertex j in sub-vertex i.
+/* ClipBary[CLR_MAX_SUBTRIS per clipped triangle], 56 bytes: w[i][j] = weight of input vertex j in sub-vertex i.
  * Written by setup_clip (clipList entry i owns slots i·CLR_MAX_SUBTRIS + k, unused ones CLR_FLAG_DEAD); read by
  * bin_fill_clipped, resolve, lines_from_setup and aov. */
 typedef struct ClipBary {
   float w[3][3];
-  uint triId; /* the input triangle */
-  uint flags; /* CLR_FLAG_* */
+  float clipW[3]; /* w_clip of each sub-vertex (its record's vertex i) */
+  uint triId;     /* the input triangle */
+  uint flags;     /* CLR_FLAG_* */
 } ClipBary;
 
 /* A setup record's clip slot from its source word, or CLR_NOT_CLIPPED (host and kernels). */
@@ -354,7 +355,8 @@ typedef struct VisSample {
 /* The other buffers of a frame: type[size]  writer -> readers. Optional attributes (Pipeline::bindAttributes) are a
  * 1-element dummy when the frame's mode does not read them.
  *  positions float[3·numVerts], normals float[3·numVerts], uvs float[2·numVerts], colors float[4·numVerts]
- *                                           host -> setup, transform_vertices (positions); resolve (all)
+ *                                           host -> setup, transform_vertices (positions); resolve (all;
+ *                                           positions for 1/w), aov (positions for 1/w)
  *  triMaterial uint[numTris] (with CLR_SCENE_TRI_MATERIALS), materials, texDescs, texels uint[all levels]
  *                                           host -> resolve
  *  indices     uint[3·numTris]              host -> setup, resolve
@@ -427,8 +429,8 @@ typedef struct LineParams {
 
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(FrameParams) == 376, "FrameParams layout must match the kernels");
-static_assert(sizeof(TriSetup) == 48, "TriSetup layout must match the kernels");
-static_assert(sizeof(ClipBary) == 44, "ClipBary layout must match the kernels");
+static_assert(sizeof(TriSetup) == 36, "TriSetup layout must match the kernels");
+static_assert(sizeof(ClipBary) == 56, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");
 static_assert(sizeof(Material) == 32, "Material layout must match the kernels");
 static_assert(sizeof(TextureDesc) == 96, "TextureDesc layout must match the kernels");

@@ -1,6 +1,6 @@
 // test_resolve.cpp — the resolve kernel's perspective-correct interpolation
 // (the 1/w rule) against the analytic value on a tilted plane, unclipped and
-// clipped by the near plane; the image's orientation, the mapped ImageView,
+// clipped by the near plane, wound either way, whole and cut small; the image's orientation, the mapped ImageView,
 // the background over tiles without triangles, edge tiles included; and the
 // choice of resolve's prefetch: its rule, its timed turns, and frames with
 // and without it giving the same pixels.
@@ -62,8 +62,13 @@ TEST_CASE("resolve interpolates perspective-correctly (1/w rule)", "[resolve]")
 {
   const uint32_t W = 128, H = 96;
   // A ground plane seen at a grazing angle; nearZ > 0 puts its near edge
-  // behind the eye so the near plane clips it.
+  // behind the eye so the near plane clips it. Records hold no 1/w
+  // (shared.h): resolve recomputes it per setup vertex, so the plane is also
+  // wound clockwise (setup swaps vertices 1 and 2) and cut into triangles of
+  // a few pixels, whose rows of many runs resolve gathers lane by lane.
   const float nearZ = GENERATE(-1.0f, 4.0f);
+  const bool clockwise = GENERATE(false, true);
+  const int cuts = GENERATE(1, 40);
   const glm::mat4 view = glm::lookAt(glm::vec3(0, 1, 0), glm::vec3(0, 0.8f, -1), glm::vec3(0, 1, 0));
   const glm::mat4 proj = glm::perspective(glm::radians(60.0f), float(W) / H, 0.5f, 100.0f);
   const glm::mat4 mvp = proj * view;
@@ -71,19 +76,33 @@ TEST_CASE("resolve interpolates perspective-correctly (1/w rule)", "[resolve]")
   // Normals used as an attribute that varies strongly across the triangle.
   const glm::dvec3 n[3] = {{1, 0.05, 0}, {0, 1, 0.05}, {0.05, 0, 1}};
 
+  // The triangle cut into cuts² triangles, each vertex's normal the corners'
+  // blended by its barycentrics, so the interpolated normal is the same
+  // linear function of the hit point.
   clr::Mesh mesh;
-  for (int i = 0; i < 3; ++i) {
-    mesh.positions.insert(mesh.positions.end(), {float(v[i].x), float(v[i].y), float(v[i].z)});
-    mesh.normals.insert(mesh.normals.end(), {float(n[i].x), float(n[i].y), float(n[i].z)});
-  }
-  mesh.indices = {0, 1, 2};
+  auto vertexAt = [&](int i, int j) { return uint32_t(i * (cuts + 1) + j); };
+  for (int i = 0; i <= cuts; ++i)
+    for (int j = 0; j <= cuts; ++j) {
+      const double b1 = double(j) / cuts * (1.0 - double(i) / cuts), b2 = double(i) / cuts, b0 = 1.0 - b1 - b2;
+      const glm::dvec3 p = b0 * v[0] + b1 * v[1] + b2 * v[2], q = b0 * n[0] + b1 * n[1] + b2 * n[2];
+      mesh.positions.insert(mesh.positions.end(), {float(p.x), float(p.y), float(p.z)});
+      mesh.normals.insert(mesh.normals.end(), {float(q.x), float(q.y), float(q.z)});
+    }
+  auto addTriangle = [&](uint32_t a, uint32_t b, uint32_t c) {
+    mesh.indices.insert(mesh.indices.end(), {a, clockwise ? c : b, clockwise ? b : c});
+  };
+  for (int i = 0; i < cuts; ++i)
+    for (int j = 0; j < cuts; ++j) {
+      addTriangle(vertexAt(i, j), vertexAt(i, j + 1), vertexAt(i + 1, j + 1));
+      if (j + 1 < cuts) addTriangle(vertexAt(i + 1, j + 1), vertexAt(i + 1, j), vertexAt(i, j));
+    }
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(mesh);
   clr::FrameSettings settings = test::idSettings(W, H, mvp);
   settings.shadeMode = CLR_SHADE_NORMAL;
   std::vector<uint32_t> rgba;
   const clr::FrameStats stats = pipeline.render(settings, rgba);
-  CHECK(stats.trianglesClipped == (nearZ > 0 ? 1u : 0u));
+  if (cuts == 1) CHECK(stats.trianglesClipped == (nearZ > 0 ? 1u : 0u));
 
   // Step 1: per covered pixel, the analytic attribute at the ray's hit point.
   const glm::dmat4 inv = glm::inverse(glm::dmat4(mvp));
@@ -99,7 +118,9 @@ TEST_CASE("resolve interpolates perspective-correctly (1/w rule)", "[resolve]")
       const glm::dvec3 from = glm::dvec3(a) / a.w, to = glm::dvec3(b) / b.w;
       const glm::dvec3 hit = from + (to - from) * (-from.y / (to.y - from.y));
       const glm::dvec3 mu = worldBarycentrics(hit, v[0], v[1], v[2]);
-      const glm::dvec3 expected = normalColour(mu.x * n[0] + mu.y * n[1] + mu.z * n[2]);
+      // (A clockwise face is a back face, whose normal resolve flips.)
+      const double sign = clockwise ? -1.0 : 1.0;
+      const glm::dvec3 expected = normalColour(sign * (mu.x * n[0] + mu.y * n[1] + mu.z * n[2]));
       // Step 2: what affine (screen-space) interpolation would give.
       glm::dvec2 s[3];
       for (int i = 0; i < 3; ++i) {
@@ -109,14 +130,14 @@ TEST_CASE("resolve interpolates perspective-correctly (1/w rule)", "[resolve]")
       const double area = (s[1].x - s[0].x) * (s[2].y - s[0].y) - (s[2].x - s[0].x) * (s[1].y - s[0].y);
       auto e = [&](glm::dvec2 p, glm::dvec2 q) { return (q.x - p.x) * (ndc.y - p.y) - (q.y - p.y) * (ndc.x - p.x); };
       const glm::dvec3 b3(e(s[1], s[2]) / area, e(s[2], s[0]) / area, e(s[0], s[1]) / area);
-      const glm::dvec3 affine = normalColour(b3.x * n[0] + b3.y * n[1] + b3.z * n[2]);
+      const glm::dvec3 affine = normalColour(sign * (b3.x * n[0] + b3.y * n[1] + b3.z * n[2]));
       for (int k = 0; k < 3; ++k) {
         const double got = double((c >> (8 * k)) & 0xFF);
         worstCorrect = std::max(worstCorrect, std::abs(got - expected[k]));
         worstAffine = std::max(worstAffine, std::abs(got - affine[k]));
       }
     }
-  INFO("near z " << nearZ << ", covered " << covered);
+  INFO("near z " << nearZ << ", clockwise " << clockwise << ", cuts " << cuts << ", covered " << covered);
   CHECK(covered > 2000);
   // Tolerance: 8-bit output rounds to within 0.5 level; float interpolation
   // adds < 0.05 level. Behind-the-eye vertices make screen-space (affine)
@@ -270,14 +291,15 @@ TEST_CASE("the prefetch chooser times both settings in turns and keeps the faste
 
 TEST_CASE("resolve may prefetch only for small triangles beyond 2 MB of gathers", "[resolve]")
 {
-  // Gathered: 52 bytes per setup triangle (record and source word), 12 per
-  // input triangle (indices), 12 per vertex where the mode reads normals.
+  // Gathered: 40 bytes per setup triangle (record and source word), 12 per
+  // input triangle (indices), 12 per vertex (positions) and 12 more where
+  // the mode reads normals.
   FrameParams params{};
   params.shadeMode = CLR_SHADE_LAMBERT;
   params.numTris = 40000;   // 480,000 bytes of indices
-  params.numVerts = 20000;  // 240,000 bytes of normals
+  params.numVerts = 20000;  // 240,000 bytes of positions, as many of normals
   const uint32_t limit = 2u << 20;
-  const uint32_t setupAtLimit = (limit - 480000 - 240000) / 52;  // 26,480: 2,096,960 bytes of 2,097,152
+  const uint32_t setupAtLimit = (limit - 480000 - 2 * 240000) / 40;  // 28,428: 2,097,120 bytes of 2,097,152
   CHECK_FALSE(clr::resolveMayPrefetch(params, setupAtLimit, setupAtLimit));
   CHECK(clr::resolveMayPrefetch(params, setupAtLimit + 4, setupAtLimit + 4));
   // Two bin entries a triangle at most.

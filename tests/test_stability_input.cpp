@@ -334,7 +334,7 @@ TEST_CASE(
   CHECK(memory.bytesAllocated == 4 * 3000);
 }
 
-TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and an input triangle a one-byte count",
+TEST_CASE("memory: a setup triangle costs a 36-byte record and a source word and an input triangle a one-byte count",
           "[stability][load]")
 {
   // Three scenes of a few small triangles over pixel (2, 2) of a 64×64
@@ -346,7 +346,7 @@ TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and
   // vertices (three positions of 12 bytes; ID frames upload no normals),
   // its indices (12) and its count (1) (the scenes keep the file's order, so
   // the layout binds no map, layout.h); and for a setup triangle its record
-  // (48), its source word (4) and its bin entry (4). Each pipeline's first
+  // (36), its source word (4) and its bin entry (4). Each pipeline's first
   // frame allocates exactly what it needs (buffer.h).
   const uint32_t W = 64, H = 64, base = 16, m = 32;
   auto render = [&](uint32_t outside, uint32_t inside) {
@@ -370,5 +370,5 @@ TEST_CASE("memory: a setup triangle costs a 48-byte record and a source word and
   };
   const size_t bytesBase = render(0, 0), bytesCulled = render(m, 0), bytesKept = render(0, m);
   CHECK(bytesCulled - bytesBase == m * (36 + 12 + 1));
-  CHECK(bytesKept - bytesBase == m * (36 + 12 + 1 + 48 + 4 + 4));
+  CHECK(bytesKept - bytesBase == m * (36 + 12 + 1 + 36 + 4 + 4));
 }
