@@ -524,7 +524,7 @@ std::vector<SetupRecord> Pipeline::readSetup() const
   const float* m = params_.mvp;
   auto clipW = [&](uint32_t v) {
     const float* p = &positions[stride * v];
-    return stride == 4 ? p[3] : m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+    return stride == 4 ? p[3] : CLR_TRANSFORM_ROW(m, 3, p[0], p[1], p[2]);
   };
   std::vector<SetupRecord> out(numSetup_);
   for (size_t s = 0; s < out.size(); ++s) {
@@ -540,10 +540,10 @@ std::vector<SetupRecord> Pipeline::readSetup() const
     const bool clipped = r.clipSlot != CLR_NOT_CLIPPED;
     const uint32_t tri = source[s] & CLR_SOURCE_TRIANGLE;
     const bool back = (source[s] & CLR_SOURCE_BACKFACING) != 0;
-    for (int v = 0; v < 3 && !clipped; ++v) r.invW[v] = 1.0f / clipW(indices[3 * tri + (back && v != 0 ? 3 - v : v)]);
-    for (int v = 0; v < 3 && clipped; ++v) r.invW[v] = 1.0f / clip.at(r.clipSlot).clipW[v];
+    for (int v = 0; v < 3; ++v)  // (a back face's vertices 1 and 2 swapped, as setup_make swaps them)
+      r.invW[v] = 1.0f / (clipped ? clip.at(r.clipSlot).clipW[v] : clipW(indices[3 * tri + (back && v ? 3 - v : v)]));
     r.triId = clipped ? clip.at(r.clipSlot).triId : fileTriHost_.empty() ? tri : fileTriHost_.at(tri);
-    r.flags = clipped ? clip.at(r.clipSlot).flags : (source[s] & CLR_SOURCE_BACKFACING) ? CLR_FLAG_BACKFACING : 0u;
+    r.flags = clipped ? clip.at(r.clipSlot).flags : back ? CLR_FLAG_BACKFACING : 0u;
   }
   return out;
 }

@@ -267,6 +267,11 @@ inline float clr_inv_area2(int x0, int y0, int x1, int y1, int x2, int y2)
   return 1.0f / float(area2);
 }
 #endif
+/* Clip coordinate `row` (0 x .. 3 w): row of the column-major mvp times (x, y, z, 1), summed left to right: the one
+ * formula of transform.cl's functions and the host's readback of 1/w (Pipeline::readSetup), which agree bit for bit
+ * (contraction off on both sides). */
+#define CLR_TRANSFORM_ROW(m, row, x, y, z) \
+  ((m)[row] * (x) + (m)[4 + (row)] * (y) + (m)[8 + (row)] * (z) + (m)[12 + (row)])
 /* clr_inv_area2 of setup record t (a TriSetup, or a record read back with its fields). */
 #define CLR_RECORD_INV_AREA2(t) clr_inv_area2((t).x[0], (t).y[0], (t).x[1], (t).y[1], (t).x[2], (t).y[2])
 /* Setup record t's snapped bounds as int4 (min x, min y, max x, max y), fixed units; kernels only. */

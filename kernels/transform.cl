@@ -9,11 +9,6 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-/* Clip coordinate `row` (0 x .. 3 w): row of the column-major mvp times (x, y, z, 1), summed left to right. The
- * one formula of both functions below, which must agree bit for bit. */
-#define CLR_TRANSFORM_ROW(m, row, x, y, z) \
-  ((m)[row] * (x) + (m)[4 + (row)] * (y) + (m)[8 + (row)] * (z) + (m)[12 + (row)])
-
 #ifndef CLR_CLIP_INPUT
 #define CLR_CLIP_INPUT 0
 #endif

@@ -128,7 +128,7 @@ def test_identical_clip_positions_give_identical_ids(ctx, cli_ids, helper, tmp_p
     indices = np.frombuffer(raw, np.uint32, 3 * nt, 8 + 12 * nv).reshape(nt, 3).astype(np.int32)
     m = np.frombuffer(raw, np.float32, 16, 8 + 12 * nv + 12 * nt)  # column-major
     x, y, z = positions[:, 0], positions[:, 1], positions[:, 2]
-    # transform.cl's CLR_TRANSFORM_ROW: float32, left to right, no FMA.
+    # CLR_TRANSFORM_ROW (shared.h): float32, left to right, no FMA.
     clip = np.stack([((m[r] * x + m[4 + r] * y) + m[8 + r] * z) + m[12 + r] for r in range(4)], 1)
     rast, _ = clraster.rasterize(ctx, clip.astype(np.float32), indices, (H, W))
     ids = clraster.triangle_ids(rast)[0]
