@@ -89,6 +89,9 @@ class Rewriter {
     positions_.insert(positions_.end(), xyz, xyz + 3);
   }
 
+  // The word [b, e) as `text` for assimp; after every earlier rewrite.
+  void rewrite(size_t b, size_t e, const std::string& text) { replace(b, e, text); }
+
   // An error at byte `offset` of the text, named by its line.
   [[noreturn]] void fail(size_t offset, const std::string& what) const
   {
@@ -189,21 +192,33 @@ void scanObj(Rewriter& r)
     }
     if (e - b < 2 || s[b] != 'v' || !isSpace(s[b + 1])) continue;
     if (continued) r.fail(b, "a vertex line continued with '\\'");
+    // The numbers: the words assimp counts, and those it skips a line for, a leading '.' (".5"), rewritten.
     const auto w = words(s, b + 1, e);
     size_t numeric = 0;
     for (const auto& [wb, we] : w) {
       const char c = s[wb];
       const std::string head = s.substr(wb, std::min<size_t>(3, we - wb));
       const bool nanOrInf = strncasecmp(head.c_str(), "nan", 3) == 0 || strncasecmp(head.c_str(), "inf", 3) == 0;
-      if ((c >= '0' && c <= '9') || c == '+' || c == '-' || nanOrInf) ++numeric;
+      const bool dot = c == '.' && we - wb > 1 && s[wb + 1] >= '0' && s[wb + 1] <= '9';
+      if ((c >= '0' && c <= '9') || c == '+' || c == '-' || nanOrInf || dot) ++numeric;
     }
-    if (numeric != 3 && numeric != 4 && numeric != 6) continue;  // assimp skips the line
+    // assimp reads x y z, x y z w or x y z r g b, and skips any other line, which would shift every later index.
+    if (numeric != 3 && numeric != 4 && numeric != 6 && numeric != 7)
+      r.fail(b, "a vertex line of " + std::to_string(numeric) + " numbers (x y z, x y z w, or x y z r g b [a])");
     const size_t wb[3] = {w[0].first, w[1].first, w[2].first}, we[3] = {w[0].second, w[1].second, w[2].second};
     if (numeric == 4) {
       const size_t hw[2] = {w[3].first, w[3].second};
       r.vertex(wb, we, hw);
     } else {
       r.vertex(wb, we);
+    }
+    // Colours: ".5" as "0.5"; an alpha (the 7th) dropped, as assimp reads r g b.
+    for (size_t k = 3; numeric >= 6 && k < numeric; ++k) {
+      const auto [cb, ce] = w[k];
+      if (k == 6)
+        r.rewrite(cb, ce, "");
+      else if (s[cb] == '.')
+        r.rewrite(cb, ce, "0" + s.substr(cb, ce - cb));
     }
   }
 }
@@ -256,7 +271,7 @@ void scanOff(Rewriter& r, size_t start)
   nextToken();
   const uint64_t numVertices = strtoul10();
   nextToken();
-  strtoul10();  // faces
+  const uint64_t numFaces = strtoul10();
   nextToken();
   strtoul10();  // edges
   nextToken();
@@ -276,6 +291,21 @@ void scanOff(Rewriter& r, size_t start)
       r.vertex(wb, we, hw);
     } else {
       r.vertex(wb, we);
+    }
+  }
+  // The faces' indices: assimp's strtoul10 reads "-2" or "x" as 0, silently another vertex.
+  for (uint64_t f = 0; f < numFaces && at(buffer) != '\0'; ++f) {
+    const size_t b = buffer;
+    while (!isLineEnd(at(buffer))) ++buffer;
+    const size_t e = buffer;
+    while (isLineEnd(at(buffer)) && at(buffer) != '\0') ++buffer;
+    const auto w = words(s, b, e);
+    if (w.empty()) continue;
+    const uint64_t count = std::strtoull(s.substr(w[0].first, w[0].second - w[0].first).c_str(), nullptr, 10);
+    for (size_t k = 1; k <= count && k < w.size(); ++k) {
+      const std::string index = s.substr(w[k].first, w[k].second - w[k].first);
+      if (index.find_first_not_of("0123456789") != std::string::npos)
+        r.fail(w[k].first, "vertex index '" + userText(index, 40) + "' is not a non-negative integer");
     }
   }
 }

@@ -103,7 +103,7 @@ int infoCommand(const std::vector<std::string>& args)
                    {"far", jsonFloat(cam.zFar)}, {"fov", jsonFloat(cam.fovDegrees)}};
     j["render_flags"] = flags;
     j["warnings"] = mesh.warnings;
-    std::printf("%s\n", j.dump().c_str());
+    std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
   std::printf("file       %s\n", path.c_str());

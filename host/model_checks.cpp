@@ -64,6 +64,13 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
   auto known = [](const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
   };
+  auto bytes = [](const std::string& t) {  // of a known type: the table's rows are 1, 1, 2, 2, 4, 4, 4, 8
+    static const uint64_t kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    return kSizes[size_t(std::find(std::begin(kTypes), std::end(kTypes), t) - std::begin(kTypes)) % 8];
+  };
+  // A binary body holds at least each element's count times its fixed bytes (a list: its length's bytes).
+  bool binary = false;
+  uint64_t count = 0, itemBytes = 0, bodyBytes = 0;
   bool haveFormat = false, haveElement = false;
   int elementLine = 0, unknownLine = 0;  // the last element line, the last unknown line
   for (int lineNo = magicLine + 1; std::getline(in, line) && lineNo < 10000; ++lineNo) {
@@ -74,6 +81,11 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
     const std::string where = path + ": PLY header line " + std::to_string(lineNo) + ": ";
     if (key == "end_header") {
       if (!haveFormat || !haveElement) throw Error(oneLine(where + "end_header before format and element lines"));
+      bodyBytes += count * itemBytes;
+      const auto headerEnd = in.tellg();
+      if (binary && headerEnd >= 0 && fileSize - uint64_t(headerEnd) < bodyBytes)
+        throw Error(oneLine(path + ": PLY binary body of " + std::to_string(fileSize - uint64_t(headerEnd)) +
+                            " bytes, less than its elements' " + std::to_string(bodyBytes) + " (a truncated file)"));
       return;
     }
     if (key == "comment" || key == "obj_info" || key.empty()) continue;
@@ -82,6 +94,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       if ((a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian") || b != "1.0")
         throw Error(oneLine(where + "unknown format '" + a + " " + b + "'"));
       haveFormat = true;
+      binary = a != "ascii";
     } else if (key == "element") {
       // A name, then a count of decimal digits only: assimp read the count
       // out of a name like "4294967295roperty" (found by the fuzzer).
@@ -92,8 +105,10 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
                                       [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) != 0; });
       if (a.empty() || std::isdigit(static_cast<unsigned char>(a[0])) || !digits)
         throw Error(oneLine(where + "malformed element line"));
-      const long long count = std::stoll(countText);
-      if (uint64_t(count) > fileSize)
+      bodyBytes += count * itemBytes;
+      count = uint64_t(std::stoll(countText));
+      itemBytes = 0;
+      if (count > fileSize)
         throw Error(oneLine(where + "element '" + a + "' has " + std::to_string(count) +
                             " items, more than the file's " + std::to_string(fileSize) + " bytes hold"));
       haveElement = true;
@@ -107,8 +122,11 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       if (a == "list") {
         words >> b >> c;
         if (!known(b) || !known(c)) throw Error(oneLine(where + "unknown list property type in '" + line + "'"));
+        itemBytes += bytes(b);
       } else if (!known(a)) {
         throw Error(oneLine(where + "unknown property type '" + a + "'"));
+      } else {
+        itemBytes += bytes(a);
       }
     } else {
       // Assimp skips a line it does not know (exporters write such lines:
@@ -404,6 +422,8 @@ class GltfCheck {
       for (const Json* mesh : meshes->elements())
         if (const Json* primitives = mesh->get("primitives"))
           for (const Json* primitive : primitives->elements()) {
+            if (const Json* mode = primitive->get("mode"))
+              if (!isOneOf(enumValue(mode), {0, 1, 2, 3, 4, 5, 6})) fail("a primitive has no valid mode (0..6)");
             if (const Json* attributes = primitive->get("attributes"))
               for (const auto& [name, ref] : attributes->fields) use(ref, "attribute " + name, attributeRule(name));
             if (const Json* indices = primitive->get("indices"))
@@ -467,7 +487,38 @@ class GltfCheck {
     if (!rule.components.empty() &&
         std::find(rule.components.begin(), rule.components.end(), component) == rule.components.end())
       fail(what + " uses an accessor of componentType " + std::to_string(component));
+    inView(*a, what);
   }
+
+  // An accessor's elements lie inside its bufferView: assimp reads past its end, into the next view's bytes.
+  void inView(const Json& a, const std::string& what) const
+  {
+    const Json* views = doc_.get("bufferViews");
+    const Json* viewRef = a.get("bufferView");
+    const Json* view = views && viewRef ? views->at(*viewRef) : nullptr;
+    const double count = number(a.get("count"), 0.0);
+    if (!view || count <= 0.0) return;  // no view (sparse, or assimp's own error), or nothing to read
+    const std::string& type = a.get("type")->text;
+    const int component = enumValue(a.get("componentType"));
+    const double components = type == "SCALAR" ? 1
+                              : type == "VEC2" ? 2
+                              : type == "VEC3" ? 3
+                              : type == "VEC4" ? 4
+                              : type == "MAT2" ? 4
+                              : type == "MAT3" ? 9
+                                               : 16;
+    const double element = components * (component == kByte || component == kUByte     ? 1
+                                         : component == kShort || component == kUShort ? 2
+                                                                                       : 4);
+    const double stride = std::max(number(view->get("byteStride"), 0.0), element);
+    const double end = number(a.get("byteOffset"), 0.0) + (count - 1.0) * stride + element;
+    if (end > number(view->get("byteLength"), 0.0))
+      fail(what + " reads " + std::to_string(uint64_t(end)) + " bytes of a bufferView of " +
+           std::to_string(uint64_t(number(view->get("byteLength"), 0.0))));
+  }
+
+  // A JSON number, or fallback when absent or not a number.
+  static double number(const Json* v, double fallback) { return v && v->kind == Json::kNumber ? v->number : fallback; }
 
   const std::string& path_;
   const Json& doc_;
@@ -493,6 +544,9 @@ void checkGltf(const std::string& path)
     const uint32_t chunkLength = readU32(bytes, 12);
     if (version != 1 && version != 2) throw Error(path + ": GLB version " + std::to_string(version) + " unknown");
     if (version == 2 && readU32(bytes, 16) != 0x4E4F534Au) throw Error(path + ": GLB first chunk is not JSON");
+    if (version == 2 && readU32(bytes, 8) > bytes.size())  // a truncated file (glTF 1 exporters wrote loose lengths)
+      throw Error(path + ": GLB header states " + std::to_string(readU32(bytes, 8)) + " bytes, the file has " +
+                  std::to_string(bytes.size()));
     if (chunkLength > bytes.size() - 20) throw Error(path + ": GLB JSON chunk truncated");
     json = bytes.data() + 20;
     jsonSize = chunkLength;

@@ -124,6 +124,22 @@ uint32_t wrapMode(int mode)
                                                                             : CLR_WRAP_REPEAT;
 }
 
+// "%20" as " ", and so on; a '%' not followed by two hex digits stays.
+std::string percentDecoded(const std::string& s)
+{
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
+      out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
 // The scene's materials: base colour factor (glTF's baseColorFactor, else
 // the diffuse colour) and base-colour texture (else the diffuse texture).
 // Materials assimp invents for formats without any (no name or
@@ -182,8 +198,9 @@ void loadMaterials(ImportState& state)
                                 budget);
             else
               budget.claim(what, embedded->mWidth, embedded->mHeight);
-          } catch (const TextureOverBudget& e) {
-            state.mesh.warnings.push_back(std::string(e.what()) + "; rendered without the texture");
+          } catch (const Error& e) {  // over the budget or undecodable: as a missing file, below
+            state.mesh.warnings.push_back(userText(e.what(), 250) + "; rendered without the texture");
+            state.mesh.facts.missingTextures.push_back(what);
             state.mesh.materials.push_back(out);
             continue;
           }
@@ -208,7 +225,14 @@ void loadMaterials(ImportState& state)
           std::replace(file.begin(), file.end(), '\\', '/');
           if (file[0] != '/') file = folder + file;
           try {
-            t = loadTextureFile(file, budget);
+            try {
+              t = loadTextureFile(file, budget);
+            } catch (const Error&) {
+              // A glTF URI is percent-encoded ("tex%20a.png"), which assimp passes on as it is.
+              const std::string decoded = percentDecoded(file);
+              if (decoded == file) throw;
+              t = loadTextureFile(decoded, budget);
+            }
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.
@@ -252,8 +276,13 @@ class ImportLog : public Assimp::LogStream {
         (lowered.find("index") != std::string::npos || lowered.find("indices") != std::string::npos) &&
         (lowered.find("out of range") != std::string::npos || lowered.find("invalid") != std::string::npos))
       firstIndexProblem = m;
+    // The OBJ reader goes on without a material library it cannot find.
+    const std::string missingLibrary = "Unable to locate material file ";
+    if (m.find(missingLibrary) != std::string::npos)
+      missingLibraries.push_back(m.substr(m.find(missingLibrary) + missingLibrary.size()));
   }
   std::string firstIndexProblem;
+  std::vector<std::string> missingLibraries;
 };
 
 struct ScopedImportLog {
@@ -356,6 +385,10 @@ Mesh importScene(const std::string& path)
   ImportState state{path, scene, {}};
   for (const std::string& refused : io->refusals())
     state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
+  for (const std::string& library : importLog.log.missingLibraries)
+    if (io->refusals().empty())
+      state.mesh.warnings.push_back(userText(path, 80) + ": material library '" + userText(library, 100) +
+                                    "' not found; rendered with default materials");
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
     throw Error(userText(path) + ": no triangles, lines or points in file");

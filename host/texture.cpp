@@ -39,20 +39,30 @@ void TextureBudget::claim(const std::string& name, uint32_t width, uint32_t heig
   left_ -= bytes;
 }
 
+namespace {
+
+// stb's reason for the last failed decode, which may be empty.
+std::string decodeFailure()
+{
+  const char* reason = stbi_failure_reason();
+  return std::string("cannot decode image (") + (reason && *reason ? reason : "corrupt or unsupported data") + ")";
+}
+
+}  // namespace
+
 Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size, TextureBudget& budget)
 {
   // Step 1: the header alone: size and budget before any pixel is decoded.
   if (size == 0 || size > size_t(INT32_MAX)) throw Error(userText(name) + ": empty or oversized image");
   int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(data, int(size), &w, &h, &channels))
-    throw Error(userText(name) + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (!stbi_info_from_memory(data, int(size), &w, &h, &channels)) throw Error(userText(name) + ": " + decodeFailure());
   if (w < 1 || h < 1 || w > CLR_MAX_VIEWPORT || h > CLR_MAX_VIEWPORT)
     throw Error(userText(name) + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..16384");
   budget.claim(name, uint32_t(w), uint32_t(h));
   // Step 2: decode to RGBA8.
   int dw = 0, dh = 0;
   unsigned char* pixels = stbi_load_from_memory(data, int(size), &dw, &dh, &channels, 4);
-  if (!pixels) throw Error(userText(name) + ": cannot decode image (" + stbi_failure_reason() + ")");
+  if (!pixels) throw Error(userText(name) + ": " + decodeFailure());
   if (dw != w || dh != h) {
     stbi_image_free(pixels);
     throw Error(userText(name) + ": image decodes to another size than its header states");
