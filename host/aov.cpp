@@ -50,7 +50,8 @@ const std::vector<std::string>& aovChannelNames()
   return names;
 }
 
-void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& planes)
+std::vector<unsigned char> encodeAovExr(const std::string& path, uint32_t width, uint32_t height,
+                                        const std::vector<float>& planes)
 {
   // Step 1: rows top first; channels sorted by name, as EXR readers expect.
   const size_t n = size_t(width) * height;
@@ -94,10 +95,14 @@ void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const
     if (err) FreeEXRErrorMessage(err);
     throw Error(userText(path) + ": EXR encoding failed (" + why + ")");
   }
-  const std::vector<unsigned char> bytes(memory, memory + size);
+  std::vector<unsigned char> bytes(memory, memory + size);
   std::free(memory);
-  // Step 3: temporary file, renamed into place.
-  writeFileAtomic(path, bytes);
+  return bytes;
+}
+
+void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& planes)
+{
+  writeFileAtomic(path, encodeAovExr(path, width, height, planes));
 }
 
 }  // namespace clr

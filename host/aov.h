@@ -18,6 +18,8 @@ const std::vector<std::string>& aovChannelNames();
 
 // planes: CLR_AOV_CHANNELS planes of width·height floats, bottom row first
 // (Pipeline::readAov()). Throws clr::Error naming the path on failure.
+std::vector<unsigned char> encodeAovExr(const std::string& path, uint32_t width, uint32_t height,
+                                        const std::vector<float>& planes);
 void writeAovExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& planes);
 
 }  // namespace clr

@@ -26,6 +26,7 @@
 #include <future>
 #include <optional>
 #include <set>
+#include <utility>
 
 namespace clraster {
 
@@ -135,6 +136,7 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
     const std::string name = outputName(args.outPath, v);
     const std::string folder = name.find('/') == std::string::npos ? "." : name.substr(0, name.rfind('/') + 1);
     if (folders.insert(folder).second) checkWritable(name);
+    checkTarget(name);
   }
   const Mesh mesh = loadSceneDuringBuild(args, context);
   ClContext& cl = context->impl().frameContext();
@@ -157,10 +159,14 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
     progress.update(0);
     // --aa auto / --quality auto choose once, on the first view of the shard.
     std::optional<FrameSettings> chosen;
+    bool depthWarned = false;
     for (size_t v : selected) {
       const auto frameStart = std::chrono::steady_clock::now();
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
-      FrameSettings settings = makeFrameSettings(args, cameras[v], frame.width, frame.height, bounds);
+      DepthChoice depth;
+      FrameSettings settings = makeFrameSettings(args, cameras[v], frame.width, frame.height, bounds, &depth);
+      if (!depth.warning.empty() && !std::exchange(depthWarned, true))
+        std::fprintf(stderr, "clraster: warning: view %zu: %s\n", v, depth.warning.c_str());
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
         chosen = settings;
@@ -212,6 +218,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   pipeline.uploadScene(mesh);
   DepthChoice depth;
   FrameSettings settings = makeFrameSettings(args, camera, args.width, args.height, bounds, &depth);
+  if (!depth.warning.empty()) std::fprintf(stderr, "clraster: warning: %s\n", depth.warning.c_str());
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)
@@ -238,11 +245,20 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
     frameMs.push_back(msSince(start));
   }
 
-  // Step 4: output.
-  std::vector<float> aov;  // --aov: the last frame's visibility buffer (aov.h)
-  if (!args.aovPath.empty()) pipeline.aov(), aov = pipeline.readAov();
-  if (!args.outPath.empty()) clr::writePng(args.outPath, image.width, image.height, image.pixels);
-  if (!args.aovPath.empty()) writeAovExr(args.aovPath, args.width, args.height, aov);
+  // Step 4: output, both files or neither.
+  std::vector<OutputFile> outputs;
+  if (!args.outPath.empty())
+    outputs.push_back({args.outPath, encodePng(args.outPath, image.width, image.height, image.pixels)});
+  if (!args.aovPath.empty()) {
+    try {
+      pipeline.aov();
+      outputs.push_back({args.aovPath, encodeAovExr(args.aovPath, args.width, args.height, pipeline.readAov())});
+    } catch (const std::bad_alloc&) {
+      throw Error("--aov " + userText(args.aovPath) + ": out of host memory for " + std::to_string(args.width) + "x" +
+                  std::to_string(args.height) + " pixels of visibility outputs");
+    }
+  }
+  writeFilesAtomic(outputs);
   return args.stats ? statsLine(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames) : "";
 }
 
@@ -277,6 +293,7 @@ std::string renderCommand(const RenderOptions& options, std::unique_ptr<Context>
 {
   return guarded([&] {
     const RenderArgs& args = options.impl().args;
+    clr::requireOutputs(args);
     return args.viewsPath.empty() ? renderOne(args, context) : renderViews(args, context);
   });
 }

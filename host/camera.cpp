@@ -44,6 +44,8 @@ void checkFar(float zNear, float zFar, const std::string& prefix)
 void checkViewDirection(glm::vec3 eye, glm::vec3 target, glm::vec3 up, const std::string& prefix)
 {
   const glm::vec3 view = target - eye;
+  if (!std::isfinite(glm::length(view)))
+    throw Error(prefix + "eye and " + prefix + "target lie too far apart for float arithmetic");
   if (!(glm::length(view) > 0.0f)) throw Error(prefix + "eye and " + prefix + "target must differ");
   if (!(glm::length(glm::cross(view, up)) > 1e-6f * glm::length(view) * glm::length(up)))
     throw Error(prefix + "up must not be parallel to the view direction");
@@ -85,10 +87,14 @@ Camera frameCamera(const CameraArgs& args, const Bounds& bounds, const std::stri
   cam.zFar = args.zFar.value_or(eyeDistance + 1.5f * radius);
   cam.zNear = args.zNear.value_or(std::max(cam.zFar * 1e-4f, (eyeDistance - 1.5f * radius) * 0.9f));
 
-  // Step 4: validate.
+  // Step 4: validate. Planes derived from an eye or fov beyond float range are not finite: say so, not "near".
+  const float reach = glm::length(cam.target - cam.eye);
+  if (!args.eye && !(std::isfinite(reach) && std::isfinite(eyeDistance)))
+    throw Error(prefix + "fov: too narrow to frame the scene in float range (give " + prefix + "eye)");
+  checkViewDirection(cam.eye, cam.target, cam.up, prefix);
+  if (!std::isfinite(eyeDistance)) throw Error(prefix + "eye lies too far from the scene for float arithmetic");
   checkNear(cam.zNear, prefix);
   checkFar(cam.zNear, cam.zFar, prefix);
-  checkViewDirection(cam.eye, cam.target, cam.up, prefix);
   return cam;
 }
 

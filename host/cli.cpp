@@ -75,10 +75,12 @@ namespace {
 
 float parseFloat(const std::string& flag, const std::string& text)
 {
+  // Decimal only: strtof also takes leading spaces and hexadecimal ("0x2Dp0").
   errno = 0;
   char* end = nullptr;
   const float v = std::strtof(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) ||
+      text.find_first_of("xX") != std::string::npos || *end != '\0' || errno == ERANGE || !std::isfinite(v))
     throw Error(flag + ": '" + userText(text) + "' is not a finite number");
   return v;
 }
@@ -128,7 +130,8 @@ uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_
   errno = 0;
   char* end = nullptr;
   const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || text[0] == '-' || text[0] == '+' || *end != '\0' || errno == ERANGE || v < lo || v > hi)
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0])) || *end != '\0' || errno == ERANGE || v < lo ||
+      v > hi)
     throw Error(flag + ": '" + userText(text) + "' must be an integer in " + std::to_string(lo) + ".." +
                 std::to_string(hi));
   return v;
@@ -150,10 +153,15 @@ void parseSize(const std::string& flag, const std::string& text, uint32_t& width
   height = uint32_t(parseUnsigned(flag, text.substr(x + 1), 1, CLR_MAX_VIEWPORT));
 }
 
-RenderArgs parseRenderArgs(const std::vector<std::string>& args)
+void requireOutputs(const RenderArgs& r)
+{
+  if (!r.viewsPath.empty() && r.outPath.empty()) throw Error("missing -o OUT_%04d.png");
+  if (r.outPath.empty() && r.aovPath.empty()) throw Error("missing -o OUT.png (or --aov OUT.exr)");
+}
+
+RenderArgs parseRenderFlags(const std::vector<std::string>& args)
 {
   RenderArgs r;
-  bool framesGiven = false, shardGiven = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     // Step 1: flags that take a value.
@@ -235,13 +243,13 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       r.device = flagValue(args, i);
     } else if (a == "--frames") {
       r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
-      framesGiven = true;
+      r.framesGiven = true;
     } else if (a == "--views") {
       r.viewsPath = flagValue(args, i);
       if (r.viewsPath.empty()) throw Error("--views: empty path");
     } else if (a == "--shard") {
       r.shard = parseShard(flagValue(args, i));
-      shardGiven = true;
+      r.shardGiven = true;
       // Step 2: switches and the scene path.
     } else if (a == "--stats") {
       r.stats = true;
@@ -249,13 +257,18 @@ RenderArgs parseRenderArgs(const std::vector<std::string>& args)
       takeScenePath(a, r.scenePath);
     }
   }
-  if (!r.viewsPath.empty() && r.outPath.empty()) throw Error("missing -o OUT_%04d.png");
-  if (r.outPath.empty() && r.aovPath.empty()) throw Error("missing -o OUT.png (or --aov OUT.exr)");
+  return r;
+}
+
+RenderArgs parseRenderArgs(const std::vector<std::string>& args, bool outputsRequired)
+{
+  const RenderArgs r = parseRenderFlags(args);
+  if (outputsRequired) requireOutputs(r);
   if (!r.outPath.empty()) checkExtension("-o", r.outPath, ".png");
   if (!r.aovPath.empty()) checkExtension("--aov", r.aovPath, ".exr");
-  if (shardGiven && r.viewsPath.empty()) throw Error("--shard needs --views");
-  if (framesGiven && !r.viewsPath.empty()) throw Error("--frames cannot be combined with --views");
-  if (!r.viewsPath.empty()) checkOutputPattern(r.outPath);
+  if (r.shardGiven && r.viewsPath.empty()) throw Error("--shard needs --views");
+  if (r.framesGiven && !r.viewsPath.empty()) throw Error("--frames cannot be combined with --views");
+  if (!r.viewsPath.empty() && !r.outPath.empty()) checkOutputPattern(r.outPath);
   if (!r.aovPath.empty() && !r.viewsPath.empty()) throw Error("--aov cannot be combined with --views");
   if (r.wireframe != CLR_WIREFRAME_OFF && r.shadeMode == CLR_SHADE_ID)
     throw Error("--wireframe cannot be combined with --shade id (the id image stays exact)");

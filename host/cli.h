@@ -23,6 +23,7 @@ struct RenderArgs {
   bool cullBack = false;
   std::string device;
   uint32_t frames = 1;
+  bool framesGiven = false, shardGiven = false;  // --frames, --shard on the command line
   bool stats = false;
   // Methods (see README, "Methods"): --aa, --edges, --interp, --traversal.
   std::string aa;  // an aa.h mode name, "auto", or empty (none; --quality auto chooses)
@@ -48,8 +49,13 @@ struct RenderArgs {
   std::string aovPath;     // --aov PATH.exr: the visibility-buffer outputs (aov.h)
 };
 
-// args: everything after "render".
-RenderArgs parseRenderArgs(const std::vector<std::string>& args);
+// args: everything after "render". With outputsRequired false (the
+// library's RenderOptions) -o and --aov may both be absent.
+RenderArgs parseRenderArgs(const std::vector<std::string>& args, bool outputsRequired = true);
+// The same flags one by one, not yet checked against each other.
+RenderArgs parseRenderFlags(const std::vector<std::string>& args);
+// The outputs a render must name: -o with --views, else -o or --aov.
+void requireOutputs(const RenderArgs& args);
 
 const char* usageText();
 

@@ -35,6 +35,7 @@ constexpr double kFloat32MaxFarNear = 1e4;
 struct DepthChoice {
   uint32_t mode = 0;  // CLR_DEPTH_*
   std::string reason;
+  std::string warning;       // a float or 24-bit depth beyond kFloat32MaxFarNear: surfaces may z-fight or vanish
   std::string json() const;  // for --stats
 };
 

@@ -86,7 +86,8 @@ DeviceInfo selectDevice(const std::string& selector)
   }
   // Step 2: an index.
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
-    const size_t index = std::stoul(selector);
+    // Compared digit by digit: a longer string than any index is out of range, not an overflow.
+    const size_t index = selector.size() <= 9 ? size_t(std::stoul(selector)) : devices.size();
     if (index >= devices.size())
       throw Error("--device " + userText(selector) + ": no such device index (there are " +
                   std::to_string(devices.size()) + "; see 'clraster devices')");
@@ -178,7 +179,8 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, bool clipIn
   if (const char* cap = std::getenv("CLRASTER_MAX_ALLOC_BYTES")) {
     char* end = nullptr;
     const unsigned long long bytes = std::strtoull(cap, &end, 10);
-    if (!*cap || *end || bytes == 0) throw Error("CLRASTER_MAX_ALLOC_BYTES must be a positive number of bytes");
+    if (!std::isdigit(static_cast<unsigned char>(*cap)) || *end || bytes == 0)
+      throw Error("CLRASTER_MAX_ALLOC_BYTES must be a positive number of bytes");
     maxAllocBytes = std::min<size_t>(maxAllocBytes, bytes);
   }
 }

@@ -3,6 +3,8 @@
 
 #include "aa.h"
 
+#include <cstdio>
+
 namespace clr {
 
 FrameSettings makeFrameSettings(const RenderArgs& args, const Camera& camera, uint32_t width, uint32_t height,
@@ -16,6 +18,15 @@ FrameSettings makeFrameSettings(const RenderArgs& args, const Camera& camera, ui
   } else {
     chosen.mode = args.depthMode;
     chosen.reason = "--depth";
+  }
+  const double farNear = double(camera.zFar) / double(camera.zNear);
+  if (chosen.mode != CLR_DEPTH_REVERSED && farNear > kFloat32MaxFarNear) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "far/near = %.3g is over %s depth's 1e4: surfaces may z-fight or vanish (--depth reversed or auto "
+                  "keeps them)",
+                  farNear, depthModeName(chosen.mode));
+    chosen.warning = text;
   }
   if (depth) *depth = chosen;
 

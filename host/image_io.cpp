@@ -70,16 +70,26 @@ int makeTemp(const std::string& path, std::string& tempName)
 
 }  // namespace
 
-void checkWritable(const std::string& path)
+void checkTarget(const std::string& path)
 {
   if (path.empty()) throw Error("output path is empty");
+  struct stat st;
+  if (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) throw Error(failure(path, EISDIR));
+}
+
+void checkWritable(const std::string& path)
+{
+  checkTarget(path);
   std::string temp;
   const int fd = makeTemp(path, temp);
   close(fd);
   unlink(temp.c_str());
 }
 
-void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes)
+namespace {
+
+// bytes in a new temporary file beside path, flushed; returns its name.
+std::string stageFile(const std::string& path, const std::vector<unsigned char>& bytes)
 {
   std::string temp;
   const int fd = makeTemp(path, temp);
@@ -95,21 +105,45 @@ void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& 
     }
     done += size_t(n);
   }
-  if (fsync(fd) != 0 || close(fd) != 0) {
+  if (fsync(fd) != 0 || close(fd) != 0 || chmod(temp.c_str(), 0644) != 0) {
     const int err = errno;
     unlink(temp.c_str());
     throw Error(failure(path, err));
   }
-  if (chmod(temp.c_str(), 0644) != 0 || rename(temp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    unlink(temp.c_str());
-    throw Error(failure(path, err));
-  }
+  return temp;
 }
 
-void writePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
+}  // namespace
+
+void writeFilesAtomic(const std::vector<OutputFile>& files)
 {
-  // Step 1: encode in memory.
+  // Step 1: every file staged; a failure removes those staged before it.
+  std::vector<std::string> temps;
+  try {
+    for (const OutputFile& f : files) {
+      checkTarget(f.path);
+      temps.push_back(stageFile(f.path, f.bytes));
+    }
+  } catch (...) {
+    for (const std::string& t : temps) unlink(t.c_str());
+    throw;
+  }
+  // Step 2: the renames, each within its target's folder.
+  for (size_t k = 0; k < files.size(); ++k)
+    if (rename(temps[k].c_str(), files[k].path.c_str()) != 0) {
+      const int err = errno;
+      for (size_t j = k; j < temps.size(); ++j) unlink(temps[j].c_str());
+      throw Error(failure(files[k].path, err));
+    }
+}
+
+void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes)
+{
+  writeFilesAtomic({{path, bytes}});
+}
+
+std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
+{
   std::vector<unsigned char> rgb(size_t(width) * height * 3);
   for (size_t i = 0; i < size_t(width) * height; ++i)
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;
@@ -120,8 +154,12 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, const ui
   };
   if (!stbi_write_png_to_func(append, &png, int(width), int(height), 3, rgb.data(), int(width) * 3))
     throw Error(userText(path) + ": PNG encoding failed");
-  // Step 2: write a temporary file, flush it, rename it into place.
-  writeFileAtomic(path, png);
+  return png;
+}
+
+void writePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
+{
+  writeFileAtomic(path, encodePng(path, width, height, rgba));
 }
 
 }  // namespace clr

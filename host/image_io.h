@@ -17,12 +17,26 @@ inline void writePng(const std::string& path, uint32_t width, uint32_t height, c
   writePng(path, width, height, rgba.data());
 }
 
+// The PNG's bytes (as writePng writes them).
+std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba);
+
 // Writes bytes to a temporary file beside path, flushes it and renames it
 // over path (the pattern every output file follows).
 void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes);
 
-// Throws unless a file can be created in path's directory (checked before
-// rendering so a bad -o fails fast).
+// One render's outputs together: every file is written and flushed to its
+// temporary file first, then all are renamed into place, so a failure
+// while writing leaves none of them.
+struct OutputFile {
+  std::string path;
+  std::vector<unsigned char> bytes;
+};
+void writeFilesAtomic(const std::vector<OutputFile>& files);
+
+// Throws unless path is not a directory (checkTarget) and a file can be
+// created in its directory (checked before rendering so a bad -o fails
+// fast).
+void checkTarget(const std::string& path);
 void checkWritable(const std::string& path);
 
 }  // namespace clr

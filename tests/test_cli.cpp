@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace {
@@ -220,6 +221,8 @@ TEST_CASE("cli: hostile scene files are rejected with one line and no output", "
     const std::string gltf = validGltf();
     expectSceneError("truncated.gltf", gltf.substr(0, gltf.size() / 2), "invalid JSON");
     expectSceneError("truncated.glb", std::string("glTF\x02\0\0\0\x40\0\0\0\xe8\x03\0\0JSON{}", 22),
+                     "GLB header states 64 bytes, the file has 22");
+    expectSceneError("short-chunk.glb", std::string("glTF\x02\0\0\0\x16\0\0\0\xe8\x03\0\0JSON{}", 22),
                      "GLB JSON chunk truncated");
   }
   SECTION("missing buffers")
@@ -336,4 +339,70 @@ TEST_CASE("cli: devices lists at least one device", "[cli]")
   const Run r = run("devices");
   CHECK(r.status == 0);
   CHECK(r.out.find("0: [") == 0);
+}
+
+TEST_CASE("cli: files assimp would misread are read right or refused", "[cli]")
+{
+  // OBJ: ".5" is a number (assimp skipped the line, shifting every later index); an alpha is dropped.
+  const std::string out = tmpDir() + "/misread.png";
+  for (const std::string& obj : {"v 0 0 0\nv .5 .5 0\nv 1 0 0\nv 0 7 0\nf 1 2 3\n",
+                                 "v 0 0 0\nv .5 .5 0 1 0 .5 1\nv 1 0 0\nv 0 7 0\nf 1 2 3\n"}) {
+    const Run r = run("info '" + writeFile("misread.obj", obj) + "' --json");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("\"max\":[1,0.5,0]") && Catch::Contains("\"triangles\":1"));  // not (0, 7, 0)
+    CHECK(run("render '" + tmpDir() + "/misread.obj' -o '" + out + "' --shade color --size 16x16").status == 0);
+  }
+  expectSceneError("two-numbers.obj", "v 0 0 0\nv 1 2\nv 1 0 0\nv 0 1 0\nf 1 3 4\n", "a vertex line of 2 numbers");
+  // OFF: assimp reads "-2" as vertex 0.
+  expectSceneError("negative.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n9 9 9\n3 0 1 -2\n", "vertex index '-2'");
+  // Binary PLY: a body shorter than its elements was read from whatever bytes follow.
+  const std::string binaryHeader =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+      "z\nend_header\n";
+  expectSceneError("short-body.ply", binaryHeader + std::string(20, '\0'), "PLY binary body of 20 bytes");
+  // glTF: an accessor reaching past its bufferView; a primitive mode outside 0..6; a GLB shorter than its header.
+  expectSceneError("past-view.gltf", gltfWith("\"byteLength\": 48}", "\"byteLength\": 44}"),
+                   "attribute POSITION reads 48 bytes of a bufferView of 44");
+  expectSceneError("mode9.gltf", gltfWith("\"indices\": 1}", "\"indices\": 1, \"mode\": 9}"), "no valid mode");
+}
+
+TEST_CASE("cli: a missing material library warns and non UTF-8 names stay valid JSON", "[cli]")
+{
+  const std::string model = writeFile("no-library.obj", "mtllib nope.mtl\nusemtl a\n" + kSmallObj);
+  const Run r = run("render '" + model + "' -o '" + tmpDir() + "/no-library.png' --size 16x16");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("material library 'nope.mtl' not found"));
+  const std::string odd = writeFile("odd\xff.obj", kSmallObj);
+  const Run info = run("info '" + odd + "' --json");
+  INFO(info.err);
+  CHECK(info.status == 0);
+  CHECK_THAT(info.out, Catch::StartsWith("{") && Catch::Contains("\xEF\xBF\xBD"));  // U+FFFD for the byte
+}
+
+TEST_CASE("cli: outputs are written together or not at all", "[cli]")
+{
+  // -o with --aov: a folder where the EXR goes fails before rendering, and no PNG is left.
+  const std::string dir = tmpDir() + "/together";
+  std::system(("rm -rf '" + dir + "' && mkdir -p '" + dir + "/vis.exr' '" + dir + "/f_1.png'").c_str());
+  expectError("render -o '" + dir + "/img.png' --aov '" + dir + "/vis.exr' --size 16x16", "vis.exr: cannot write");
+  CHECK_FALSE(test::exists(dir + "/img.png"));
+  // --views: a view's name that is a folder fails before any view is written.
+  const std::string views = writeFile("together.json", "{\"views\": [{}, {}]}");
+  expectError("render --views '" + views + "' -o '" + dir + "/f_%d.png' --size 16x16", "f_1.png: cannot write");
+  CHECK_FALSE(test::exists(dir + "/f_0.png"));
+}
+
+TEST_CASE("cli: warnings for a depth range and a narrow fov name their cause", "[cli]")
+{
+  const std::string out = " -o '" + tmpDir() + "/depth-range.png' --size 16x16";
+  const Run r = run("render --near 1e-8 --far 1e8" + out);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("warning: far/near = 1e+16 is over float32 depth's 1e4"));
+  CHECK(run("render --near 1e-8 --far 1e8 --depth auto" + out).err.empty());
+  expectError("render --fov 1e-30" + out, "--fov: too narrow");
+  expectError("render --eye 1e30,0,0" + out, "--eye and --target lie too far apart");
+  expectError("render --fov 0x2Dp0" + out, "--fov: '0x2Dp0' is not a finite number");
+  expectError("render --size ' 16x16'" + out, "--size");
+  expectError("render --device 99999999999999999999" + out, "no such device index");
 }
