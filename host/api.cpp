@@ -41,7 +41,7 @@ Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 const DeviceInfo& Context::device() const
 {
-  return impl_->info;
+  return Error::live(impl_.get(), "clraster::Context")->info;
 }
 
 clr::Pipeline& Context::Impl::rasterPipeline()
@@ -151,6 +151,8 @@ void interpolateInto(const float* attr, size_t numVertices, size_t numAttrs, con
     // Step 1: the arguments: every triangle's indices, the listed attributes.
     checkTriangles(tri, numTriangles, numVertices);
     if (numVertices && numAttrs && !attr) throw Error("attr: null array");
+    if (pixels && !rast) throw Error("rast: null array");
+    if (pixels && numAttrs && !out) throw Error("out: null array");
     std::vector<size_t> listed;
     for (int j : diffAttrs) {
       const int64_t k = j < 0 ? int64_t(j) + int64_t(numAttrs) : int64_t(j);

@@ -44,40 +44,22 @@ Scene Scene::builtin()
 
 size_t Scene::numVertices() const
 {
-  return impl_->mesh.numVerts();
+  return impl().mesh.numVerts();
 }
 size_t Scene::numTriangles() const
 {
-  return impl_->mesh.numTris();
+  return impl().mesh.numTris();
 }
 const std::vector<std::string>& Scene::warnings() const
 {
-  return impl_->mesh.warnings;
+  return impl().mesh.warnings;
 }
 
 // ---- RenderOptions ----
 
-namespace {
-
-// The CLI's parser, where -o is optional: a stand-in output is parsed along
-// when the flags name none, then dropped.
-clr::RenderArgs parseOptions(const std::vector<std::string>& flags)
-{
-  const bool hasOutput = std::find_if(flags.begin(), flags.end(),
-                                      [](const std::string& f) { return f == "-o" || f == "--output"; }) != flags.end();
-  if (hasOutput) return clr::parseRenderArgs(flags);
-  std::vector<std::string> withOutput = flags;
-  withOutput.insert(withOutput.end(), {"-o", "unused_%d.png"});
-  clr::RenderArgs args = clr::parseRenderArgs(withOutput);
-  args.outPath.clear();
-  return args;
-}
-
-}  // namespace
-
 RenderOptions::RenderOptions() : impl_(std::make_unique<Impl>())
 {
-  impl_->args = parseOptions({});
+  impl_->args = clr::parseRenderArgs({}, false);
 }
 RenderOptions::~RenderOptions() = default;
 RenderOptions::RenderOptions(const RenderOptions& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
@@ -91,7 +73,7 @@ RenderOptions RenderOptions::parse(const std::vector<std::string>& flags)
 {
   return guarded([&] {
     RenderOptions o;
-    o.impl_->args = parseOptions(flags);
+    o.impl_->args = clr::parseRenderArgs(flags, false);
     o.impl_->flags = flags;
     return o;
   });
@@ -110,10 +92,16 @@ RenderOptions RenderOptions::parseCommandLine(const std::vector<std::string>& ar
 RenderOptions& RenderOptions::set(const std::string& flag, const std::string& value)
 {
   return guarded([&]() -> RenderOptions& {
+    // One flag, and its value taken by it: parsed alone, the pair names no scene.
+    if (flag.empty() || flag[0] != '-')
+      throw Error("RenderOptions::set: '" + clr::userText(flag) + "' is not a flag (--size, --shade, ...)");
+    std::vector<std::string> pair{flag};
+    if (!value.empty()) pair.push_back(value);
+    if (!clr::parseRenderFlags(pair).scenePath.empty())
+      throw Error(clr::userText(flag) + ": takes no value, given '" + clr::userText(value) + "'");
     std::vector<std::string> flags = impl_->flags;
-    if (!flag.empty()) flags.push_back(flag);
-    if (!value.empty()) flags.push_back(value);
-    impl_->args = parseOptions(flags);
+    flags.insert(flags.end(), pair.begin(), pair.end());
+    impl_->args = clr::parseRenderArgs(flags, false);
     impl_->flags = std::move(flags);
     return *this;
   });
@@ -186,18 +174,20 @@ Image Renderer::render(const RenderOptions& options, FrameStats* stats)
 {
   return guarded([&] {
     // Step 1: camera, depth format and methods, as the render command.
+    Impl& impl = *Error::live(impl_.get(), "clraster::Renderer");
     const clr::RenderArgs& args = options.impl().args;
+    if (!args.viewsPath.empty()) throw Error("--views: render() draws one view; renderCommand draws a views file");
     clr::checkCameraArgs(args.camera);
-    const clr::Camera camera = clr::frameCamera(args.camera, impl_->bounds);
-    clr::FrameSettings settings = clr::makeFrameSettings(args, camera, args.width, args.height, impl_->bounds);
+    const clr::Camera camera = clr::frameCamera(args.camera, impl.bounds);
+    clr::FrameSettings settings = clr::makeFrameSettings(args, camera, args.width, args.height, impl.bounds);
     if (args.aa == "auto" || args.qualityAuto)
-      clr::chooseAutomatically(impl_->pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
+      clr::chooseAutomatically(impl.pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
     // Step 2: the frame.
     Image image;
     image.width = settings.width;
     image.height = settings.height;
-    const clr::FrameStats s = impl_->pipeline.render(settings, image.rgba);
-    impl_->aovKept = settings.keepVisAttributes;
+    const clr::FrameStats s = impl.pipeline.render(settings, image.rgba);
+    impl.aovKept = settings.keepVisAttributes;
     if (stats) {
       stats->stageMs = s.stageMs;
       stats->deviceIdleMs = s.deviceIdleMs;
@@ -214,18 +204,22 @@ Image Renderer::render(const RenderOptions& options, FrameStats* stats)
 void Renderer::writeAov(const std::string& path)
 {
   guarded([&] {
-    if (!impl_->aovKept) throw Error("--aov: the last frame was rendered without --aov");
-    impl_->pipeline.aov();
-    const FrameParams& p = impl_->pipeline.params();
-    clr::writeAovExr(path, p.width, p.height, impl_->pipeline.readAov());
+    Impl& impl = *Error::live(impl_.get(), "clraster::Renderer");
+    clr::checkExtension("--aov", path, ".exr");
+    if (!impl.aovKept) throw Error("--aov: the last frame was rendered without --aov");
+    impl.pipeline.aov();
+    const FrameParams& p = impl.pipeline.params();
+    clr::writeAovExr(path, p.width, p.height, impl.pipeline.readAov());
   });
 }
 
 void writePng(const std::string& path, const Image& image)
 {
   guarded([&] {
+    clr::checkExtension("-o", path, ".png");
+    if (image.width == 0 || image.height == 0) throw Error(userText(path) + ": the image is empty (0 pixels)");
     if (image.rgba.size() != size_t(image.width) * image.height)
-      throw Error(path + ": image holds " + std::to_string(image.rgba.size()) + " pixels, not " +
+      throw Error(userText(path) + ": image holds " + std::to_string(image.rgba.size()) + " pixels, not " +
                   std::to_string(image.width) + "x" + std::to_string(image.height));
     clr::writePng(path, image.width, image.height, image.rgba);
   });
@@ -234,6 +228,7 @@ void writePng(const std::string& path, const Image& image)
 Image render(Context& ctx, const RenderOptions& options)
 {
   return guarded([&] {
+    if (!options.viewsPath().empty()) throw Error("--views: render() draws one view; renderCommand draws a views file");
     // Outputs are checked before any device work, as the CLI does.
     if (!options.outputPath().empty()) clr::checkWritable(options.outputPath());
     if (!options.aovPath().empty()) clr::checkWritable(options.aovPath());

@@ -4,7 +4,8 @@
 // the nvdiffrast calling conventions. These bindings check again what memory
 // safety needs (shapes and contiguity: a wrong array is a ValueError, never
 // a read out of bounds); clraster::Error becomes clraster.Error, a
-// RuntimeError. The GIL stays held: a Context belongs to one thread at a time.
+// RuntimeError. The GIL is released around the C++ calls, once the arrays
+// are checked; __init__.py makes calls on one Context take turns.
 #include <clraster/clraster.hpp>
 
 #include <pybind11/numpy.h>
@@ -40,8 +41,12 @@ void rasterizeInto(clraster::Context& ctx, const FloatArray& pos, const IntArray
   expectShape("rast", rast, {-1, -1, 4});
   const uint32_t h = uint32_t(rast.shape(0)), w = uint32_t(rast.shape(1));
   if (db) expectShape("rast_db", *db, {h, w, 4});
-  clraster::rasterizeInto(ctx, pos.data(), size_t(pos.shape(0)), tri.data(), size_t(tri.shape(0)), w, h,
-                          rast.mutable_data(), nullptr, db ? db->mutable_data() : nullptr);
+  const float* posData = pos.data();
+  const int32_t* triData = tri.data();
+  const size_t numVertices = size_t(pos.shape(0)), numTriangles = size_t(tri.shape(0));
+  float *rastData = rast.mutable_data(), *dbData = db ? db->mutable_data() : nullptr;
+  py::gil_scoped_release release;  // raw pointers only from here
+  clraster::rasterizeInto(ctx, posData, numVertices, triData, numTriangles, w, h, rastData, nullptr, dbData);
 }
 
 // interpolate of one image: attr [V, C], rast [H, W, 4], tri [T, 3], out [H, W, C],
@@ -59,9 +64,13 @@ void interpolateInto(const FloatArray& attr, const FloatArray& rast, const IntAr
     expectShape("rast_db", *db, {h, w, 4});
     expectShape("out_da", *outDa, {h, w, py::ssize_t(2 * diff.size())});
   }
-  clraster::interpolateInto(attr.data(), size_t(attr.shape(0)), size_t(c), rast.data(), size_t(h * w), tri.data(),
-                            size_t(tri.shape(0)), out.mutable_data(), db ? db->data() : nullptr, diff,
-                            outDa ? outDa->mutable_data() : nullptr);
+  const float *attrData = attr.data(), *rastData = rast.data(), *dbData = db ? db->data() : nullptr;
+  const int32_t* triData = tri.data();
+  const size_t numVertices = size_t(attr.shape(0)), numTriangles = size_t(tri.shape(0));
+  float *outData = out.mutable_data(), *outDaData = outDa ? outDa->mutable_data() : nullptr;
+  py::gil_scoped_release release;  // raw pointers only from here
+  clraster::interpolateInto(attrData, numVertices, size_t(c), rastData, size_t(h * w), triData, numTriangles, outData,
+                            dbData, diff, outDaData);
 }
 
 }  // namespace

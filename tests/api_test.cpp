@@ -134,3 +134,56 @@ TEST_CASE("api renderer draws the built in scene", "[api]")
   }
   REQUIRE(drawn > 64 * 48 / 10);
 }
+
+TEST_CASE("api moved from objects and null outputs are errors", "[api]")
+{
+  clraster::Context ctx(std::getenv("CLRASTER_TEST_DEVICE") ? std::getenv("CLRASTER_TEST_DEVICE") : "");
+  clraster::Context moved = std::move(ctx);
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 2};
+  REQUIRE_THROWS_WITH(clraster::rasterize(ctx, pos, 3, tri, 1, 8, 8), Catch::Contains("moved from"));
+  REQUIRE_THROWS_WITH(ctx.device(), Catch::Contains("moved from"));
+  clraster::Scene scene = clraster::Scene::builtin();
+  clraster::Scene other = std::move(scene);
+  REQUIRE_THROWS_WITH(scene.numTriangles(), Catch::Contains("clraster::Scene: used after it was moved from"));
+  REQUIRE_THROWS_WITH(clraster::Renderer(moved, scene), Catch::Contains("clraster::Scene"));
+  const float rast[4] = {0.3f, 0.3f, 0.5f, 1.0f}, attr[] = {1, 2, 3};
+  float out[1];
+  REQUIRE_THROWS_WITH(clraster::interpolateInto(attr, 3, 1, rast, 1, tri, 1, nullptr), Catch::StartsWith("out: null"));
+  REQUIRE_THROWS_WITH(clraster::interpolateInto(attr, 3, 1, nullptr, 1, tri, 1, out), Catch::StartsWith("rast: null"));
+  REQUIRE_THROWS_WITH(clraster::Context("99999999999999999999"), Catch::Contains("no such device index"));
+}
+
+TEST_CASE("api options name the flag at fault", "[api]")
+{
+  using clraster::RenderOptions;
+  REQUIRE_THROWS_WITH(RenderOptions::parse({"--shade"}), Catch::Equals("--shade: missing value"));
+  REQUIRE_THROWS_WITH(RenderOptions::parse({"--eye"}), Catch::Equals("--eye: missing value"));
+  REQUIRE_THROWS_WITH(RenderOptions().set("--fov"), Catch::Equals("--fov: missing value"));
+  REQUIRE_THROWS_WITH(RenderOptions().set("--stats", "yes"), Catch::StartsWith("--stats: takes no value"));
+  REQUIRE_THROWS_WITH(RenderOptions().set("fov", "30"), Catch::Contains("'fov' is not a flag"));
+  RenderOptions views = RenderOptions::parse({"--views", "v.json"});
+  views.set("--shard", "1/2");  // checked against --views given before
+  REQUIRE(views.viewsPath() == "v.json");
+  REQUIRE(RenderOptions().set("--size", "32x16").width() == 32);
+  REQUIRE_THROWS_WITH(RenderOptions::parse({"--fov", "0x2Dp0"}), Catch::StartsWith("--fov: '0x2Dp0'"));
+  REQUIRE_THROWS_WITH(RenderOptions::parse({"--frames", " 2"}), Catch::StartsWith("--frames: ' 2'"));
+  // The derived camera: a fov too narrow for float names --fov, not the planes it derives.
+  REQUIRE_THROWS_WITH(clraster::render(context(), RenderOptions::parse({"--size", "8x8", "--fov", "1e-30"})),
+                      Catch::StartsWith("--fov: too narrow"));
+}
+
+TEST_CASE("api outputs are refused where the command line refuses them", "[api]")
+{
+  REQUIRE_THROWS_WITH(clraster::render(context(), clraster::RenderOptions::parse({"--views", "v.json"})),
+                      Catch::StartsWith("--views: render() draws one view"));
+  clraster::Renderer renderer(context(), clraster::Scene::builtin());
+  REQUIRE_THROWS_WITH(renderer.render(clraster::RenderOptions::parse({"--views", "v.json"})),
+                      Catch::StartsWith("--views"));
+  const clraster::Image image = renderer.render(clraster::RenderOptions::parse({"--size", "8x8"}));
+  REQUIRE_THROWS_WITH(clraster::writePng("image.jpg", image), Catch::Contains("must be a file name ending in .png"));
+  REQUIRE_THROWS_WITH(clraster::writePng("empty.png", clraster::Image{}), Catch::Contains("empty"));
+  REQUIRE_THROWS_WITH(renderer.writeAov("vis.png"), Catch::Contains("ending in .exr"));
+  std::unique_ptr<clraster::Context> built;
+  REQUIRE_THROWS_WITH(clraster::renderCommand(clraster::RenderOptions(), built), Catch::StartsWith("missing -o"));
+}

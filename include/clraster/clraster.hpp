@@ -4,7 +4,8 @@
 // Two levels, one Context (a device, chosen by the CLI's --device rule):
 //  - rasterize / interpolate: nvdiffrast's primitives on caller arrays.
 //    Positions are clip space (x, y, z, w), OpenGL conventions (visible:
-//    -w <= x, y, z <= w); triangles are int32 vertex triples; images are
+//    -w <= x, y <= w, -w <= z < w: GL's LESS test against the clear depth 1
+//    draws nothing at z = w); triangles are int32 vertex triples; images are
 //    row-major with row 0 at the bottom (y up), pixel centres at
 //    x_ndc = (2i + 1) / W - 1. Coverage and triangle ids are those of the
 //    `clraster render` pipeline: fixed-point, watertight, nearest z/w wins,
@@ -53,7 +54,7 @@ class CLRASTER_API Context {
   Context& operator=(Context&&) noexcept;
   const DeviceInfo& device() const;
   struct Impl;
-  Impl& impl() { return *impl_; }
+  Impl& impl() { return *Error::live(impl_.get(), "clraster::Context"); }
 
  private:
   std::unique_ptr<Impl> impl_;
@@ -120,7 +121,7 @@ class CLRASTER_API Scene {
   size_t numTriangles() const;
   const std::vector<std::string>& warnings() const;  // what loading left out, one line each
   struct Impl;
-  const Impl& impl() const { return *impl_; }
+  const Impl& impl() const { return *Error::live(impl_.get(), "clraster::Scene"); }
 
  private:
   explicit Scene(std::unique_ptr<Impl> impl);
@@ -129,7 +130,8 @@ class CLRASTER_API Scene {
 
 // What to render, in the render command's flags (`clraster render --help`):
 // parse() takes them as the CLI does (same checks, same messages); set()
-// adds one. The output path (-o) is optional here. For example
+// adds one flag and its value (an Error names a flag that takes none, or a
+// word that is no flag). The output path (-o) is optional here. For example
 //   auto o = RenderOptions::parse({"--size", "640x480", "--shade", "normal"});
 class CLRASTER_API RenderOptions {
  public:
@@ -173,6 +175,8 @@ struct FrameStats {
 
 // A scene uploaded to a context's device once, rendered under any options
 // (its camera framed on the scene's bounds where the options leave it open).
+// render() draws the Renderer's scene, not the options' SCENE, and writes no
+// file (writePng, writeAov do); options with --views are an Error.
 class CLRASTER_API Renderer {
  public:
   Renderer(Context& ctx, const Scene& scene);
@@ -190,11 +194,13 @@ class CLRASTER_API Renderer {
 };
 
 // Writes an image as an 8-bit RGB PNG via a temporary file renamed into
-// place (never half-written); an Error names the path on failure.
+// place (never half-written); an Error names the path on failure, a path
+// not ending in .png, or an empty image.
 CLRASTER_API void writePng(const std::string& path, const Image& image);
 
 // The whole command: load options.scenePath() (or the built-in scene),
 // render once, write options.outputPath() (and --aov's file) when given.
+// Options with --views are an Error (renderCommand draws a views file).
 CLRASTER_API Image render(Context& ctx, const RenderOptions& options);
 
 // ---- The command line: each `clraster` command as a call ----
@@ -212,8 +218,8 @@ CLRASTER_API int infoCommand(const std::vector<std::string>& args);
 // `clraster cache [--device SEL]`: compiles the kernels for the device and
 // stores their binaries, so later starts skip the compiler front end.
 CLRASTER_API int cacheCommand(const std::vector<std::string>& args);
-// `clraster render` with parsed options: one view (-o, --aov), or every view
-// of a --views file; writes the outputs and returns the --stats JSON line
+// `clraster render` with parsed options: one view (-o, --aov; an Error
+// without either), or every view of a --views file; writes the outputs and returns the --stats JSON line
 // ("" without --stats). Warnings go to stderr, --views' progress bar too
 // when stderr is a terminal. `context` receives the device context the
 // command built, so that a caller about to exit may skip its teardown.

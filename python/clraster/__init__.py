@@ -13,19 +13,29 @@ triangle_ids(rast) gives the exact int32 triangle_id + 1 for any triangle
 count. Coverage and ids are those of `clraster render` (fixed-point,
 watertight, nearest z/w wins, ties to the lower triangle index, no culling;
 triangles with a non-finite vertex are culled). Every bad argument raises
-ValueError naming it. docs/python.md maps the rest of nvdiffrast.
+ValueError naming it; one of the wrong type raises ArgumentTypeError, both
+a TypeError and a ValueError. Calls release the GIL while the device or
+the host arithmetic works; calls on one Context take turns (its lock).
+docs/python.md maps the rest of nvdiffrast.
 """
 
 import numbers
+import threading
 
 import numpy as np
 
 from . import _clraster
 from ._clraster import Error
 
-__all__ = ["Context", "Error", "rasterize", "interpolate", "triangle_ids", "devices"]
+__all__ = ["Context", "Error", "ArgumentTypeError", "rasterize", "interpolate", "triangle_ids", "devices"]
+__version__ = "1.0"
 
 _MAX_RESOLUTION = 16384
+
+
+class ArgumentTypeError(TypeError, ValueError):
+    """An argument of the wrong type: a TypeError, as Python's convention has
+    it, and a ValueError, as every bad argument to clraster is."""
 
 
 class Context:
@@ -37,12 +47,13 @@ class Context:
         if device is None:
             device = ""
         if isinstance(device, bool) or not isinstance(device, (str, numbers.Integral)):
-            raise ValueError(f"device: expected None, an index or a name, got {type(device).__name__}")
+            raise ArgumentTypeError(f"device: expected None, an index or a name, got {type(device).__name__}")
         if isinstance(device, numbers.Integral):
             if device < 0:
                 raise ValueError(f"device: index {device} is negative")
             device = str(int(device))
         self._ctx = _clraster.Context(device)
+        self._lock = threading.Lock()
 
     @property
     def device_name(self):
@@ -65,7 +76,9 @@ def _array(name, value, dtype, ndims, last=None):
     """value as a C-contiguous array of dtype with one of ndims dimensions
     (and last extent `last`), or a ValueError naming the argument."""
     if not isinstance(value, np.ndarray):
-        raise ValueError(f"{name}: expected a numpy array, got {type(value).__name__}")
+        raise ArgumentTypeError(f"{name}: expected a numpy array, got {type(value).__name__}")
+    if value.dtype != dtype and value.dtype.newbyteorder("=") == dtype:
+        value = value.astype(dtype)  # the values are right, in the other byte order
     if value.dtype != dtype:
         raise ValueError(f"{name}: expected dtype {np.dtype(dtype).name}, got {value.dtype.name}")
     if value.ndim not in ndims:
@@ -91,17 +104,20 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     instanced mode (one image per entry, the same tri). Range mode (ranges)
     is not supported."""
     if not isinstance(glctx, Context):
-        raise ValueError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
+        raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
     if ranges is not None:
         raise ValueError("ranges: range mode is not supported (pass one pos array per image, or [B, V, 4])")
-    if not isinstance(grad_db, bool):
-        raise ValueError(f"grad_db: expected True or False, got {grad_db!r}")
+    if not isinstance(grad_db, (bool, np.bool_)):
+        raise ArgumentTypeError(f"grad_db: expected True or False, got {type(grad_db).__name__} {grad_db!r}")
+    grad_db = bool(grad_db)
     try:
         height, width = resolution
     except (TypeError, ValueError):
-        raise ValueError(f"resolution: expected (height, width), got {resolution!r}") from None
+        raise ArgumentTypeError(f"resolution: expected (height, width), got {resolution!r}") from None
     for n in (height, width):
-        if isinstance(n, bool) or not isinstance(n, numbers.Integral) or not 1 <= n <= _MAX_RESOLUTION:
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral):
+            raise ArgumentTypeError(f"resolution: expected two integers, got {resolution!r}")
+        if not 1 <= n <= _MAX_RESOLUTION:
             raise ValueError(f"resolution: expected two integers in 1..{_MAX_RESOLUTION}, got {resolution!r}")
     height, width = int(height), int(width)
     pos = _array("pos", pos, np.float32, (2, 3), 4)
@@ -109,8 +125,9 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     tri = _check_tri(tri, batch.shape[1])
     rast = np.empty((batch.shape[0], height, width, 4), np.float32)
     db = np.empty((batch.shape[0], height, width, 4 if grad_db else 0), np.float32)
-    for b in range(batch.shape[0]):
-        _clraster.rasterize_into(glctx._ctx, batch[b], tri, rast[b], db[b] if grad_db else None)
+    with glctx._lock:
+        for b in range(batch.shape[0]):
+            _clraster.rasterize_into(glctx._ctx, batch[b], tri, rast[b], db[b] if grad_db else None)
     return rast, db
 
 
@@ -122,7 +139,8 @@ def triangle_ids(rast):
     rast = _array("rast", rast, np.float32, (3, 4), 4)
     f = rast[..., 3]
     big = f > 16777216.0
-    ids = np.where(big, f.view(np.int32) - np.int32(0x4A800000), f.astype(np.int32))
+    with np.errstate(invalid="ignore"):  # NaN and huge channels cast to garbage, which the where() drops
+        ids = np.where(big, f.view(np.int32) - np.int32(0x4A800000), f.astype(np.int32))
     return np.where(f > 0, ids, 0).astype(np.int32)
 
 

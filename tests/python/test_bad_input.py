@@ -126,3 +126,32 @@ def test_non_contiguous_inputs_are_accepted(ctx):
     a, _ = clraster.rasterize(ctx, pos, tri, (8, 8))
     b, _ = clraster.rasterize(ctx, POS, TRI, (8, 8))
     assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize(
+    "name, kwargs",
+    [
+        ("glctx", dict(glctx=None)),
+        ("pos", dict(pos=POS.tolist())),
+        ("pos", dict(pos=None)),
+        ("resolution", dict(resolution=(8.0, 8))),
+        ("resolution", dict(resolution=8)),
+        ("grad_db", dict(grad_db=1)),
+    ],
+)
+def test_wrong_types_are_type_errors_as_well(ctx, name, kwargs):
+    args = dict(glctx=ctx, pos=POS, tri=TRI, resolution=(8, 8))
+    args.update(kwargs)
+    with pytest.raises(TypeError, match=f"^{name}: ") as caught:
+        clraster.rasterize(**args)
+    assert isinstance(caught.value, ValueError) and isinstance(caught.value, clraster.ArgumentTypeError)
+    with pytest.raises(TypeError, match="^device: "):
+        clraster.Context(3.5)
+
+
+def test_other_byte_order_and_numpy_bools_are_accepted(ctx):
+    want, want_db = clraster.rasterize(ctx, POS, TRI, (8, 8))
+    got, got_db = clraster.rasterize(ctx, POS.astype(">f4"), TRI.astype(">i4"), (8, 8), grad_db=np.bool_(True))
+    assert np.array_equal(got, want) and np.array_equal(got_db, want_db)
+    out, _ = clraster.interpolate(POS.astype(">f4"), want, TRI)
+    assert np.array_equal(out, clraster.interpolate(POS, want, TRI)[0])

@@ -1,6 +1,8 @@
 """clraster.rasterize on crafted triangles: ids exactly the scalar oracle's
 (tests/reference_raster.cpp) and barycentrics, z/w and rast_db against the
 perspective-correct formula evaluated in numpy (float64)."""
+import os
+
 import numpy as np
 
 import clraster
@@ -159,3 +161,27 @@ def test_triangle_ids_decode_nvdiffrast_encoding_exactly():
     rast = np.zeros((1, 1, len(ids), 4), np.float32)
     rast[0, 0, :, 3] = enc
     assert (clraster.triangle_ids(rast)[0, 0] == ids).all()
+
+
+def test_threads_with_own_or_shared_contexts_agree(ctx):
+    """The calls release the GIL: threads with their own Context run at once,
+    threads sharing one take turns; every result is the single thread's."""
+    import threading
+
+    pos, tri = crafted_scene(11, count=200)
+    want, want_db = clraster.rasterize(ctx, pos, tri, (64, 96))
+    own = [clraster.Context(os.environ.get("CLRASTER_TEST_DEVICE")) for _ in range(2)]
+    results = []
+
+    def work(c):
+        for _ in range(3):
+            results.append(clraster.rasterize(c, pos, tri, (64, 96)))
+
+    threads = [threading.Thread(target=work, args=(c,)) for c in own + [ctx, ctx]]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 12
+    for rast, db in results:
+        assert np.array_equal(rast, want) and np.array_equal(db, want_db)
