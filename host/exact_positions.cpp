@@ -104,6 +104,8 @@ class Rewriter {
   ExactPositions finish(int importer)
   {
     out_.append(src_, copied_, std::string::npos);
+    // A last line without its line end: assimp's line reader drops it where it crosses a 16 MiB block.
+    if (!out_.empty() && out_.back() != '\n') out_ += '\n';
     ExactPositions r;
     r.importer = importer;
     r.checked = true;

@@ -354,6 +354,12 @@ TEST_CASE("cli: files assimp would misread are read right or refused", "[cli]")
     CHECK(run("render '" + tmpDir() + "/misread.obj' -o '" + out + "' --shade color --size 16x16").status == 0);
   }
   expectSceneError("two-numbers.obj", "v 0 0 0\nv 1 2\nv 1 0 0\nv 0 1 0\nf 1 3 4\n", "a vertex line of 2 numbers");
+  // OBJ: a last line without its line end, across the OBJ reader's 16 MiB block, was dropped.
+  const std::string lastLine = "v 0 0 0\nv 1 0 0\nv 0 1 0\n# " + std::string((16u << 20) - 40000, 'x') +
+                               "\nf 1 2 3\nf 1 2 3" + std::string(100000, ' ');
+  const Run last = run("info '" + writeFile("last-line.obj", lastLine) + "'");
+  CHECK_THAT(last.out, Catch::Contains("triangles  2\n"));
+  std::remove((tmpDir() + "/last-line.obj").c_str());
   // OFF: assimp reads "-2" as vertex 0.
   expectSceneError("negative.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n9 9 9\n3 0 1 -2\n", "vertex index '-2'");
   // Binary PLY: a body shorter than its elements was read from whatever bytes follow.
