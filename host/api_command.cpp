@@ -135,8 +135,10 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
   for (size_t v : selected) {
     const std::string name = outputName(args.outPath, v);
     const std::string folder = name.find('/') == std::string::npos ? "." : name.substr(0, name.rfind('/') + 1);
-    if (folders.insert(folder).second) checkWritable(name);
-    checkTarget(name);
+    if (folders.insert(folder).second)
+      checkWritable(name);  // (checkTarget too)
+    else
+      checkTarget(name);
   }
   const Mesh mesh = loadSceneDuringBuild(args, context);
   ClContext& cl = context->impl().frameContext();

@@ -57,6 +57,16 @@ const std::vector<std::string>& Scene::warnings() const
 
 // ---- RenderOptions ----
 
+namespace {
+
+// render() and Renderer::render draw one view; a views file is renderCommand's.
+void checkOneView(const std::string& viewsPath)
+{
+  if (!viewsPath.empty()) throw Error("--views: render() draws one view; renderCommand draws a views file");
+}
+
+}  // namespace
+
 RenderOptions::RenderOptions() : impl_(std::make_unique<Impl>())
 {
   impl_->args = clr::parseRenderArgs({}, false);
@@ -176,7 +186,7 @@ Image Renderer::render(const RenderOptions& options, FrameStats* stats)
     // Step 1: camera, depth format and methods, as the render command.
     Impl& impl = *Error::live(impl_.get(), "clraster::Renderer");
     const clr::RenderArgs& args = options.impl().args;
-    if (!args.viewsPath.empty()) throw Error("--views: render() draws one view; renderCommand draws a views file");
+    checkOneView(args.viewsPath);
     clr::checkCameraArgs(args.camera);
     const clr::Camera camera = clr::frameCamera(args.camera, impl.bounds);
     clr::FrameSettings settings = clr::makeFrameSettings(args, camera, args.width, args.height, impl.bounds);
@@ -228,7 +238,7 @@ void writePng(const std::string& path, const Image& image)
 Image render(Context& ctx, const RenderOptions& options)
 {
   return guarded([&] {
-    if (!options.viewsPath().empty()) throw Error("--views: render() draws one view; renderCommand draws a views file");
+    checkOneView(options.viewsPath());
     // Outputs are checked before any device work, as the CLI does.
     if (!options.outputPath().empty()) clr::checkWritable(options.outputPath());
     if (!options.aovPath().empty()) clr::checkWritable(options.aovPath());

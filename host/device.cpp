@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <sstream>
 
@@ -86,9 +87,9 @@ DeviceInfo selectDevice(const std::string& selector)
   }
   // Step 2: an index.
   if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
-    // Compared digit by digit: a longer string than any index is out of range, not an overflow.
-    const size_t index = selector.size() <= 9 ? size_t(std::stoul(selector)) : devices.size();
-    if (index >= devices.size())
+    errno = 0;
+    const unsigned long long index = std::strtoull(selector.c_str(), nullptr, 10);
+    if (errno == ERANGE || index >= devices.size())
       throw Error("--device " + userText(selector) + ": no such device index (there are " +
                   std::to_string(devices.size()) + "; see 'clraster devices')");
     return devices[index];

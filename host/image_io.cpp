@@ -137,9 +137,11 @@ void writeFilesAtomic(const std::vector<OutputFile>& files)
     }
 }
 
-void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes)
+void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes)
 {
-  writeFilesAtomic({{path, bytes}});
+  std::vector<OutputFile> files(1);
+  files[0] = {path, std::move(bytes)};
+  writeFilesAtomic(files);
 }
 
 std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)

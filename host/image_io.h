@@ -22,7 +22,7 @@ std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, ui
 
 // Writes bytes to a temporary file beside path, flushes it and renames it
 // over path (the pattern every output file follows).
-void writeFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes);
+void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes);
 
 // One render's outputs together: every file is written and flushed to its
 // temporary file first, then all are renamed into place, so a failure

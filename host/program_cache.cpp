@@ -127,7 +127,7 @@ std::string storeProgramBinary(const cl::Program& program, const cl::Device& dev
   std::error_code failed;
   std::filesystem::create_directories(dir, failed);
   if (failed) throw Error(userText(dir) + ": cannot create the kernel cache directory (" + failed.message() + ")");
-  writeFileAtomic(path, file);
+  writeFileAtomic(path, std::move(file));
   return path;
 }
 

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <map>
 #include <sstream>
+#include <sys/stat.h>
 #include <unordered_map>
 
 namespace clr {
@@ -224,15 +225,12 @@ void loadMaterials(ImportState& state)
           std::string file = name.rfind("//", 0) == 0 ? name.substr(2) : name;
           std::replace(file.begin(), file.end(), '\\', '/');
           if (file[0] != '/') file = folder + file;
+          // A glTF URI is percent-encoded ("tex%20a.png"), which assimp passes on as it is.
+          const std::string decoded = percentDecoded(file);
+          struct stat st;
+          if (decoded != file && stat(file.c_str(), &st) != 0 && stat(decoded.c_str(), &st) == 0) file = decoded;
           try {
-            try {
-              t = loadTextureFile(file, budget);
-            } catch (const Error&) {
-              // A glTF URI is percent-encoded ("tex%20a.png"), which assimp passes on as it is.
-              const std::string decoded = percentDecoded(file);
-              if (decoded == file) throw;
-              t = loadTextureFile(decoded, budget);
-            }
+            t = loadTextureFile(file, budget);
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.
@@ -385,8 +383,8 @@ Mesh importScene(const std::string& path)
   ImportState state{path, scene, {}};
   for (const std::string& refused : io->refusals())
     state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
-  for (const std::string& library : importLog.log.missingLibraries)
-    if (io->refusals().empty())
+  if (io->refusals().empty())  // (a refused library is warned of above)
+    for (const std::string& library : importLog.log.missingLibraries)
       state.mesh.warnings.push_back(userText(path, 80) + ": material library '" + userText(library, 100) +
                                     "' not found; rendered with default materials");
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);

@@ -78,6 +78,7 @@ void interpolateInto(const FloatArray& attr, const FloatArray& rast, const IntAr
 PYBIND11_MODULE(_clraster, m)
 {
   m.doc() = "clraster's C++ API for the clraster package (use `import clraster`)";
+  m.attr("__version__") = std::to_string(CLRASTER_VERSION_MAJOR) + "." + std::to_string(CLRASTER_VERSION_MINOR);
   py::register_exception<clraster::Error>(m, "Error", PyExc_RuntimeError);
   py::class_<clraster::Context>(m, "Context")
       .def(py::init<const std::string&>(), py::arg("device") = "")

@@ -28,7 +28,7 @@ from . import _clraster
 from ._clraster import Error
 
 __all__ = ["Context", "Error", "ArgumentTypeError", "rasterize", "interpolate", "triangle_ids", "devices"]
-__version__ = "1.0"
+__version__ = _clraster.__version__
 
 _MAX_RESOLUTION = 16384
 
