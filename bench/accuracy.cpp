@@ -16,7 +16,7 @@
 //   coverage scene  the covered fraction of each pixel's samples (from the
 //                   visibility planes) against the exact area: RMSE over all
 //                   pixels, max, and RMSE over edge pixels (0 < area < 1),
-//                   the constants of host/quality.cpp
+//                   the constants of host/render/quality.cpp
 //   other scenes    the RGBA8 image against the S×S-sample reference
 //                   (tests/supersample_reference.h, same shading in double)
 //                   on a C×C crop at the image centre: RMSE of all channels
@@ -28,14 +28,14 @@
 // Writes the CSV (one row per scene and method), the Pareto front per scene
 // (methods no other method beats in both time and error), and a Markdown
 // table. Every failure is one line on stderr and exit status 1.
-#include "aa.h"
-#include "camera.h"
-#include "cl.h"
-#include "cli.h"
-#include "device.h"
-#include "pipeline.h"
-#include "quality.h"
-#include "scene.h"
+#include "pipeline/aa.h"
+#include "render/camera.h"
+#include "pipeline/cl.h"
+#include "render/flags.h"
+#include "pipeline/device.h"
+#include "pipeline/pipeline.h"
+#include "render/quality.h"
+#include "io/scene.h"
 
 #include "exact_coverage.h"
 #include "supersample_reference.h"

@@ -21,8 +21,8 @@
 //                 included), for reference.
 // Prints one JSON line with ratio = rasterize_ms / cli_ms and the median
 // device time of each stage of both (OpenCL profiling).
-#include "cli.h"
-#include "frame_settings.h"
+#include "render/flags.h"
+#include "render/frame_settings.h"
 #include "procedural.h"
 
 #include <clraster/clraster.hpp>

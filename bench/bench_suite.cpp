@@ -19,15 +19,15 @@
 #include "llvmpipe_render.h"
 #include "procedural.h"
 
-#include "camera.h"
-#include "cli.h"
-#include "cl.h"
-#include "device.h"
-#include "frame_settings.h"
-#include "image_io.h"
-#include "layout.h"
-#include "pipeline.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "render/flags.h"
+#include "pipeline/cl.h"
+#include "pipeline/device.h"
+#include "render/frame_settings.h"
+#include "io/image_io.h"
+#include "pipeline/layout.h"
+#include "pipeline/pipeline.h"
+#include "io/scene.h"
 
 #include <algorithm>
 #include <chrono>

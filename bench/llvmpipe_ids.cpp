@@ -10,14 +10,14 @@
 // that are not near an edge are real disagreements (or exact depth ties of coplanar overlapping triangles), not vertex
 // rounding. With --max-diff-fraction F the exit status is 1 when the differing fraction exceeds F or any differing
 // pixel is not near an edge. Every failure is one line on stderr and exit status 1.
-#include "camera.h"
-#include "cli.h"
-#include "cl.h"
-#include "device.h"
-#include "image_io.h"
+#include "render/camera.h"
+#include "render/flags.h"
+#include "pipeline/cl.h"
+#include "pipeline/device.h"
+#include "io/image_io.h"
 #include "llvmpipe_render.h"
-#include "pipeline.h"
-#include "scene.h"
+#include "pipeline/pipeline.h"
+#include "io/scene.h"
 
 #include <algorithm>
 #include <chrono>

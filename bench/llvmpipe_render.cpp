@@ -3,7 +3,7 @@
 #define GL_GLEXT_PROTOTYPES
 #include "llvmpipe_render.h"
 
-#include "cl.h"
+#include "pipeline/cl.h"
 
 #include <GL/osmesa.h>
 #include <GL/gl.h>

@@ -14,7 +14,7 @@
 // read when the first context is created. Failures are clr::Error.
 #pragma once
 
-#include "scene.h"
+#include "io/scene.h"
 
 #include <glm/glm.hpp>
 

@@ -14,9 +14,9 @@
 //                    read + bytes written per second (10^9 B)
 // The line also names the device, its platform and its driver version. Prints one JSON line on stdout; every failure is
 // one line on stderr and exit status 1.
-#include "cl.h"
-#include "cli.h"
-#include "device.h"
+#include "pipeline/cl.h"
+#include "render/flags.h"
+#include "pipeline/device.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // procedural.cpp — generated benchmark scenes and views (see procedural.h).
 #include "procedural.h"
 
-#include "cl.h"
+#include "pipeline/cl.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,8 +12,8 @@
 // centre (mostly large triangles, the near plane clips some).
 #pragma once
 
-#include "camera.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "io/scene.h"
 
 #include <string>
 

@@ -23,9 +23,9 @@
 // count, the pixels that differ from the oracle (one tile) or from the
 // nearest triangle (full screen) and the device memory. Times are wall-clock on whatever else the
 // machine runs; the counts are exact.
-#include "cli.h"
-#include "device.h"
-#include "pipeline.h"
+#include "render/flags.h"
+#include "pipeline/device.h"
+#include "pipeline/pipeline.h"
 #include "reference_raster.h"
 #include "stability_scenes.h"
 

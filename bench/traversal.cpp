@@ -12,9 +12,9 @@
 // shared machine falls on all alike. Per size and method: the median
 // raster kernel time, the median of all kernels (binning differs between
 // methods), and the bin entries. Times come from OpenCL profiling events.
-#include "cli.h"
-#include "device.h"
-#include "pipeline.h"
+#include "render/flags.h"
+#include "pipeline/device.h"
+#include "pipeline/pipeline.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// zfight.cpp — clraster_zfight: z-fighting per depth format, the table behind `--depth auto` (host/depth.h) and
+// zfight.cpp — clraster_zfight: z-fighting per depth format, the table behind `--depth auto` (host/render/depth.h) and
 // docs/limits.md.
 //
 //   clraster_zfight [--size N] [--device SEL] [--csv FILE] [--summary FILE]
@@ -10,13 +10,13 @@
 // earlier triangle, so both orders count. Writes a CSV row per case (--csv), the wrong fraction per format, ratio
 // and ε (--summary, for bench/zfight.sh's chart), and prints per ε the largest clean ratio of each format.
 // Deterministic: nothing is timed.
-#include "camera.h"
-#include "cl.h"
-#include "cli.h"
-#include "depth.h"
-#include "device.h"
-#include "pipeline.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "pipeline/cl.h"
+#include "render/flags.h"
+#include "render/depth.h"
+#include "pipeline/device.h"
+#include "pipeline/pipeline.h"
+#include "io/scene.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

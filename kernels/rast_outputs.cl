@@ -1,4 +1,4 @@
-/* rast_outputs.cl — the library's rasterize outputs (host/api.cpp), in
+/* rast_outputs.cl — the library's rasterize outputs (host/api/api.cpp), in
  * nvdiffrast's layout, from a frame built with -D CLR_CLIP_INPUT=1
  * (positions are the caller's clip-space float4, transform.cl).
  *

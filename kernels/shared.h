@@ -219,7 +219,7 @@ typedef struct FrameParams {
   uint texFilter;     /* CLR_FILTER_* */
   uint sceneFlags;    /* CLR_SCENE_*: what the host bound for this frame */
   uint visAttributes; /* 1: raster also writes the depth and barycentric planes */
-  /* Sample k at the pixel centre + (sampleX[k], sampleY[k]), fixed units, y up (host/aa.cpp). */
+  /* Sample k at the pixel centre + (sampleX[k], sampleY[k]), fixed units, y up (host/pipeline/aa.cpp). */
   int sampleX[CLR_MAX_SAMPLES];
   int sampleY[CLR_MAX_SAMPLES];
   uint visibility;   /* CLR_VISIBILITY_* */
@@ -322,7 +322,7 @@ typedef struct Material {
 } Material;
 
 /* TextureDesc[numTextures], 96 bytes: level l is max(1, w >> l) × max(1, h >> l) RGBA8 texels, rows bottom first,
- * at texels[levelOffset[l]]. Host writes (host/texture.cpp); resolve reads. */
+ * at texels[levelOffset[l]]. Host writes (host/io/texture.cpp); resolve reads. */
 typedef struct TextureDesc {
   uint width, height, levels;
   uint wrapS, wrapT; /* CLR_WRAP_* for u and v */

@@ -4,7 +4,7 @@
  * where setup reads (transform_vertex, transform_lanes), so no buffer holds clip positions; the kernel
  * transform_vertices writes them (one work-item per vertex) for the painter's sort and tests: the same floats.
  *
- * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api.cpp) positions are clip-space float4 already and
+ * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api/api.cpp) positions are clip-space float4 already and
  * transform_vertex reads them unchanged: every later stage is the frame's.
  */
 #pragma OPENCL FP_CONTRACT OFF

@@ -9,11 +9,11 @@
 //     CLI loads and frames them: uint32 V, T; V·3 float positions; T·3
 //     uint32 indices; the 16 floats of its mvp (column-major).
 // Errors: one line on stderr, exit status 1 (runProgram).
-#include "camera.h"
-#include "cli.h"
-#include "frame_settings.h"
+#include "render/camera.h"
+#include "render/flags.h"
+#include "render/frame_settings.h"
 #include "reference_raster.h"
-#include "scene.h"
+#include "io/scene.h"
 
 #include <cstdio>
 #include <fstream>

@@ -25,7 +25,7 @@ for f in "${kernel_files[@]}"; do
     fail=1
   fi
 done
-for f in "$src"/kernels/* "$src"/host/*; do
+for f in "$src"/kernels/* "$src"/host/*/*; do
   if hits=$(grep -nE "($comment_re|//|/\*).*[0-9][0-9.]* ?ms\b" "$f"); then
     while IFS= read -r hit; do
       echo "FAIL ${f#"$src"/}:${hit%%:*}: comment quotes a time in ms" >&2

@@ -12,9 +12,9 @@
 // Each input must either load, giving a mesh that keeps the loader's
 // contract, or fail with clr::Error whose message is one line starting with
 // the file's path. Anything else aborts, which libFuzzer reports as a crash.
-#include "camera.h"
-#include "cl.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "pipeline/cl.h"
+#include "io/scene.h"
 
 #include <cmath>
 #include <cstdint>

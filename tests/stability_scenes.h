@@ -15,8 +15,8 @@
 // alone and the per-pixel hits are summed.
 #pragma once
 
-#include "device.h"
-#include "pipeline.h"
+#include "pipeline/device.h"
+#include "pipeline/pipeline.h"
 
 #include <cstdint>
 #include <vector>

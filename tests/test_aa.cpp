@@ -4,9 +4,9 @@
 // perspective-correct against affine interpolation on a tilted textured
 // plane (the analytic value from a ray-plane intersection), convergence
 // towards the exact area (tests/exact_coverage.h) and --aa auto's choices.
-#include "aa.h"
+#include "pipeline/aa.h"
 #include "exact_coverage.h"
-#include "quality.h"
+#include "render/quality.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
-// test_aov.cpp — the visibility-buffer outputs (kernels/aov.cl, host/aov.cpp):
+// test_aov.cpp — the visibility-buffer outputs (kernels/aov.cl, host/pipeline/aov.cpp):
 // every channel against values computed on the host from the visibility
 // buffer, the barycentrics and depths against the analytic ray hit, the EXR
 // read back with tinyexr bit for bit, and the --aov command line.
-#include "aov.h"
+#include "pipeline/aov.h"
 #include "cli_support.h"
 #include "test_support.h"
 

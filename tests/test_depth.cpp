@@ -5,7 +5,7 @@
 // wins, and cyclically overlapping triangles that defeat the painter's
 // algorithm. Every expectation is an exact pixel count or ID.
 #include "cli_support.h"
-#include "depth.h"
+#include "render/depth.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>

@@ -4,7 +4,7 @@
 // with exact span tables (both exact methods of coverage).
 #include "test_support.h"
 
-#include "cli.h"
+#include "render/flags.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -2,7 +2,7 @@
 // function that turns render arguments, a camera and a viewport into a
 // frame's settings: each flag lands in its field, the camera's matrices and
 // the depth choice agree, and the defaults are FrameSettings' own.
-#include "frame_settings.h"
+#include "render/frame_settings.h"
 
 #include <catch2/catch.hpp>
 

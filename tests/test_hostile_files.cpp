@@ -5,11 +5,11 @@
 // end as one line (an error, or a warning where rendering goes on) and
 // leave no output; each CLI run is under `timeout`, so a hang fails.
 #include "cli_support.h"
-#include "file_rule.h"
-#include "scene.h"
+#include "io/file_rule.h"
+#include "io/scene.h"
 #include "test_support.h"
-#include "texture.h"
-#include "views.h"
+#include "io/texture.h"
+#include "render/views.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>

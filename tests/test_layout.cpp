@@ -8,11 +8,11 @@
 // attribute is equal.
 #include "test_support.h"
 
-#include "camera.h"
-#include "cli.h"
-#include "frame_settings.h"
-#include "layout.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "render/flags.h"
+#include "render/frame_settings.h"
+#include "pipeline/layout.h"
+#include "io/scene.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -4,7 +4,7 @@
 // `clraster cache` stores what render and the library build, and fails on
 // bad arguments with one line.
 #include "cli_support.h"
-#include "program_cache.h"
+#include "pipeline/program_cache.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>

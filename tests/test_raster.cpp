@@ -1,7 +1,7 @@
 // test_raster.cpp — the raster kernel on small crafted scenes: the fill
 // rule, barycentrics, the z-test and its ties, the skip of hidden bin
 // entries, and bins longer than the GPU shape's batch, against the oracle.
-#include "depth.h"
+#include "render/depth.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>

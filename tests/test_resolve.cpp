@@ -4,7 +4,7 @@
 // the background over tiles without triangles, edge tiles included; and the
 // choice of resolve's prefetch: its rule, its timed turns, and frames with
 // and without it giving the same pixels.
-#include "image_io.h"
+#include "io/image_io.h"
 #include "test_support.h"
 
 #define STB_IMAGE_IMPLEMENTATION

@@ -4,12 +4,12 @@
 // origin where exact spans do not; the command line takes both names.
 #include "test_support.h"
 
-#include "camera.h"
-#include "cli.h"
+#include "render/camera.h"
+#include "render/flags.h"
 #include "cli_support.h"
-#include "frame_settings.h"
-#include "quality.h"
-#include "scene.h"
+#include "render/frame_settings.h"
+#include "render/quality.h"
+#include "io/scene.h"
 #include "stability_scenes.h"
 
 #include <catch2/catch.hpp>

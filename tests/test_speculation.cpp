@@ -6,10 +6,10 @@
 // could not fit ran again, and the steady ones never waited.
 #include "test_support.h"
 
-#include "camera.h"
-#include "cli.h"
-#include "frame_settings.h"
-#include "scene.h"
+#include "render/camera.h"
+#include "render/flags.h"
+#include "render/frame_settings.h"
+#include "io/scene.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -3,7 +3,7 @@
 // and per-pixel triangle IDs read from the visibility buffer.
 #pragma once
 
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 #include "reference_raster.h"
 
 #include <glm/glm.hpp>

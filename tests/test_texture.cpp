@@ -1,10 +1,10 @@
 // test_texture.cpp — base-colour textures: nearest, bilinear and trilinear
 // sampling (kernels/texture.cl) against the formulas on crafted textures,
-// wrap modes, mip chains (host/texture.cpp), a glTF with an embedded texture
+// wrap modes, mip chains (host/io/texture.cpp), a glTF with an embedded texture
 // and the warnings for missing and corrupt image files.
 #include "cli_support.h"
 #include "test_support.h"
-#include "texture.h"
+#include "io/texture.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC

@@ -4,9 +4,9 @@
 // the writer thread, the stats line, and the progress bar (only on a
 // terminal).
 #include "cli_support.h"
-#include "frame_writer.h"
+#include "render/frame_writer.h"
 #include "test_support.h"
-#include "views.h"
+#include "render/views.h"
 
 #include <catch2/catch.hpp>
 

@@ -204,7 +204,7 @@ CLRASTER_API void writePng(const std::string& path, const Image& image);
 CLRASTER_API Image render(Context& ctx, const RenderOptions& options);
 
 // ---- The command line: each `clraster` command as a call ----
-// (the CLI, host/main.cpp, is these calls and nothing else)
+// (the CLI, host/cli/main.cpp, is these calls and nothing else)
 
 // The text of `clraster --help`.
 CLRASTER_API const char* usageText();

@@ -1,0 +1,77 @@
+// scene.h — triangle meshes as the pipeline consumes them.
+//
+// A Mesh is flat arrays: positions and normals (3 floats per vertex) and
+// indices (3 per triangle; 2 per line and 1 per point of the file).
+// loadScene() reads any file assimp reads,
+// fan-triangulates polygons in the file's own face order, concatenates
+// meshes in node order with node transforms applied, validates every index
+// and every position (finite, within ±1e18), and throws clr::Error naming the
+// file and the problem; model_checks.h guards assimp against hostile files
+// first (docs/limits.md, "Hostile files"). Normals come from
+// the file when it has them, otherwise they are smoothed over vertices that
+// share a position. Vertex colours come from mColors[0]; every triangle
+// keeps its mesh's material (base colour factor and base-colour texture,
+// see texture.h): embedded textures ("*N" paths, GLB) are decoded from the
+// file, others are read relative to the model's folder.
+#pragma once
+
+#include "io/texture.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace clr {
+
+// What loading found beyond the arrays, for `clraster info` (info.h).
+struct MeshFacts {
+  bool normalsInFile = false;                // some mesh of the file had vertex normals
+  size_t normalsRepaired = 0;                // of those, zero, NaN or missing ones recomputed (normals.h)
+  bool uvsInFile = false;                    // some mesh had texture coordinates
+  std::vector<std::string> missingTextures;  // texture files named but not read
+};
+
+struct Mesh {
+  std::vector<float> positions;       // 3 per vertex
+  std::vector<float> normals;         // 3 per vertex, unit or zero
+  std::vector<float> uvs;             // 2 per vertex (texture coordinates), or empty
+  std::vector<uint32_t> indices;      // 3 per triangle
+  std::vector<uint32_t> lines;        // 2 per line segment of the file (lines.cpp draws them)
+  std::vector<uint32_t> points;       // 1 per point of the file
+  std::vector<float> colors;          // 4 per vertex (RGBA in [0, 1]), or empty
+  std::vector<uint32_t> triMaterial;  // 1 per triangle, index into materials; or empty
+  std::vector<Material> materials;    // empty: the built-in grey albedo
+  std::vector<Texture> textures;      // base-colour textures the materials name
+  std::vector<std::string> warnings;  // what loading left out (a texture file it could not read), one line each
+  MeshFacts facts;
+  bool hasTextures() const { return !textures.empty(); }
+  size_t numVerts() const { return positions.size() / 3; }
+  size_t numTris() const { return indices.size() / 3; }
+};
+
+struct Bounds {
+  glm::vec3 min{0.0f}, max{0.0f};
+  bool empty = true;
+};
+
+Mesh loadScene(const std::string& path);
+
+// loadScene in two steps, so that a caller can report a bad file at once
+// and import a good one while it does something else: checkSceneFile runs
+// the quick checks (a readable, non-empty regular file; model_checks.h),
+// importScene the rest, on a file that passed them.
+void checkSceneFile(const std::string& path);
+Mesh importScene(const std::string& path);
+
+// The built-in scene shipped in the binary (procedural, no file).
+Mesh defaultScene();
+
+// Area-weighted vertex normals, smoothed across vertices at equal positions.
+void computeSmoothNormals(Mesh& mesh);
+
+// Bounds of the finite vertex positions.
+Bounds meshBounds(const Mesh& mesh);
+
+}  // namespace clr

@@ -1,0 +1,195 @@
+// device.cpp — enumerates OpenCL devices, creates the context and queue, and
+// builds the embedded kernels (see device.h for the contract).
+#include "pipeline/device.h"
+
+#include "pipeline/embedded_kernels.h"
+#include "pipeline/program_cache.h"
+#include "kernels/fixed.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+namespace clr {
+
+const char* clErrorName(cl_int code)
+{
+  switch (code) {
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_PLATFORM_NOT_FOUND_KHR: return "CL_PLATFORM_NOT_FOUND_KHR (no OpenCL platform installed)";
+    default: return "OpenCL error";
+  }
+}
+
+static std::string typeName(cl_device_type type)
+{
+  if (type & CL_DEVICE_TYPE_GPU) return "GPU";
+  if (type & CL_DEVICE_TYPE_CPU) return "CPU";
+  if (type & CL_DEVICE_TYPE_ACCELERATOR) return "ACCELERATOR";
+  return "OTHER";
+}
+
+std::vector<DeviceInfo> listDevices()
+{
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error&) {
+    return {};
+  }
+  std::vector<DeviceInfo> out;
+  for (const cl::Platform& platform : platforms) {
+    std::vector<cl::Device> devices;
+    try {
+      platform.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;
+    }
+    for (const cl::Device& device : devices) {
+      DeviceInfo info;
+      info.index = out.size();
+      info.platform = platform;
+      info.device = device;
+      info.platformName = platform.getInfo<CL_PLATFORM_NAME>();
+      info.name = device.getInfo<CL_DEVICE_NAME>();
+      info.type = typeName(device.getInfo<CL_DEVICE_TYPE>());
+      out.push_back(info);
+    }
+  }
+  return out;
+}
+
+static std::string lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+DeviceInfo selectDevice(const std::string& selector)
+{
+  const std::vector<DeviceInfo> devices = listDevices();
+  if (devices.empty()) throw Error("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
+  // Step 1: the default, first GPU, else first CPU, else the first device.
+  if (selector.empty()) {
+    for (const char* wanted : {"GPU", "CPU"})
+      for (const DeviceInfo& d : devices)
+        if (d.type == wanted) return d;
+    return devices.front();
+  }
+  // Step 2: an index.
+  if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    errno = 0;
+    const unsigned long long index = std::strtoull(selector.c_str(), nullptr, 10);
+    if (errno == ERANGE || index >= devices.size())
+      throw Error("--device " + userText(selector) + ": no such device index (there are " +
+                  std::to_string(devices.size()) + "; see 'clraster devices')");
+    return devices[index];
+  }
+  // Step 3: a name substring.
+  for (const DeviceInfo& d : devices)
+    if (lower(d.name + " " + d.platformName).find(lower(selector)) != std::string::npos) return d;
+  throw Error("--device " + userText(selector) + ": no device name matches (see 'clraster devices')");
+}
+
+int defaultLanes(const cl::Device& device)
+{
+  return (device.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) ? 16 : 1;
+}
+
+std::string kernelBuildOptions(int lanes, bool prefetch, bool exactDivide, bool clipInput)
+{
+  std::ostringstream options;
+  options << "-cl-std=CL1.2 -D CLR_TILE_SIZE=" << CLR_TILE_SIZE << " -D CLR_LANES=" << lanes;
+  if (clipInput) options << " -D CLR_CLIP_INPUT=1";
+  // Why exactDivide matters: device.h.
+  if (exactDivide) options << " -cl-fp32-correctly-rounded-divide-sqrt";
+  // Raster fetches 12 bin entries ahead (the distance is a bench/ab.sh choice); PoCL only: other drivers'
+  // compilers need not know the clang builtin.
+  if (prefetch) options << " -D CLR_PREFETCH=12";
+  return options.str();
+}
+
+std::string programOptions(const std::string& options, bool extras)
+{
+  return options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0");
+}
+
+cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options, bool extras)
+{
+  // Step 1: the program cache's binary for these sources, options and driver, if it holds one.
+  const std::string fullOptions = programOptions(options, extras);
+  if (cl::Program cached = loadCachedProgram(context, device, fullOptions); cached()) return cached;
+  // Step 2: the embedded sources, in dependency order.
+  cl::Program::Sources sources;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) sources.push_back(kEmbeddedKernels[i].text);
+  cl::Program program(context, sources);
+  // Step 3: build; on failure report the device's log.
+  try {
+    program.build({device}, fullOptions.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    throw Error("kernel build failed on " + device.getInfo<CL_DEVICE_NAME>() + " (" + clErrorName(e.err()) + "):\n" +
+                log);
+  }
+  return program;
+}
+
+bool isPocl(const DeviceInfo& device)
+{
+  return device.platformName.find("Portable Computing Language") != std::string::npos;
+}
+
+int contextLanes(const cl::Device& device, int lanesOverride)
+{
+  const char* fromEnv = std::getenv("CLRASTER_LANES");
+  const int lanes = lanesOverride ? lanesOverride : fromEnv ? std::atoi(fromEnv) : defaultLanes(device);
+  if (lanes != 1 && lanes != 16) throw Error("CLRASTER_LANES must be 1 or 16");
+  return lanes;
+}
+
+ClContext::ClContext(const std::string& selector, int lanesOverride, bool clipInputPrograms)
+    : info(selectDevice(selector)), clipInput(clipInputPrograms)
+{
+  // Step 1: the work shape, the queue and the frame program.
+  lanes = contextLanes(info.device, lanesOverride);
+  context = cl::Context(info.device);
+  queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
+  prefetch = isPocl(info);
+  const bool exactDivide =
+      (info.device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+  buildOptions_ = kernelBuildOptions(lanes, prefetch, exactDivide, clipInput);
+  program = buildProgram(context, info.device, buildOptions_);
+  maxAllocBytes = info.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  globalMemBytes = info.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  // Step 2: CLRASTER_MAX_ALLOC_BYTES lowers the largest allocation, so tests
+  // can meet the device's limit with a small scene.
+  if (const char* cap = std::getenv("CLRASTER_MAX_ALLOC_BYTES")) {
+    char* end = nullptr;
+    const unsigned long long bytes = std::strtoull(cap, &end, 10);
+    if (!std::isdigit(static_cast<unsigned char>(*cap)) || *end || bytes == 0)
+      throw Error("CLRASTER_MAX_ALLOC_BYTES must be a positive number of bytes");
+    maxAllocBytes = std::min<size_t>(maxAllocBytes, bytes);
+  }
+}
+
+const cl::Program& ClContext::extras()
+{
+  if (!extras_()) extras_ = buildProgram(context, info.device, buildOptions_, true);
+  return extras_;
+}
+
+}  // namespace clr

@@ -1,0 +1,497 @@
+// pipeline.h — the frame pipeline: buffers, stages and per-frame statistics.
+//
+// A Pipeline owns every device buffer of a scene and runs the stages in
+// order: (transform) -> setup -> bin -> raster -> resolve, where setup
+// transforms the vertices it reads, so a frame needs no clip-position
+// buffer (transform() writes one for tests and the painter's sort). Each
+// stage is a member function defined in the host file named after its
+// kernel file (host/pipeline/transform.cpp runs kernels/transform.cl, and so on), so
+// tests can run and inspect one stage at a time. Buffers grow to the counts
+// of the current frame (see buffer.h); nothing is dropped, and a size the
+// device cannot hold is a clr::Error.
+#pragma once
+
+#include "pipeline/buffer.h"
+#include "pipeline/device.h"
+#include "io/scene.h"
+
+#include "kernels/shared.h"
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clr {
+
+// How scan_chunks (scan.cl) splits n counts: at most 4096 chunks of at
+// least 64 counts each, and the work-items of its reduce and apply phases:
+// a work-group of CLR_SCAN_GROUP(1) per chunk in the GPU shape (lanes 1),
+// one work-item per chunk in the CPU shape. (Pipeline's scans; a kernel
+// test launches the phases the same way.)
+struct ScanChunks {
+  uint32_t size, count;
+};
+ScanChunks scanChunks(uint32_t n);
+cl::NDRange scanChunkItems(int lanes, uint32_t chunks);
+
+// The work shapes of raster and resolve over tilesX × tilesY tiles, as
+// Pipeline launches them: raster one
+// work-item per pixel sample in the GPU shape (lanes 1), per tile and sample
+// index in the CPU shape; resolve one work-item per row of lanes, a tile per
+// work-group, or per tile when a row of lanes spans the tile.
+struct WorkShape {
+  cl::NDRange global, local;
+};
+WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples);
+WorkShape resolveShape(int lanes, uint32_t tilesX, uint32_t tilesY);
+
+// Whether a frame takes resolve's lean lambert kernel (resolve_lambert.cl)
+// rather than the general one: lambert, one sample, perspective
+// interpolation, no point light, and no textures or vertex colours bound
+// (sceneFlags, FrameParams).
+bool resolveIsLean(uint32_t shadeMode, uint32_t samples, uint32_t interpMode, bool pointLightOn, uint32_t sceneFlags);
+
+// Whether resolve may gain by fetching the setup records, vertex indices
+// and normals of later rows ahead (resolve_prefetch, resolve.cl): a frame
+// of small triangles (at most two bin entries each on average) that gives
+// resolve more than 2 MB to gather, beyond a core's second-level cache.
+// Whether it does gain depends on the mesh's memory order as much as on
+// its size (resolve.cpp), so PrefetchChooser measures it.
+bool resolveMayPrefetch(const FrameParams& params, uint32_t numSetup, uint64_t numBinEntries);
+
+// Chooses, by timing, whether resolve prefetches the frames of one case
+// (a scene at one viewport and resolve kernel) that resolveMayPrefetch
+// admits. A case's first frame prefetches and is not timed (it also pays
+// the first touch of its buffers); the next four take turns, on, off, off,
+// on; after them the setting with the faster of its two resolve times holds
+// until the case changes. The choice never changes a pixel, only the time.
+class PrefetchChooser {
+ public:
+  // What makes a case: the scene (Pipeline's count of uploads), the
+  // viewport, the shading mode, the samples and the resolve kernel.
+  struct Case {
+    uint64_t scene = 0;
+    uint32_t width = 0, height = 0, shadeMode = 0, samples = 0;
+    bool lean = false;
+    bool operator==(const Case& o) const
+    {
+      return scene == o.scene && width == o.width && height == o.height && shadeMode == o.shadeMode &&
+             samples == o.samples && lean == o.lean;
+    }
+  };
+  // Whether the next frame of case c prefetches.
+  bool next(const Case& c);
+  // The resolve time of the frame next() answered for.
+  void report(double resolveMs);
+
+ private:
+  static constexpr int kTrials = 4;
+  bool started_ = false;
+  Case case_;
+  int frames_ = 0;                             // frames reported for this case
+  double onMs_ = INFINITY, offMs_ = INFINITY;  // the fastest resolve of each setting
+  bool current_ = false;                       // the last next() answer
+};
+
+// A setup record as tests and tools read it back (Pipeline::readSetup):
+// the record's geometry with what its source word and ClipBary slot hold
+// (shared.h), decoded.
+struct SetupRecord {
+  int x[3], y[3];
+  float z[3], invW[3];
+  float invArea2;     // clr_inv_area2 of the record
+  uint32_t triId;     // the input triangle
+  uint32_t clipSlot;  // its ClipBary slot, or CLR_NOT_CLIPPED
+  uint32_t flags;     // CLR_FLAG_BACKFACING, CLR_FLAG_DEAD (padding of a clipped triangle)
+};
+
+// What one frame renders: viewport, shading, culling and the methods.
+struct FrameSettings {
+  uint32_t width = 0, height = 0;
+  uint32_t shadeMode = CLR_SHADE_LAMBERT;
+  bool cullBack = false;
+  uint32_t samples = 1;           // per pixel: 1, 2, 4, 8, 16 (aa.h)
+  bool shadeEverySample = false;  // SSAA rather than MSAA
+  uint32_t edgeMode = CLR_EDGES_FIXED;
+  uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
+  uint32_t traversal = CLR_TRAVERSAL_BBOX;
+  // Depth format (CLR_DEPTH_*); CLR_DEPTH_REVERSED needs a reversed
+  // projection in mvp (Camera::viewProjection builds one, depth.h).
+  uint32_t depthMode = CLR_DEPTH_FLOAT32;
+  uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // CLR_VISIBILITY_*
+  glm::mat4 mvp{1.0f};
+  glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
+  glm::vec3 eye{0.0f, 0.0f, 0.0f};       // world space, for specular highlights
+  bool pointLightOn = false;             // a point light besides the directional one
+  glm::vec3 pointLight{0.0f};            // its position, world space
+  float pointLightRange = 1.0f;          // r of the attenuation 1 / (1 + (d / r)²), > 0
+  uint32_t texFilter = CLR_FILTER_TRILINEAR;
+  float zNear = 0.1f, zFar = 100.0f;  // for depth shading only
+  // Lines (lines.cpp): wireframe mode, method and anti-aliased width in pixels.
+  uint32_t wireframe = CLR_WIREFRAME_OFF;
+  uint32_t lineMethod = CLR_LINE_AA;
+  float lineWidth = 1.0f;
+  // A file's points (Mesh::points): squares of this many pixels a side (points.cpp).
+  uint32_t pointSize = 1;
+  // Raster also writes the depth and barycentric planes of the visibility
+  // buffer (12 more bytes per sample), for aov() and for the depth and
+  // barycentrics of readVis(). Frames with lines or float edges have them
+  // anyway; otherwise resolve recomputes the barycentrics (shared.h).
+  bool keepVisAttributes = false;
+  // Lets resolve use its lean lambert kernel when the frame qualifies
+  // (Pipeline::resolve); tests turn it off to compare the two kernels.
+  bool leanResolve = true;
+  // The fewest bits of a visibility index (16, 24 or 32; more when the
+  // frame's setup records need them, shared.h): tests compare the widths.
+  uint32_t minVisIndexBits = 16;
+  // Lets setup cull a small triangle that covers no pixel centre (shared.h,
+  // FrameParams.cullSampleFree); tests turn it off to show that the pixels
+  // do not change.
+  bool cullSampleFree = true;
+};
+
+// Fills the per-frame constant block (guard band, tiles, viewport matrix).
+FrameParams makeFrameParams(const FrameSettings& settings, size_t numVerts, size_t numTris);
+
+// A frame's RGBA8 image where the device left it (Pipeline::render with a
+// view): width·height pixels, top row first, as render() copies them.
+struct ImageView {
+  const uint32_t* pixels = nullptr;
+  uint32_t width = 0, height = 0;
+};
+
+struct FrameStats {
+  std::map<std::string, double> stageMs;  // from OpenCL profiling events
+  // From the first kernel's start to the last one's end, the time in no
+  // kernel: launches, fills, reads and the host's waits between them.
+  double deviceIdleMs = 0;
+  uint64_t trianglesIn = 0;
+  uint64_t trianglesClipped = 0;  // input triangles that needed clipping
+  uint64_t trianglesCulled = 0;   // input triangles that produced no pixel
+  uint64_t setupTriangles = 0;    // screen triangles after clipping
+  uint64_t binEntries = 0;
+  bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
+  bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
+  bool imageKept = false;        // nothing binned, and the image was already this frame's background: no resolve
+  // Sized from the last frame's totals, without a wait mid-frame (Pipeline::runFrame); and whether such a try did
+  // not fit and the frame ran again, waiting.
+  bool speculative = false, speculationMissed = false;
+};
+
+class Pipeline {
+ public:
+  explicit Pipeline(ClContext& cl);
+  ~Pipeline();
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  // Lays the scene out (layout.h), uploads positions and indices and keeps
+  // a copy of the laid-out scene; the other attributes are uploaded when a
+  // frame first reads them (bindAttributes). Everything a caller reads back
+  // (readSetup's and readClipBary's triangles, readClipPositions' order,
+  // paintOrder, the id shading and AOV) speaks of the file's order.
+  void uploadScene(const Mesh& mesh);
+  // Whether uploadScene lays scenes out (default); tests compare with the
+  // file's own order.
+  void setLayout(bool on) { layoutOn_ = on; }
+  // Whether render() may size a frame from the last one's totals (default;
+  // see runFrame). Off, every frame waits for its counts mid-frame.
+  void setSpeculation(bool on) { speculationOn_ = on; }
+  // The milliseconds of the last uploadScene: the layout, the cluster bounds
+  // and the uploads (--stats prepare_ms).
+  double prepareMs() const { return prepareMs_; }
+
+  // What is on the device now, kResident* bits (for tests).
+  enum : uint32_t {
+    kResidentNormals = 1,
+    kResidentUvs = 2,
+    kResidentColors = 4,
+    kResidentMaterials = 8,  // the materials, and each triangle's unless they are all one
+    kResidentTextures = 16,  // descriptors and texels, once per scene
+  };
+  uint32_t resident() const { return resident_; }
+
+  // The library's rasterize (api.cpp), on a ClContext built with clipInput:
+  // clip-space positions (4 floats per vertex) and triangles whose indices
+  // the caller has checked against numVerts. A frame's mvp is then unused.
+  void uploadClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris);
+  // After raster of a frame that kept its visibility attributes: nvdiffrast's
+  // rasterize outputs (rast_outputs.cl: rast always, the exact ids and the
+  // derivatives when asked), then their read into the caller's arrays of
+  // width·height float4s (rast, db) and uint32s (ids), bottom row first;
+  // null skips one.
+  void rastOutputs(bool ids, bool derivatives);
+  void readRastOutputs(float* rast, uint32_t* ids, float* db) const;
+
+  // Runs a whole frame and reads the RGBA8 image (top row first) back.
+  FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
+  // The same frame without the copy: `view` shows the image buffer mapped
+  // for reading, which on a CPU device is the device's memory itself (on a
+  // GPU the driver copies). The view stays valid until the next frame
+  // begins or the pipeline goes; as OSMesa renders into its caller's buffer,
+  // so the bench times both renderers up to an image the host can read.
+  FrameStats render(const FrameSettings& settings, ImageView& view);
+
+  // The stages, in order (each defined in its own host file).
+  void beginFrame(const FrameSettings& settings);
+  void transform();  // optional: fills readClipPositions()
+  void setup();
+  void bin();
+  void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)
+  void resolve();
+  // After resolve: draws the edges of the setup triangles (lines.cpp), or
+  // the caller's segments, into the image with FrameSettings' line method.
+  void lines();
+  void lines(const std::vector<LineSeg>& segments);
+  // After resolve (and the wireframe): the scene's own lines and points
+  // (Mesh::lines, Mesh::points), projected and clipped here and drawn by the
+  // lines stage (file_primitives.cpp). runStages calls it when there are any.
+  void filePrimitives();
+  // After raster: the visibility-buffer outputs, CLR_AOV_CHANNELS planes of
+  // width·height floats, bottom row first (aov.cpp).
+  void aov();
+  std::vector<float> readAov() const;
+  FrameStats finishFrame();  // waits, gathers profiling times and counters
+
+  // Read-backs for tests and tools.
+  std::vector<cl_float4> readClipPositions() const;
+  std::vector<SetupRecord> readSetup() const;
+  // Every ClipBary slot of the frame, CLR_MAX_SUBTRIS per clipped triangle
+  // (unused ones flagged CLR_FLAG_DEAD).
+  std::vector<ClipBary> readClipBary() const;
+  std::vector<uint32_t> readTileOffsets() const;  // tiles + 1
+  std::vector<uint32_t> readBinEntries() const;
+  // One sample plane; empty tiles read as CLR_NONE. Depth, b1 and b2 are NaN
+  // unless the frame kept them (FrameSettings.keepVisAttributes).
+  std::vector<VisSample> readVis(uint32_t sample = 0) const;
+  std::vector<uint32_t> readImage() const;
+  void readImage(std::vector<uint32_t>& rgba) const;  // the same, into rgba's memory
+  // The painter's draw order of the last painter frame: input triangle
+  // indices, farthest first (empty after a z-buffer frame).
+  const std::vector<uint32_t>& paintOrder() const { return paintOrder_; }
+
+  const FrameParams& params() const { return params_; }
+  size_t deviceBytes() const { return memory_.bytesAllocated; }
+  // Bytes per pixel of the per-sample buffers and the image of this frame:
+  // per sample of a covered tile 2, 3 or 4 (the visibility buffer's setup
+  // index, visIndexBits), 12 more with its depth and barycentric planes,
+  // and 4 for the image.
+  double bytesPerPixel() const
+  {
+    const double pixels = double(params_.width) * params_.height;
+    const double perSample = params_.visIndexBits / 8.0 + (params_.visAttributes ? 12.0 : 0.0);
+    return perSample * params_.samples * usedVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
+  }
+  uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
+  const ClContext& cl() const { return cl_; }
+
+ private:
+  // beginFrame to resolve (and lines): the frame of both render()s.
+  void runStages(const FrameSettings& settings);
+  // The frame of both render()s, its image mapped (view) or read (rgba):
+  // sized from the last frame's totals where speculationPays, else waiting
+  // for its counts; a speculative frame that did not fit is run again so.
+  void runFrame(const FrameSettings& settings, ImageView* view, std::vector<uint32_t>* rgba);
+  // Whether this frame may be sized from the last one's: a frame of this
+  // scene without clipping, lines or points came before, and the buffers hold
+  // some records, bins and tile slots. Sets the capacities (specCaps_).
+  bool speculationPays(const FrameSettings& settings);
+  // The visibility buffer's index width for this frame's setup records: 16, 24 or 32 (shared.h, visIndex).
+  uint32_t visIndexBits(const FrameSettings& settings) const;
+  // After a speculative frame's image: whether it fitted (then its totals
+  // become the frame's, as a waiting frame reads them).
+  bool takeSpeculativeTotals();
+  // Unmaps the image an ImageView showed (before any kernel may write it).
+  void unmapImage();
+  // Exclusive in-place scan of data[0..n) (see scan.cl); returns the total,
+  // or, given totalAt (a CLR_COUNTER_* index, shared.h), copies it among the
+  // frame's counters for a later read and returns 0 without waiting.
+  uint64_t scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, uint32_t totalAt = CLR_SCAN_NO_TOTAL);
+  // scan() with totalAt, which in the same launches also writes how many of
+  // data[0 .. i) are non-zero into nonZero[i] (nonZero[n] the count, also
+  // copied to the counters at nonZeroTotalAt).
+  void scanWithNonZero(DeviceBuffer<uint32_t>& data, DeviceBuffer<uint32_t>& nonZero, uint32_t n, const char* stage,
+                       uint32_t totalAt, uint32_t nonZeroTotalAt);
+  // The scan of the setup counts (triCount_, one byte per input triangle,
+  // or clusterCount_ where listsClusters), which lists the input triangle
+  // behind each setup record into setupSource_, in two calls: Begin sums
+  // the chunks and copies the total to the counters at
+  // CLR_COUNTER_SETUP_TOTAL; Finish sizes setupSource_ to it and lists.
+  // Other scans may run between the two.
+  void scanListingBegin(const char* stage);
+  void scanListingFinish(uint64_t total, const char* stage);
+  // scan_chunks' arguments (scan.cl): src into dst, with alsoNonZero the
+  // non-zero counts into `second` too; a listing reads the byte counts
+  // `bytes` and writes the sources into `second`; the totals go to the
+  // counters at totalAt and nonZeroTotalAt unless CLR_SCAN_NO_TOTAL.
+  struct ScanJob {
+    const cl::Buffer& src;
+    const cl::Buffer& dst;
+    const cl::Buffer& second;
+    const cl::Buffer& bytes;
+    uint32_t alsoNonZero, listing;  // listing: CLR_SCAN_LIST_*
+    uint32_t totalAt, nonZeroTotalAt;
+    uint32_t listEnd = 0;  // CLR_SCAN_LIST_CLUSTERS: the input triangles
+  };
+  ScanJob listingJob() const;  // the listing's arguments (scanListingBegin)
+  // Whether setup's listing scans the clusters' totals (CPU shape, scene
+  // input: the count pass runs a work-item per cluster), and over how many
+  // values (clusters, else input triangles).
+  bool listsClusters() const { return cl_.lanes > 1 && !cl_.clipInput; }
+  uint32_t listingItems() const
+  {
+    return listsClusters() ? uint32_t((uint64_t(params_.numTris) + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS)
+                           : params_.numTris;
+  }
+  // scan_chunks' phases: the chunk sums and their scan into `partials`,
+  // then the rescan of every chunk.
+  void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
+  void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage);
+  // bin()'s scan of the tile counts: the offsets in place, and the
+  // visibility slots (the non-zero counts) in the same launches, their
+  // totals copied to the counters (CLR_COUNTER_BIN_TOTAL, SLOT_TOTAL).
+  void enqueueBinScans();
+  // The frame's counters (shared.h, CLR_COUNTER_*), read with a wait for
+  // every command enqueued before; counterTotal joins a total's two words.
+  std::vector<uint32_t> readCounters() const { return counters_.download(CLR_NUM_COUNTERS); }
+  static uint64_t counterTotal(const std::vector<uint32_t>& counters, uint32_t at)
+  {
+    return counters[at] | uint64_t(counters[at + 1]) << 32;
+  }
+  // The tile scans' totals (enqueueBinScans) from a read of the counters.
+  void takeBinTotals(const std::vector<uint32_t>& counters)
+  {
+    slotTotal_ = counterTotal(counters, CLR_COUNTER_SLOT_TOTAL);
+    binTotal_ = counterTotal(counters, CLR_COUNTER_BIN_TOTAL);
+  }
+  // How one pass of the lines stage draws: CLR_WIREFRAME_* mode, CLR_LINE_*
+  // method, anti-aliased width in pixels, RGBA8 colour (R in the low byte).
+  struct LinePass {
+    uint32_t mode, method;
+    float width;
+    uint32_t colour;
+  };
+  // The pass FrameSettings' wireframe and line flags ask for (lines.cpp).
+  LinePass settingsLinePass() const;
+  // Bins and draws the first n segments of lineSegs_ (lines.cpp).
+  void drawLineSegments(uint32_t n, const LinePass& pass);
+  void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
+  // Sets a kernel's arguments 0, 1, 2, ... in order.
+  template <typename... Args>
+  static void setArgs(cl::Kernel& kernel, const Args&... args)
+  {
+    cl_uint index = 0;
+    (kernel.setArg(index++, args), ...);
+  }
+  cl::NDRange linear(uint64_t n) const;
+  // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
+  // unless the scene's bounds reach behind the eye or well beyond the view.
+  float clusterMargin(const glm::mat4& mvp) const;
+  // A kernel of the extras program (ClContext::extras), created in `kernel`
+  // at its first use.
+  cl::Kernel& extraKernel(cl::Kernel& kernel, const char* name);
+  // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
+  // and uploads each triangle's rank to paintRank_.
+  void sortForPainter();
+  // Uploads what this frame's shading reads and is not resident yet, and
+  // returns the FrameParams.sceneFlags it binds.
+  uint32_t bindAttributes(const FrameSettings& settings);
+
+  ClContext& cl_;
+  DeviceMemory memory_;
+  FrameParams params_{};
+  FrameSettings settings_{};  // of the current frame
+  uint32_t numTiles_ = 0;
+  uint32_t numSetup_ = 0;
+  bool leanResolve_ = false;  // this frame's resolve kernel was resolve_lambert
+  // The size and background of an image that resolve left all background
+  // and nothing drew on since (width 0: none); a frame with nothing binned
+  // that would paint the same leaves it as it is (resolve.cpp).
+  struct BlankImage {
+    uint32_t width = 0, height = 0, background = 0;
+    bool operator==(const BlankImage& o) const
+    {
+      return width == o.width && height == o.height && background == o.background;
+    }
+  } blankImage_;
+  // The size and background tileBlank_'s flags were set under; width 0 (none) once anything but resolve drew on
+  // the image.
+  BlankImage tileBlankImage_;
+  bool resolveSkipped_ = false;   // this frame's image was such a blank one
+  bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
+  bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
+  PrefetchChooser prefetchChooser_;
+  uint64_t sceneUploads_ = 0;        // counts uploadScene calls: part of PrefetchChooser's case
+  uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
+  uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
+  uint64_t numBinEntries_ = 0;
+  uint32_t numVisSlots_ = 0;   // tile slots of the visibility buffer's stride: its non-empty tiles, or more (shared.h)
+  uint32_t usedVisSlots_ = 0;  // the frame's non-empty tiles (bytesPerPixel)
+  // Speculative frames (runFrame): on, this frame's, whether one of this
+  // scene ran and its capacities (the CLR_COUNTER_SPECULATIVE words:
+  // flag, records, bins, slots), the counters read after its image, and
+  // the last frame's outcome (FrameStats).
+  bool speculationOn_ = true, speculate_ = false, framedScene_ = false, speculated_ = false, missed_ = false;
+  uint32_t specCaps_[4] = {};
+  std::vector<uint32_t> endCounters_;
+  Mesh scene_;  // host copy, laid out: lazy uploads read it
+  bool layoutOn_ = true;
+  double prepareMs_ = 0;
+  std::vector<uint32_t> fileTriHost_, laidVertex_;  // the layout's maps (layout.h)
+  bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
+  uint32_t resident_ = 0;                           // kResident* bits
+  bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)
+  std::vector<std::pair<const char*, cl::Event>> events_;
+
+  cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
+      scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
+      rasterFloatKernel_, rasterSpansKernel_, rasterSpansFloatKernel_, resolveKernel_, resolveLambertKernel_,
+      linesFromSetupKernel_, linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_,
+      rastOutputsKernel_;
+
+  DeviceBuffer<FrameParams> paramsBuf_;
+  DeviceBuffer<float> positions_, normals_, uvs_, colors_;
+  DeviceBuffer<float> clusterBounds_;    // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
+  DeviceBuffer<uint32_t> clusterCount_;  // their setup counts' sums (shared.h), CPU work shape; else a dummy
+  // The bounds of the scene's finite vertices (empty: min > max), for
+  // FrameParams.clusterMargin.
+  glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};
+  DeviceBuffer<uint32_t> indices_, triMaterial_;
+  DeviceBuffer<uint32_t> fileTri_;  // each laid-out triangle's index in the file (shared.h)
+  DeviceBuffer<Material> materials_;
+  DeviceBuffer<TextureDesc> texDescs_;
+  DeviceBuffer<uint32_t> texels_;
+  DeviceBuffer<cl_float4> clipPos_;
+  DeviceBuffer<uint8_t> triCount_;  // setup counts, see shared.h
+  DeviceBuffer<uint32_t> counters_;
+  DeviceBuffer<uint32_t> clipList_;
+  DeviceBuffer<TriSetup> setup_;
+  DeviceBuffer<uint32_t> setupSource_;  // each setup record's source word (shared.h)
+  DeviceBuffer<ClipBary> clipBary_;
+  DeviceBuffer<uint32_t> tileCount_, tileCursor_, tileSlot_, binEntries_;
+  DeviceBuffer<uint32_t> tileBlank_;  // resolve: a tile already background (shared.h)
+  DeviceBuffer<cl_ulong> scanPartials_, listingPartials_;
+  // The tile scans' totals; binScanned_: setup() enqueued the scans before
+  // its wait, as it does when the previous frame clipped nothing
+  // (clippedLastFrame_), so that a frame without clipping waits once.
+  cl_ulong binTotal_ = 0, slotTotal_ = 0;
+  bool binScanned_ = false, clippedLastFrame_ = false;
+  DeviceBuffer<uint32_t> visIndex_;  // visibility planes, see shared.h
+  DeviceBuffer<float> visAttr_;
+  DeviceBuffer<uint32_t> image_;
+  void* mappedImage_ = nullptr;       // image_ mapped for an ImageView, unmapped when the next frame begins
+  DeviceBuffer<uint32_t> paintRank_;  // see shared.h
+  std::vector<uint32_t> paintOrder_;
+  DeviceBuffer<LineParams> lineParams_;
+  DeviceBuffer<LineSeg> lineSegs_;
+  DeviceBuffer<uint32_t> lineTileCount_, lineTileCursor_, lineBinEntries_;
+  DeviceBuffer<float> aov_;
+  DeviceBuffer<cl_float4> rastOut_, rastDb_;
+  DeviceBuffer<uint32_t> rastIds_;
+  bool rastIdsWritten_ = false, rastDbWritten_ = false;
+};
+
+}  // namespace clr

@@ -1,0 +1,70 @@
+// rast_outputs.cpp — host side of kernels/rast_outputs.cl and the clip-space
+// scene upload of the library's rasterize (api.cpp): positions are the
+// caller's clip coordinates, so setup reads them as they are (transform.cl,
+// CLR_CLIP_INPUT), and after raster one work-item per pixel writes
+// nvdiffrast's rast, rast_db and the exact triangle ids.
+#include "pipeline/pipeline.h"
+
+namespace clr {
+
+void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris)
+{
+  if (!cl_.clipInput) throw Error("uploadClipScene needs a context built for clip-space input");
+  if (numTris > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("too many triangles");
+  if (numVerts > UINT32_MAX / 4) throw Error("too many vertices");
+  ++sceneUploads_;
+  framedScene_ = false;
+  positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
+  indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
+  // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
+  fileTriHost_.clear();
+  laidVertex_.clear();
+  fileOrder_ = true;
+  fileTri_.reserve(1);
+  // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
+  clusterBounds_.upload(std::vector<float>(6, NAN));
+  clusterCount_.reserve(1);
+  sceneMin_ = glm::vec3(INFINITY);
+  sceneMax_ = glm::vec3(-INFINITY);
+  paintOrder_.clear();
+  scene_ = Mesh{};
+  resident_ = 0;
+  triCount_.reserve(numTris, true);
+  params_.numVerts = uint32_t(numVerts);
+  params_.numTris = uint32_t(numTris);
+}
+
+void Pipeline::rastOutputs(bool ids, bool derivatives)
+{
+  if (!params_.visAttributes || !cl_.clipInput)
+    throw Error("rastOutputs: needs a clip-input frame that kept its visibility attributes");
+  const uint64_t n = uint64_t(params_.width) * params_.height;
+  rastOut_.reserve(n, true);
+  rastIds_.reserve(ids ? n : 1, true);
+  rastDb_.reserve(derivatives ? n : 1, true);
+  rastIdsWritten_ = ids;
+  rastDbWritten_ = derivatives;
+  cl::Event event;
+  cl::Kernel& kernel = extraKernel(rastOutputsKernel_, "rast_outputs");
+  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setupSource_.get(),
+          clipBary_.get(), indices_.get(), positions_.get(), tileSlot_.get(), visPlane(), rastOut_.get(),
+          rastIds_.get(), rastDb_.get(), (ids ? 1u : 0u) | (derivatives ? 2u : 0u));  // CLR_RAST_OUT_*
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
+                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
+                                 cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);
+  record("rast_outputs", event);
+}
+
+void Pipeline::readRastOutputs(float* rast, uint32_t* ids, float* db) const
+{
+  const uint64_t n = uint64_t(params_.width) * params_.height;
+  if ((db && !rastDbWritten_) || (ids && !rastIdsWritten_))
+    throw Error("readRastOutputs: the frame did not write the ids or derivatives asked for");
+  // Non-blocking reads, then one wait: the in-order queue runs them after the kernel.
+  if (rast) cl_.queue.enqueueReadBuffer(rastOut_.get(), CL_FALSE, 0, n * sizeof(cl_float4), rast);
+  if (ids) cl_.queue.enqueueReadBuffer(rastIds_.get(), CL_FALSE, 0, n * sizeof(uint32_t), ids);
+  if (db) cl_.queue.enqueueReadBuffer(rastDb_.get(), CL_FALSE, 0, n * sizeof(cl_float4), db);
+  cl_.queue.finish();
+}
+
+}  // namespace clr
