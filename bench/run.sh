@@ -96,10 +96,10 @@ done
 built="${BENCH_BIN:-build}"
 if [[ -z "${BENCH_BIN:-}" ]]; then
   [[ -f build/CMakeCache.txt ]] || cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build build -j "$(nproc)" --target clraster clraster_bench clraster_peak >/dev/null ||
-    fail "build failed (run: cmake --build build --target clraster_bench)"
+  cmake --build build -j "$(nproc)" --target clraster clraster_bench clraster_peak clraster_embree >/dev/null ||
+    fail "build failed (run: cmake --build build --target clraster_bench clraster_embree)"
 fi
-for program in clraster clraster_bench clraster_peak; do
+for program in clraster clraster_bench clraster_peak clraster_embree; do
   [[ -x "$built/$program" ]] || fail "no $built/$program (clraster_bench is built only with libosmesa6-dev)"
 done
 # The suite runs private copies, so that a rebuild in build/ meanwhile (kernels
@@ -107,7 +107,7 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/bin"
-cp "$built/clraster" "$built/clraster_bench" "$built/clraster_peak" "$work/bin/"
+cp "$built/clraster" "$built/clraster_bench" "$built/clraster_peak" "$built/clraster_embree" "$work/bin/"
 bin="$work/bin"
 csv="$work/results.csv"
 
@@ -155,6 +155,23 @@ for view in far near; do
 done
 # Nothing in view with the ~1M-triangle scene loaded (the far camera turned round).
 both_orders "grid16-away" "$grid_mesh" --grid 16 --view away --size 1920x1080 --warmup "$warmup" --frames "$frames"
+
+# The second anchor: visibility alone (--shade id) against Embree's primary rays (clraster_embree), the ~93k and
+# ~1M real scenes in both orders; Embree's BVH build is timed apart and shown beside its frame.
+embree_csv="$work/embree.csv"
+echo "name,triangles,width,height,threads,clraster_id_ms,embree_ms,ratio,embree_build_ms,covered,differing" >"$embree_csv"
+embree_case() {  # NAME ARGS...
+  local name=$1
+  shift
+  echo "bench/run.sh: embree $name"
+  "$bin/clraster_embree" "$@" ${device_args[@]+"${device_args[@]}"} --name "$name" --csv "$embree_csv" \
+    --warmup "$warmup" --frames "$frames" >/dev/null || fail "embree case $name failed"
+}
+for order in "" "--shuffle 1"; do
+  prefix=${order:+shuffled-}
+  embree_case "${prefix}grid5-fill" "$grid_mesh" --grid 5 --view fill --size 1920x1080 $order
+  embree_case "${prefix}grid16-far" "$grid_mesh" --grid 16 --view far --size 1920x1080 $order
+done
 
 # Step 5: start-up, the whole process: empty caches, PoCL's cache warm, and
 # PoCL's cache warm with the programs stored by `clraster cache`.
@@ -393,6 +410,19 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo "  the last one's end that no kernel ran (profiling events): launches, buffer fills, reads, and the host's wait"
   echo "  for the totals that size the buffers. The image's read-back after the last kernel is not in it."
   echo "- Other engineers' jobs may share the host's cores; treat single runs as noisy."
+  echo
+  echo "## Visibility alone against Embree"
+  echo
+  echo "clraster's triangle-ID frame (\\`--shade id\\`, camera upload to mapped image) against Embree $(dpkg-query -W -f='${Version}' libembree3-3 2>/dev/null || echo '?')"
+  echo "primary rays (one per pixel centre, 16-ray packets, as many threads as cores; the BVH built once, its build"
+  echo "timed apart), medians of $frames frames in turns. **differing** counts pixels whose IDs differ, over those either"
+  echo "covers (edges: float rays against 1/256-pixel snapping). Goal: clraster <= 0.15x Embree."
+  echo
+  echo "| case | triangles | clraster id ms | Embree ms | ratio | met | Embree BVH build ms | differing / covered |"
+  echo "|---|---|---|---|---|---|---|---|"
+  awk -F, "$columns"'NR > 1 { printf "| %s | %d | %s | %s | %.3fx | %s | %s | %d / %d |\n", $c["name"], $c["triangles"],
+      $c["clraster_id_ms"], $c["embree_ms"], $c["ratio"], $c["ratio"] <= 0.15 ? "yes" : "no", $c["embree_build_ms"],
+      $c["differing"], $c["covered"] }' "$embree_csv"
 } >"$md"
 
 # Step 7: the charts (bench/charts.sh), unless BENCH_CHARTS=0.
@@ -404,6 +434,6 @@ fi
 
 # Step 8: replace the results in the output folder.
 mkdir -p "$out_dir"
-cp "$csv" "$md" ${charts[@]+"${charts[@]}"} "$out_dir/"
+cp "$csv" "$embree_csv" "$md" ${charts[@]+"${charts[@]}"} "$out_dir/"
 elapsed=$(awk -v a="$suite_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.0f", b - a }')
 echo "bench/run.sh: wrote $out_dir/results.csv, results.md${charts[*]:+, scaling_triangles.png, scaling_pixels.png} in ${elapsed} s"

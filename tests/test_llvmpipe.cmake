@@ -78,3 +78,17 @@ if(TARGET clraster_bench)
   set_tests_properties(llvmpipe_lambert_default_scene llvmpipe_lambert_yxa_1 bench_reports_mesa_release
                        bench_reports_round_ratios PROPERTIES ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
+
+# The bench's second anchor, Embree's primary rays (bench/embree_bench.cpp): both sides must see the same scene
+# through the same camera, their ID images differing only where a float ray and 1/256-pixel snapping split an edge
+# (under 1% of the covered pixels on these scenes; a camera or winding mistake differs on most of them). One frame
+# each; nothing is timed.
+if(TARGET clraster_embree)
+  add_test(NAME embree_ids_default_scene COMMAND clraster_embree --size 320x240 --warmup 0 --frames 1
+                                                 --max-differing 0.01)
+  add_test(NAME embree_ids_wuson_grid COMMAND clraster_embree /usr/share/assimp/models/OFF/Wuson.off --grid 3
+                                              --shuffle 1 --view fill --size 320x240 --warmup 0 --frames 1
+                                              --max-differing 0.01)
+  set_tests_properties(embree_ids_default_scene embree_ids_wuson_grid PROPERTIES LABELS slow
+                       ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
+endif()
