@@ -3,6 +3,8 @@
 // with every mode, and the lazy attribute uploads of Pipeline.
 #include "test_support.h"
 
+#include "render/flags.h"
+
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -146,13 +148,6 @@ bool hitBarycentrics(const Scene& s, uint32_t x, uint32_t y, glm::dvec3& mu, dou
   return mu.x > 0.02 && mu.y > 0.02 && mu.z > 0.02;          // clear of the edges
 }
 
-const char* modeName(uint32_t mode)
-{
-  static const char* const names[] = {"lambert", "normal", "depth",   "id",    "uv",     "checker",
-                                      "color",   "flat",   "gouraud", "phong", "texture"};
-  return names[mode];
-}
-
 }  // namespace
 
 TEST_CASE("shading modes match their formulas evaluated on the host", "[shade]")
@@ -181,8 +176,8 @@ TEST_CASE("shading modes match their formulas evaluated on the host", "[shade]")
                  mu.x * scene.v[0] + mu.y * scene.v[1] + mu.z * scene.v[2], d, sp);
       highlight = std::max(highlight, kSpecular * sp * 255.0);
     }
-  INFO(modeName(mode) << (pointLight ? " with the point light" : "") << ": " << checked << " pixels, worst " << worst
-                      << " levels");
+  INFO(clr::kShadeModeNames[mode] << (pointLight ? " with the point light" : "") << ": " << checked << " pixels, worst "
+                                  << worst << " levels");
   CHECK(checked > 800);
   // The scene has a specular highlight worth checking (Phong's, at least).
   CHECK(highlight > 20.0);
@@ -231,7 +226,7 @@ TEST_CASE("anti-aliasing works with every shading mode", "[shade][aa]")
   s.samples = samples;
   s.shadeEverySample = ssaa;
   pipeline.render(s, aa);
-  INFO(modeName(mode) << ", " << samples << " samples, " << (ssaa ? "SSAA" : "MSAA"));
+  INFO(clr::kShadeModeNames[mode] << ", " << samples << " samples, " << (ssaa ? "SSAA" : "MSAA"));
   // Step 1: inside the triangle (clear of its edges), every sample shows
   // it: the pixel is its colour at points within half a pixel of the
   // centre, which differs from the centre's by a few levels at most.
