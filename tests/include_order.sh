@@ -6,8 +6,8 @@
 #                                               host/ where io includes api
 #
 # Rooms, lowest first: base io pipeline render api cli. A file in host/ROOM/
-# may include "ROOM2/x.h" only where ROOM2 is ROOM or below it, and
-# "kernels/x.h" (the host/device shared structs) from any room; a quoted
+# may include "ROOM2/NAME.h" only where ROOM2 is ROOM or below it, and
+# "kernels/NAME.h" (the host/device shared structs) from any room; a quoted
 # include without a room, or one that climbs with "../", is refused, and so
 # is any source file at host/'s top level or in a folder that is no room.
 # Exit 1 with one line per offence; 0 when the house is in order.

@@ -11,7 +11,9 @@
 # prefetch only PoCL's build has); each test case is in exactly one part, so
 # CTest runs them side by side. The one-pixel-per-work-item shape is
 # interpreted work-item by work-item, much slower, so there the
-# 20,000-triangle binning test is left out.
+# 20,000-triangle binning test is left out. The few larger cases take their
+# smallest sizes that reach the same paths when the device is Oclgrind
+# (test::underOclgrind; docs/testing.md, "Oclgrind", lists them).
 #   geometry           transform, near-plane clipping, setup, the scan (and binning, LANES 16)
 #   raster             the raster kernels: fill rule, z-test, MSAA, hierarchical, float edges
 #   resolve            resolve and the shading modes

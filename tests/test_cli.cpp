@@ -254,7 +254,7 @@ TEST_CASE("cli: hostile scene files are rejected with one line and no output", "
 TEST_CASE("cli: a scene file loads while the program builds and its error comes first", "[cli]")
 {
   // A file's quick checks run first, then its import on a second thread
-  // while the device's program builds (main.cpp): a bad scene is the error
+  // while the device's program builds (api_command.cpp): a bad scene is the error
   // reported either way, also when the device fails as well, and a good
   // scene leaves the device's error.
   const std::string png = tmpDir() + "/both-bad.png";

@@ -129,11 +129,13 @@ TEST_CASE("setup culls a small triangle that covers no pixel centre by raster's 
   }
   SECTION("thousands of random small triangles: the oracle's counts, and the same pixels either way")
   {
+    // (A quarter of them under Oclgrind: the same culls, fewer of each.)
+    const int count = test::underOclgrind() ? 1500 : 6000;
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> position(-2.0f, 66.0f), size(0.1f, 2.5f), angle(0.0f, 6.2832f),
         depth(-0.9f, 0.9f);
     Geometry g;
-    for (int i = 0; i < 6000; ++i) {
+    for (int i = 0; i < count; ++i) {
       const float x = position(rng), y = position(rng), z = depth(rng);
       glm::vec3 corner[3];
       for (glm::vec3& c : corner) {
@@ -153,7 +155,7 @@ TEST_CASE("setup culls a small triangle that covers no pixel centre by raster's 
     o.cullSampleFree = false;
     CHECK(culled.setupTriangles == expected.setupTriangles);
     CHECK(kept.setupTriangles == ref::rasterize(g.positions, g.indices, glm::mat4(1.0f), o).setupTriangles);
-    CHECK(culled.setupTriangles + 500 < kept.setupTriangles);  // premise: many cover no centre
+    CHECK(culled.setupTriangles + count / 12 < kept.setupTriangles);  // premise: many cover no centre
     const std::vector<uint32_t> ids = test::renderTriIds(pipeline, on);
     CHECK(test::countDifferences(ids, expected.triId) == 0);
     CHECK(ids == test::renderTriIds(pipeline, off));

@@ -22,6 +22,11 @@ clr::ClContext& context()
   return *ctx;
 }
 
+bool underOclgrind()
+{
+  return context().info.platformName.find("Oclgrind") != std::string::npos;
+}
+
 uint32_t Geometry::addVertex(glm::vec3 p)
 {
   positions.insert(positions.end(), {p.x, p.y, p.z});

@@ -20,6 +20,11 @@ std::string deviceSelector();
 // The context every test shares (on deviceSelector()'s device).
 clr::ClContext& context();
 
+// Whether that device is Oclgrind's simulator (tests/oclgrind_check.sh), which
+// interprets every work-item: the few large cases there take the smallest
+// sizes that still reach the paths they exist for (docs/testing.md, "Oclgrind").
+bool underOclgrind();
+
 // A mesh builder. With an identity MVP, a position (x, y, z) is already in
 // clip space with w = 1; screen() maps a screen-space point of a W×H
 // viewport back to that NDC position, exactly when W and H are powers of 2

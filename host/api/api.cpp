@@ -7,7 +7,7 @@
 // coordinates; rast_outputs.cl turns the visibility buffer into nvdiffrast's
 // arrays. interpolate is host arithmetic in nvdiffrast's order of
 // operations. Every entry point turns OpenCL and allocation failures into
-// clraster::Error (api_guard.h). The scene-level calls are api_render.cpp.
+// clraster::Error (guarded(), api_impl.h). The scene-level calls are api_render.cpp.
 #include "api/api_impl.h"
 
 #include "pipeline/pipeline.h"

@@ -2,7 +2,7 @@
 // guarded(), which every public entry point runs its body in: a
 // clraster::Error passes as it is; an OpenCL failure, exhausted memory or
 // another standard exception becomes a clraster::Error with the CLI's line
-// (runProgram, flags.h), so no other exception leaves the library.
+// (failureMessage, flags.h), so no other exception leaves the library.
 #pragma once
 
 #include "render/flags.h"
@@ -25,13 +25,8 @@ auto guarded(F&& body) -> decltype(body())
     return body();
   } catch (const Error&) {
     throw;
-  } catch (const cl::Error& e) {
-    throw Error(std::string("OpenCL call ") + e.what() + " failed: " + clr::clErrorName(e.err()) + " (" +
-                std::to_string(e.err()) + ")");
-  } catch (const std::bad_alloc&) {
-    throw Error("out of host memory");
-  } catch (const std::exception& e) {
-    throw Error(e.what());
+  } catch (const std::exception&) {
+    throw Error(clr::failureMessage());
   }
 }
 

@@ -134,7 +134,7 @@ struct FrameSettings {
   uint32_t wireframe = CLR_WIREFRAME_OFF;
   uint32_t lineMethod = CLR_LINE_AA;
   float lineWidth = 1.0f;
-  // A file's points (Mesh::points): squares of this many pixels a side (points.cpp).
+  // A file's points (Mesh::points): squares of this many pixels a side (file_primitives.cpp).
   uint32_t pointSize = 1;
   // Raster also writes the depth and barycentric planes of the visibility
   // buffer (12 more bytes per sample), for aov() and for the depth and

@@ -25,37 +25,52 @@ const char* traversalName(uint32_t traversal)
   return traversal < 4 ? kTraversalNames[traversal] : "unknown";
 }
 
+namespace {
+// "lambert|normal|...": the --shade choices in CLR_SHADE_* order.
+std::string shadeModeChoices()
+{
+  std::string choices;
+  for (const char* name : kShadeModeNames) choices += std::string(choices.empty() ? "" : "|") + name;
+  return choices;
+}
+}  // namespace
+
 const char* usageText()
 {
-  return "usage:\n"
-         "  clraster render [SCENE] [-o OUT.png] [--aov OUT.exr] [--size WxH] [--eye x,y,z]\n"
-         "                  [--target x,y,z] [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
-         "                  [--shade lambert|flat|gouraud|phong|texture|color|normal|depth|uv|checker|id]\n"
-         "                  [--filter nearest|bilinear|trilinear] [--light-point x,y,z[,r]]\n"
-         "                  [--cull none|back]\n"
-         "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
-         "                  [--edges fixed|float] [--interp perspective|affine]\n"
-         "                  [--traversal bbox|hierarchical|spans|spans-float] [--quality auto]\n"
-         "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
-         "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
-         "                  [--point-size PX] [--device SEL] [--frames N] [--stats]\n"
-         "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
-         "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
-         "                  [--device SEL] [--stats]\n"
-         "  clraster info MESH [--fov DEG] [--json]\n"
-         "  clraster devices\n"
-         "  clraster cache [--device SEL]\n"
-         "  clraster help | COMMAND --help\n"
-         "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
-         "built-in scene is rendered. A render writes -o (a .png), --aov (a .exr), or both.\n"
-         "`info` prints a mesh's counts, bounds, materials and the default camera's flags.\n"
-         "`cache` compiles the kernels for a device and stores them (CLRASTER_CACHE_DIR,\n"
-         "else ~/.cache/clraster), so later starts skip the compiler front end.\n"
-         "SEL is a device index or a name substring.\n"
-         "VIEWS.json is {\"views\": [{\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z],\n"
-         "\"fov\": DEG, \"near\": N, \"far\": F, \"size\": [W,H]}, ...]}, every key optional; the\n"
-         "output pattern's one integer conversion is the view's index in the list, and\n"
-         "--shard K/N renders the views K, K+N, K+2N, ...\n";
+  static const std::string text =
+      std::string(
+          "usage:\n"
+          "  clraster render [SCENE] [-o OUT.png] [--aov OUT.exr] [--size WxH] [--eye x,y,z]\n"
+          "                  [--target x,y,z] [--up x,y,z] [--fov DEG] [--near N] [--far F]\n"
+          "                  [--shade ") +
+      shadeModeChoices() +
+      "]\n"
+      "                  [--filter nearest|bilinear|trilinear] [--light-point x,y,z[,r]]\n"
+      "                  [--cull none|back]\n"
+      "                  [--aa none|msaa2|msaa4|msaa8|msaa16|ssaa4|ssaa16|auto]\n"
+      "                  [--edges fixed|float] [--interp perspective|affine]\n"
+      "                  [--traversal bbox|hierarchical|spans|spans-float] [--quality auto]\n"
+      "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
+      "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
+      "                  [--point-size PX] [--device SEL] [--frames N] [--stats]\n"
+      "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
+      "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
+      "                  [--device SEL] [--stats]\n"
+      "  clraster info MESH [--fov DEG] [--json]\n"
+      "  clraster devices\n"
+      "  clraster cache [--device SEL]\n"
+      "  clraster help | COMMAND --help\n"
+      "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
+      "built-in scene is rendered. A render writes -o (a .png), --aov (a .exr), or both.\n"
+      "`info` prints a mesh's counts, bounds, materials and the default camera's flags.\n"
+      "`cache` compiles the kernels for a device and stores them (CLRASTER_CACHE_DIR,\n"
+      "else ~/.cache/clraster), so later starts skip the compiler front end.\n"
+      "SEL is a device index or a name substring.\n"
+      "VIEWS.json is {\"views\": [{\"eye\": [x,y,z], \"target\": [x,y,z], \"up\": [x,y,z],\n"
+      "\"fov\": DEG, \"near\": N, \"far\": F, \"size\": [W,H]}, ...]}, every key optional; the\n"
+      "output pattern's one integer conversion is the view's index in the list, and\n"
+      "--shard K/N renders the views K, K+N, K+2N, ...\n";
+  return text.c_str();
 }
 
 bool wantsHelp(const std::vector<std::string>& args)
@@ -99,7 +114,7 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text)
 }
 
 // The index of `text` in `choices`, or an error listing them.
-uint32_t parseChoice(const std::string& flag, const std::string& text, std::initializer_list<const char*> choices)
+uint32_t parseChoice(const std::string& flag, const std::string& text, const std::vector<const char*>& choices)
 {
   std::string names;
   uint32_t index = 0;
@@ -139,10 +154,7 @@ uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_
 
 uint32_t parseShadeMode(const std::string& flag, const std::string& text)
 {
-  // The order is the CLR_SHADE_* numbering.
-  return parseChoice(
-      flag, text,
-      {"lambert", "normal", "depth", "id", "uv", "checker", "color", "flat", "gouraud", "phong", "texture"});
+  return parseChoice(flag, text, {std::begin(kShadeModeNames), std::end(kShadeModeNames)});
 }
 
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height)
@@ -298,18 +310,28 @@ std::string jsonEscape(const std::string& s)
   return out;
 }
 
+std::string failureMessage()
+{
+  try {
+    throw;
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const cl::Error& e) {
+    return std::string("OpenCL call ") + e.what() + " failed: " + clErrorName(e.err()) + " (" +
+           std::to_string(e.err()) + ")";
+  } catch (const std::bad_alloc&) {
+    return "out of host memory";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
 int runProgram(const char* program, const std::function<int()>& body)
 {
   try {
     return body();
-  } catch (const Error& e) {
-    std::fprintf(stderr, "%s: %s\n", program, e.what());
-  } catch (const cl::Error& e) {
-    std::fprintf(stderr, "%s: OpenCL call %s failed: %s (%d)\n", program, e.what(), clErrorName(e.err()), e.err());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: out of host memory\n", program);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (const std::exception&) {
+    std::fprintf(stderr, "%s: %s\n", program, failureMessage().c_str());
   }
   return 1;
 }

@@ -8,6 +8,7 @@
 #include "render/views.h"
 
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,9 +84,21 @@ uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height);
 uint32_t parseShadeMode(const std::string& flag, const std::string& text);  // a --shade name: its CLR_SHADE_*
 
+// The --shade names, indexed by CLR_SHADE_* (kernels/shared.h): the one list
+// that parsing, the usage text and the tests' mode lists read.
+inline constexpr const char* kShadeModeNames[] = {"lambert", "normal", "depth",   "id",    "uv",     "checker",
+                                                  "color",   "flat",   "gouraud", "phong", "texture"};
+static_assert(std::size(kShadeModeNames) == CLR_NUM_SHADE_MODES, "one --shade name per CLR_SHADE_* mode");
+
 // Helpers every command-line program of the project shares.
 double median(std::vector<double> values);     // of a non-empty list
 std::string jsonEscape(const std::string& s);  // for a JSON string literal
+
+// The one-line message of the std::exception being handled (call it only
+// inside a catch block): a clr::Error's text, "OpenCL call NAME failed:
+// CL_ERROR (code)", "out of host memory", or another exception's what().
+// runProgram and the library's guarded() (api_impl.h) both report through it.
+std::string failureMessage();
 
 // Runs a program's body and turns every failure (clr::Error, an OpenCL
 // error, exhausted memory) into one line "PROGRAM: message" on stderr and

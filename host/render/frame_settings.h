@@ -8,7 +8,7 @@
 // left at their defaults: quality.h chooses them from a probe frame); the
 // depth format (--depth, or the auto rule of depth.h); the point light, its
 // range half the bounds' diagonal unless given; lines; and the visibility
-// planes the AOVs read. The single-view and --views renders (main.cpp) and
+// planes the AOVs read. The single-view and --views renders (api_command.cpp) and
 // the bench tools call it; nothing else assembles a frame from arguments.
 #pragma once
 
