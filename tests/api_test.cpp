@@ -114,6 +114,23 @@ TEST_CASE("api bad arguments are errors naming them", "[api]")
   REQUIRE_THROWS_WITH(clraster::interpolate(context(), attr, 3, 1, r, good), Catch::StartsWith("raster: "));
 }
 
+TEST_CASE("api interpolate refuses a rast naming no triangle", "[api]")
+{
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 2};
+  const float attr[] = {0, 1, 2};
+  const clraster::Raster good = clraster::rasterize(context(), pos, 3, tri, 1, 8, 8);
+  REQUIRE(clraster::interpolate(context(), attr, 3, 1, good, tri).size() == 64);
+  // Channel 3 of one pixel: an id beyond the one triangle, negative, NaN,
+  // huge, or between two ids.
+  for (float bad : {2.0f, 7.0f, -3.0f, std::nanf(""), 1e30f, 0.5f}) {
+    clraster::Raster r = good;
+    r.rast[4 * 5 + 3] = bad;
+    REQUIRE_THROWS_WITH(clraster::interpolate(context(), attr, 3, 1, r, tri),
+                        Catch::StartsWith("rast: pixel 5 holds triangle id channel") && Catch::Contains("0..1"));
+  }
+}
+
 TEST_CASE("api renderer draws the built in scene", "[api]")
 {
   const clraster::Scene scene = clraster::Scene::builtin();

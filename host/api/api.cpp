@@ -14,6 +14,7 @@
 
 #include <clraster/clraster.hpp>
 
+#include <cstdio>
 #include <cstring>
 
 namespace clraster {
@@ -84,6 +85,21 @@ void checkTriangles(const int32_t* tri, size_t numTriangles, size_t numVertices)
     if (tri[k] < 0 || size_t(tri[k]) >= numVertices)
       throw Error("tri: vertex index " + std::to_string(tri[k]) + " of triangle " + std::to_string(k / 3) +
                   " outside 0.." + std::to_string(int64_t(numVertices) - 1));
+}
+
+// Every pixel's channel 3 is 0 (background) or the encoding of an id in 1..numTriangles.
+void checkRastIds(const float* rast, size_t pixels, size_t numTriangles)
+{
+  for (size_t p = 0; p < pixels; ++p) {
+    const float f = rast[4 * p + 3];
+    const uint32_t id = decodeTriangleId(f);
+    if (f != 0.0f && (id == 0 || id > numTriangles || encodeTriangleId(id) != f)) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%.9g", double(f));
+      throw Error("rast: pixel " + std::to_string(p) + " holds triangle id channel " + value + ", not an id in 0.." +
+                  std::to_string(numTriangles) + " (0: background)");
+    }
+  }
 }
 
 }  // namespace
@@ -161,12 +177,13 @@ void interpolateInto(const float* attr, size_t numVertices, size_t numAttrs, con
       listed.push_back(size_t(k));
     }
     if (!listed.empty() && (!db || !outDa)) throw Error("diff_attrs: needs rast_db");
+    checkRastIds(rast, pixels, numTriangles);
     // Step 2: per pixel, nvdiffrast's formula (interpolate.cu) in its order.
     for (size_t p = 0; p < pixels; ++p) {
       const uint32_t id = decodeTriangleId(rast[4 * p + 3]);
       float* o = out + p * numAttrs;
       float* da = outDa ? outDa + p * 2 * listed.size() : nullptr;
-      if (id == 0 || id > numTriangles) {
+      if (id == 0) {
         std::fill(o, o + numAttrs, 0.0f);
         if (da) std::fill(da, da + 2 * listed.size(), 0.0f);
         continue;

@@ -94,7 +94,8 @@ CLRASTER_API void rasterizeInto(Context& ctx, const float* pos, size_t numVertic
 CLRASTER_API std::vector<float> interpolate(Context& ctx, const float* attr, size_t numVertices, size_t numAttrs,
                                             const Raster& r, const int32_t* tri);
 // The same on arrays: rast as in Raster (ids decoded from channel 3), for
-// `pixels` pixels; out: pixels × numAttrs. With db (Raster::db's layout) and
+// `pixels` pixels; a channel 3 that is neither 0 nor an id in 1..numTriangles
+// is an Error naming rast; out: pixels × numAttrs. With db (Raster::db's layout) and
 // diffAttrs (attribute indices), outDa gets pixels × 2·diffAttrs.size()
 // floats, (dA/dX, dA/dY) per listed attribute.
 CLRASTER_API void interpolateInto(const float* attr, size_t numVertices, size_t numAttrs, const float* rast,

@@ -144,6 +144,20 @@ def triangle_ids(rast):
     return np.where(f > 0, ids, 0).astype(np.int32)
 
 
+def _check_rast_ids(rast, num_triangles):
+    """ValueError naming rast unless every channel 3 is 0 (background) or
+    the encoding of an id in 1..num_triangles."""
+    f = rast[..., 3]
+    ids = triangle_ids(rast)
+    with np.errstate(invalid="ignore"):
+        exact = (f > 16777216.0) | (np.floor(f) == f)
+    bad = ~((f == 0) | ((ids >= 1) & (ids <= num_triangles) & exact))
+    if bad.any():
+        where = tuple(int(k) for k in np.argwhere(bad)[0])
+        raise ValueError(f"rast: pixel {list(where)} holds triangle id channel {float(f[where])!r}, "
+                         f"not an id in 0..{num_triangles} (0: background)")
+
+
 def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
     """nvdiffrast's interpolate: out [B, H, W, C] = u·a0 + v·a1 + (1−u−v)·a2
     of the covering triangle (0 where none), and out_da [B, H, W, 2·len]
@@ -181,6 +195,7 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
         rast_db = _array("rast_db", rast_db, np.float32, (4,), 4)
         if rast_db.shape != rast.shape:
             raise ValueError(f"rast_db: shape {list(rast_db.shape)} differs from rast's {list(rast.shape)}")
+    _check_rast_ids(rast, tri.shape[0])
     out = np.empty(rast.shape[:3] + (num_attrs,), np.float32)
     out_da = np.empty(rast.shape[:3] + (2 * len(diff),), np.float32)
     for b in range(batch):
