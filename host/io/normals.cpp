@@ -40,7 +40,7 @@ void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals)
   }
   if (!fileHasNormals || replaced == 0) return;
   mesh.facts.normalsRepaired = replaced;
-  mesh.warnings.push_back(path + ": " + std::to_string(replaced) + " of " + std::to_string(n) +
+  mesh.warnings.push_back(userText(path) + ": " + std::to_string(replaced) + " of " + std::to_string(n) +
                           " vertex normals were zero, NaN or missing; recomputed from the geometry");
 }
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 
@@ -59,10 +60,7 @@ int infoCommand(const std::vector<std::string>& args)
     if (args[i] == "--json") {
       json = true;
     } else if (args[i] == "--fov") {
-      const std::string& text = flagValue(args, i);
-      char* end = nullptr;
-      cameraArgs.fovDegrees = std::strtof(text.c_str(), &end);
-      if (text.empty() || *end != '\0') throw Error("--fov: '" + text + "' is not a finite number");
+      cameraArgs.fovDegrees = parseFloat("--fov", flagValue(args, i));
       fovGiven = true;
     } else {
       takeScenePath(args[i], path);
@@ -106,14 +104,14 @@ int infoCommand(const std::vector<std::string>& args)
     std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
-  std::printf("file       %s\n", path.c_str());
+  std::printf("file       %s\n", userText(path, PATH_MAX).c_str());
   std::printf("triangles  %zu\nvertices   %zu\nlines      %zu\npoints     %zu\n", mesh.numTris(), mesh.numVerts(),
               mesh.lines.size() / 2, mesh.points.size());
   std::printf("bounds     min %s  max %s\n", formatVec3(bounds.min).c_str(), formatVec3(bounds.max).c_str());
   std::printf("           centre %s  radius %s\n", formatVec3(centre).c_str(), formatFloat(radius).c_str());
   std::printf("materials  %zu, textures %zu loaded, %zu missing\n", mesh.materials.size(), textures,
               f.missingTextures.size());
-  for (const std::string& m : f.missingTextures) std::printf("  missing texture: %s\n", m.c_str());
+  for (const std::string& m : f.missingTextures) std::printf("  missing texture: %s\n", userText(m).c_str());
   std::printf("normals    %s\n", normalsText(f).c_str());
   std::printf("uvs        %s\n", f.uvsInFile ? "from file" : "none (texture coordinates read 0,0)");
   for (const std::string& w : mesh.warnings) std::printf("warning    %s\n", w.c_str());
