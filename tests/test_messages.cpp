@@ -1,8 +1,12 @@
 // test_messages.cpp — the one-line rule for every message that quotes a
 // user's string: a path holding a newline, or one of about 4 KB, still gives
 // one line under 300 bytes, from every model check (GLB, OFF, PLY), the
-// normals warning and `info --fov`.
+// normals warning and `info --fov`; and the warning sink keeps every
+// stream of warnings (a render's, a views run's, the library's list) within
+// about 4 KB whatever the input, each repeating kind once with its count.
+#include "base/warnings.h"
 #include "cli_support.h"
+#include "io/scene.h"
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
@@ -85,5 +89,66 @@ TEST_CASE("messages: info --fov quotes a long or multi-line value in one short l
     CHECK(r.err.find("--fov: '") != std::string::npos);
     REQUIRE(lines(r.err).size() == 1);
     CHECK(r.err.size() < 300);
+  }
+}
+
+TEST_CASE("messages: the warning sink keeps each kind once and stays within its bound", "[messages]")
+{
+  clr::Warnings w;
+  CHECK(w.add("lib", "a.obj: material library 'x0.mtl' not found"));
+  size_t newLines = 0;
+  for (int i = 1; i < 100000; ++i) newLines += w.add("lib", "a.obj: material library 'x" + std::to_string(i) + "'");
+  CHECK(newLines == 0);
+  REQUIRE(w.lines().size() == 1);
+  CHECK(w.lines()[0] == "a.obj: material library 'x0.mtl' not found (and 99,999 more like it)");
+  for (int i = 0; i < 100000; ++i) w.add("distinct " + std::to_string(i) + std::string(100, '.'));
+  size_t bytes = 0;
+  for (const std::string& line : w.lines()) bytes += line.size() + 1;
+  CHECK(bytes <= clr::Warnings::kMaxBytes + 200);
+  CHECK(w.lines().back().rfind("and ", 0) == 0);
+  CHECK(w.lines().back().find(" more warnings") != std::string::npos);
+  CHECK(clr::Warnings::grouped(1234567) == "1,234,567");
+}
+
+TEST_CASE("messages: floods of warnings from a model print at most about 4 KB", "[messages]")
+{
+  // 20,000 missing material libraries; 3,000 materials naming missing textures.
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  for (int i = 0; i < 20000; ++i) obj += "mtllib missing" + std::to_string(i) + ".mtl\n";
+  const std::string libs = test::writeFile("flood-libs.obj", obj);
+  std::string mtl;
+  obj = "mtllib flood-tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+  for (int i = 0; i < 3000; ++i) {
+    mtl += "newmtl m" + std::to_string(i) + "\nmap_Kd no-such-" + std::to_string(i) + ".png\n";
+    obj += "usemtl m" + std::to_string(i) + "\nf 1/1 2/2 3/3\n";
+  }
+  test::writeFile("flood-tex.mtl", mtl);
+  const std::string textures = test::writeFile("flood-tex.obj", obj);
+  const std::string out = test::tempDir() + "/flood.png";
+  std::string views = "{\"views\": [{}";
+  for (int i = 1; i < 3; ++i) views += ", {\"eye\": [" + std::to_string(i) + ", 2, 3]}";
+  const std::string viewsPath = test::writeFile("flood-views.json", views + "]}");
+  for (const std::string& scene : {libs, textures}) {
+    for (const std::string& mode :
+         {std::string("-o '") + out + "'", "--views '" + viewsPath + "' -o '" + test::tempDir() + "/flood_%d.png'"}) {
+      const test::Run r = test::run("render '" + scene + "' " + mode + " --size 16x16");
+      INFO(scene << " " << mode << "\nstderr: " << r.err.substr(0, 600));
+      CHECK(r.status == 0);
+      CHECK(r.err.size() <= clr::Warnings::kMaxBytes + 200);
+      CHECK(r.err.find(" more like it)") != std::string::npos);
+      for (const std::string& line : lines(r.err)) CHECK(line.size() < 400);
+    }
+    // info's report: its warnings and missing textures within the same bound.
+    for (const char* json : {"", "--json "}) {
+      const test::Run info = test::run(std::string("info ") + json + "'" + scene + "'");
+      CHECK(info.status == 0);
+      CHECK(info.out.size() < 2 * clr::Warnings::kMaxBytes);
+    }
+    // The library's list (Scene::warnings) is the same bounded list.
+    const clr::Mesh mesh = clr::loadScene(scene);
+    size_t bytes = 0;
+    for (const std::string& line : mesh.warnings.lines()) bytes += line.size();
+    CHECK(bytes <= clr::Warnings::kMaxBytes + 200);
+    CHECK(!mesh.warnings.empty());
   }
 }

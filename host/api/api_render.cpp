@@ -52,7 +52,7 @@ size_t Scene::numTriangles() const
 }
 const std::vector<std::string>& Scene::warnings() const
 {
-  return impl().mesh.warnings;
+  return impl().mesh.warnings.lines();
 }
 
 // ---- RenderOptions ----

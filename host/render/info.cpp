@@ -3,6 +3,7 @@
 
 #include "render/camera.h"
 #include "base/error.h"
+#include "base/warnings.h"
 #include "render/flags.h"
 #include "io/scene.h"
 
@@ -93,14 +94,19 @@ int infoCommand(const std::vector<std::string>& args)
                    {"radius", jsonFloat(radius)}};
     j["materials"] = mesh.materials.size();
     j["textures"] = textures;
-    j["missing_textures"] = f.missingTextures;
+    std::vector<std::string> listed;  // the first ones, within the warnings' bound; then the count of all
+    size_t bytes = 0;
+    for (const std::string& m : f.missingTextures)
+      if ((bytes += m.size()) <= Warnings::kMaxBytes) listed.push_back(m);
+    j["missing_textures"] = listed;
+    j["missing_textures_total"] = f.missingTextures.size();
     j["normals"] = {{"in_file", f.normalsInFile}, {"repaired", f.normalsRepaired}};
     j["uvs"] = {{"in_file", f.uvsInFile}};
     j["camera"] = {{"eye", jsonVec3(cam.eye)},   {"target", jsonVec3(cam.target)},
                    {"up", jsonVec3(cam.up)},     {"near", jsonFloat(cam.zNear)},
                    {"far", jsonFloat(cam.zFar)}, {"fov", jsonFloat(cam.fovDegrees)}};
     j["render_flags"] = flags;
-    j["warnings"] = mesh.warnings;
+    j["warnings"] = mesh.warnings.lines();
     std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
@@ -111,10 +117,12 @@ int infoCommand(const std::vector<std::string>& args)
   std::printf("           centre %s  radius %s\n", formatVec3(centre).c_str(), formatFloat(radius).c_str());
   std::printf("materials  %zu, textures %zu loaded, %zu missing\n", mesh.materials.size(), textures,
               f.missingTextures.size());
-  for (const std::string& m : f.missingTextures) std::printf("  missing texture: %s\n", userText(m).c_str());
+  Warnings missing;  // bounded as warnings are
+  for (const std::string& m : f.missingTextures) missing.add("missing texture: " + userText(m));
+  for (const std::string& line : missing.lines()) std::printf("  %s\n", line.c_str());
   std::printf("normals    %s\n", normalsText(f).c_str());
   std::printf("uvs        %s\n", f.uvsInFile ? "from file" : "none (texture coordinates read 0,0)");
-  for (const std::string& w : mesh.warnings) std::printf("warning    %s\n", w.c_str());
+  for (const std::string& w : mesh.warnings.lines()) std::printf("warning    %s\n", w.c_str());
   std::printf("default camera (paste into clraster render):\n  %s\n", flags.c_str());
   return 0;
 }
