@@ -3,13 +3,22 @@
 // opencl-c.h included, just to find its own cache entry).
 //
 // A cache file holds one program's device binary (CL_PROGRAM_BINARIES) for
-// one key: the embedded sources, the build options, the device and its
-// driver. Files are written only by storeProgramBinary (`clraster cache`,
-// which the bootstrap runs): on PoCL, asking for a binary compiles every
-// kernel of the program, far too slow for a render's path. A render only
-// loads. A file that is missing, truncated, corrupt (checksummed) or refused
-// by the driver is ignored and the program is built from source: the cache
-// can make a start faster, never make a render fail or differ.
+// one key: SHA-256 of the embedded sources, the build options, the device
+// and its driver. Files are written only by storeProgramBinary (`clraster
+// cache`, which the bootstrap runs): on PoCL, asking for a binary compiles
+// every kernel of the program, far too slow for a render's path. A render
+// only loads.
+//
+// Trust: the directory is created 0700, and is used only while it is a
+// folder (not a link) of this user that no other user can write; each file
+// likewise (written 0600). The directory holds a random secret ("secret",
+// 0600), and every entry carries HMAC-SHA-256 of its key and binary under
+// it, so a binary swapped in from elsewhere, even with its key and a
+// checksum recomputed, fails the check. Any doubt (a missing, truncated,
+// foreign or unchecked file, a folder others can write, a driver refusing
+// the binary or a kernel that fails to create) is a miss and the program
+// is built from source: the cache can make a start faster, never make a
+// render fail or differ.
 //
 // The directory: CLRASTER_CACHE_DIR when set (empty: no cache), else
 // $XDG_CACHE_HOME/clraster, else $HOME/.cache/clraster.
@@ -24,8 +33,9 @@ namespace clr {
 
 std::string programCacheDir();
 
-// The key of a program: sources, full options, device and driver.
-uint64_t programCacheKey(const cl::Device& device, const std::string& options);
+// The key of a program: SHA-256 (32 bytes) of its sources, full options,
+// device and driver.
+std::string programCacheKey(const cl::Device& device, const std::string& options);
 
 // The cached program for the key, built, or a null program when there is
 // none usable.
