@@ -84,7 +84,11 @@ PYBIND11_MODULE(_clraster, m)
       .def(py::init<const std::string&>(), py::arg("device") = "")
       .def_property_readonly("device_name", [](const clraster::Context& c) { return c.device().name; })
       .def_property_readonly("device_type", [](const clraster::Context& c) { return c.device().type; })
-      .def_property_readonly("platform", [](const clraster::Context& c) { return c.device().platform; });
+      .def_property_readonly("platform", [](const clraster::Context& c) { return c.device().platform; })
+      .def_property("memory_limit", &clraster::Context::memoryLimit, &clraster::Context::setMemoryLimit)
+      .def("release", &clraster::Context::release);
+  m.def("check_rasterize_memory", &clraster::checkRasterizeMemory, py::arg("ctx"), py::arg("width"), py::arg("height"),
+        py::arg("output_bytes"));
   m.def("rasterize_into", &rasterizeInto, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
         py::arg("rast").noconvert(), py::arg("db").noconvert() = py::none());
   m.def("interpolate_into", &interpolateInto, py::arg("attr").noconvert(), py::arg("rast").noconvert(),

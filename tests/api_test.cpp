@@ -204,3 +204,33 @@ TEST_CASE("api outputs are refused where the command line refuses them", "[api]"
   std::unique_ptr<clraster::Context> built;
   REQUIRE_THROWS_WITH(clraster::renderCommand(clraster::RenderOptions(), built), Catch::StartsWith("missing -o"));
 }
+
+TEST_CASE("api calls past the memory limit are refused naming the size", "[api]")
+{
+  clraster::Context ctx(std::getenv("CLRASTER_TEST_DEVICE") ? std::getenv("CLRASTER_TEST_DEVICE") : "");
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 2};
+  ctx.setMemoryLimit(1 << 20);
+  REQUIRE(ctx.memoryLimit() == 1u << 20);
+  REQUIRE_THROWS_WITH(clraster::rasterize(ctx, pos, 3, tri, 1, 512, 512),
+                      Catch::StartsWith("rasterize at 512x512 needs ") && Catch::Contains("more than the limit of"));
+  std::vector<float> rast(4 * 512 * 512);
+  REQUIRE_THROWS_WITH(clraster::rasterizeInto(ctx, pos, 3, tri, 1, 512, 512, rast.data(), nullptr),
+                      Catch::Contains("bytes"));
+  REQUIRE(clraster::rasterize(ctx, pos, 3, tri, 1, 16, 16).ids[16 * 8 + 8] == 1);
+  // Huge sizes: refused by the limit, the device's memory or the host's, never an abort.
+  ctx.setMemoryLimit(0);
+  for (uint32_t side : {16384u, 12000u, 1u})
+    for (uint64_t outputs : {uint64_t(1) << 50, ~uint64_t(0) / 2}) {
+      try {
+        clraster::checkRasterizeMemory(ctx, side, 16384, outputs);
+        FAIL("outputs of " << outputs << " bytes at " << side << "x16384 were not refused");
+      } catch (const clraster::Error& e) {
+        CHECK_THAT(e.what(), Catch::Contains(" bytes ("));
+      }
+    }
+  REQUIRE_THROWS_WITH(clraster::checkRasterizeMemory(ctx, 0, 8, 0), Catch::StartsWith("resolution"));
+  // release() frees what calls kept; the next call allocates again.
+  ctx.release();
+  REQUIRE(clraster::rasterize(ctx, pos, 3, tri, 1, 16, 16).ids[16 * 8 + 8] == 1);
+}

@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <string>
 
 namespace {
@@ -104,4 +105,21 @@ TEST_CASE("outputs: a views run ended by a signal leaves no temporary file", "[o
   CHECK(ended > 0);
   const test::Run left = test::runShell("ls '" + dir + "' | grep -c 'tmp-' ; true", dir + "/none");
   CHECK(left.out == "0\n");
+}
+
+TEST_CASE("outputs: --aov past an address-space limit is refused naming the size", "[outputs]")
+{
+  // 4096x4096 visibility planes take about 2.7 GB of host memory beyond the
+  // frame: under a 1.5 GB address-space limit, one error line, no output.
+  const std::string dir = freshDir("aov-limit");
+  const test::Run r = test::runShell("ulimit -v 1500000; '" + std::string(CLRASTER_BIN) + "' render -o '" + dir +
+                                         "/a.png' --aov '" + dir + "/a.exr' --size 4096x4096 2>'" + dir + "/err.txt'",
+                                     dir + "/err.txt");
+  INFO("stderr: " << r.err);
+  CHECK(r.status == 1);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.find(" bytes (") != std::string::npos);
+  CHECK(r.err.find("RLIMIT_AS") != std::string::npos);
+  CHECK(!test::exists(dir + "/a.png"));
+  CHECK(!test::exists(dir + "/a.exr"));
 }

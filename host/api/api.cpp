@@ -10,6 +10,7 @@
 // clraster::Error (api_guard.h). The scene-level calls are api_render.cpp.
 #include "api/api_impl.h"
 
+#include "base/memory.h"
 #include "pipeline/pipeline.h"
 
 #include <clraster/clraster.hpp>
@@ -45,10 +46,28 @@ const DeviceInfo& Context::device() const
   return Error::live(impl_.get(), "clraster::Context")->info;
 }
 
+void Context::setMemoryLimit(uint64_t bytes)
+{
+  Impl& i = impl();
+  i.memoryLimit = bytes;
+  if (i.clipPipeline) i.clipPipeline->memory().limitBytes = bytes ? bytes : UINT64_MAX;
+}
+uint64_t Context::memoryLimit() const
+{
+  return Error::live(impl_.get(), "clraster::Context")->memoryLimit;
+}
+void Context::release()
+{
+  impl().clipPipeline.reset();
+}
+
 clr::Pipeline& Context::Impl::rasterPipeline()
 {
   if (!clip) clip = std::make_unique<clr::ClContext>(selector, 0, true);
-  if (!clipPipeline) clipPipeline = std::make_unique<clr::Pipeline>(*clip);
+  if (!clipPipeline) {
+    clipPipeline = std::make_unique<clr::Pipeline>(*clip);
+    clipPipeline->memory().limitBytes = memoryLimit ? memoryLimit : UINT64_MAX;
+  }
   return *clipPipeline;
 }
 
@@ -102,16 +121,47 @@ void checkRastIds(const float* rast, size_t pixels, size_t numTriangles)
   }
 }
 
+// Device bytes per pixel a rasterize takes at least: the visibility buffer
+// and the outputs' device copies (measured 35 retained, more at the peak);
+// the buffers themselves are checked again as they are allocated.
+constexpr uint64_t kRasterizeDeviceBytesPerPixel = 40;
+
+void checkResolution(uint32_t width, uint32_t height)
+{
+  if (width == 0 || height == 0 || width > CLR_MAX_VIEWPORT || height > CLR_MAX_VIEWPORT)
+    throw Error("resolution " + std::to_string(height) + "x" + std::to_string(width) + " (height x width) outside 1.." +
+                std::to_string(CLR_MAX_VIEWPORT));
+}
+
 }  // namespace
+
+void checkRasterizeMemory(Context& ctx, uint32_t width, uint32_t height, uint64_t outputBytes)
+{
+  guarded([&] {
+    checkResolution(width, height);
+    const uint64_t device = kRasterizeDeviceBytesPerPixel * width * height;
+    ctx.impl().rasterPipeline();  // the device's context, built on first use
+    const clr::ClContext& cl = *ctx.impl().clip;
+    const std::string what = "rasterize at " + std::to_string(height) + "x" + std::to_string(width);
+    if (device > cl.globalMemBytes)
+      throw Error(what + " needs " + clr::byteCount(device) + " of device memory, more than the device's " +
+                  clr::byteCount(cl.globalMemBytes));
+    const bool hostBacked = cl.info.type == "CPU";
+    const uint64_t limit = ctx.memoryLimit() ? ctx.memoryLimit() : UINT64_MAX;
+    const uint64_t onHost = hostBacked ? device : 0;
+    clr::checkHostMemory(what, outputBytes > UINT64_MAX - onHost ? UINT64_MAX : outputBytes + onHost, limit);
+    if (!hostBacked && device > limit)
+      throw Error(what + " needs " + clr::byteCount(device) + " of device memory, more than the limit of " +
+                  clr::byteCount(limit));
+  });
+}
 
 void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri, size_t numTriangles,
                    uint32_t width, uint32_t height, float* rast, uint32_t* ids, float* db)
 {
   guarded([&] {
-    // Step 1: the arguments.
-    if (width == 0 || height == 0 || width > CLR_MAX_VIEWPORT || height > CLR_MAX_VIEWPORT)
-      throw Error("resolution " + std::to_string(height) + "x" + std::to_string(width) +
-                  " (height x width) outside 1.." + std::to_string(CLR_MAX_VIEWPORT));
+    // Step 1: the arguments, and the memory they need.
+    checkResolution(width, height);
     if (numVertices && !pos) throw Error("pos: null array");
     checkTriangles(tri, numTriangles, numVertices);
     const size_t pixels = size_t(width) * height;
@@ -121,6 +171,7 @@ void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int
       if (db) std::memset(db, 0, 4 * pixels * sizeof(float));
       return;
     }
+    checkRasterizeMemory(ctx, width, height, 0);
     // Step 2: the frame pipeline's stages on the clip positions, identity
     // mvp (unused), one sample, no culling, the float32 depth test.
     clr::Pipeline& pipeline = ctx.impl().rasterPipeline();
@@ -149,6 +200,7 @@ Raster rasterize(Context& ctx, const float* pos, size_t numVertices, const int32
     r.numTriangles = numTriangles;
     const size_t pixels = size_t(width) * height;
     if (width && height && width <= CLR_MAX_VIEWPORT && height <= CLR_MAX_VIEWPORT) {
+      checkRasterizeMemory(ctx, width, height, pixels * (derivatives ? 36 : 20));  // rast, ids (and db)
       r.rast.resize(4 * pixels);
       r.ids.resize(pixels);
       if (derivatives) r.db.resize(4 * pixels);

@@ -276,6 +276,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   if (!args.outPath.empty())
     outputs.push_back({args.outPath, encodePng(args.outPath, image.width, image.height, image.pixels)});
   if (!args.aovPath.empty()) {
+    checkAovMemory(args.aovPath, args.width, args.height, cl);
     try {
       pipeline.aov();
       outputs.push_back({args.aovPath, encodeAovExr(args.aovPath, args.width, args.height, pipeline.readAov())});

@@ -41,9 +41,14 @@ class ArgumentTypeError(TypeError, ValueError):
 class Context:
     """One OpenCL device. device: None or "" (the first GPU, else the first
     CPU), a device index, or a substring of the device or platform name (see
-    devices()). Kernels are built on the first rasterize call."""
+    devices()). Kernels are built on the first rasterize call.
+    memory_limit: None, or the most bytes one call may take (its outputs
+    and device buffers); every call is checked against it, the device's
+    memory and the host's (RLIMIT_AS too) before allocating, and refused
+    with clraster.Error naming the size. release() frees the buffers kept
+    between calls (garbage collection of the Context does too)."""
 
-    def __init__(self, device=None):
+    def __init__(self, device=None, memory_limit=None):
         if device is None:
             device = ""
         if isinstance(device, bool) or not isinstance(device, (str, numbers.Integral)):
@@ -52,8 +57,20 @@ class Context:
             if device < 0:
                 raise ValueError(f"device: index {device} is negative")
             device = str(int(device))
+        if memory_limit is not None and (isinstance(memory_limit, bool)
+                                         or not isinstance(memory_limit, numbers.Integral)):
+            raise ArgumentTypeError(f"memory_limit: expected None or a number of bytes, got {memory_limit!r}")
+        if memory_limit is not None and memory_limit <= 0:
+            raise ValueError(f"memory_limit: expected a positive number of bytes, got {memory_limit}")
         self._ctx = _clraster.Context(device)
+        if memory_limit is not None:
+            self._ctx.memory_limit = int(memory_limit)
         self._lock = threading.Lock()
+
+    def release(self):
+        """Frees the device buffers kept between calls; kernels stay built."""
+        with self._lock:
+            self._ctx.release()
 
     @property
     def device_name(self):
@@ -123,6 +140,9 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     pos = _array("pos", pos, np.float32, (2, 3), 4)
     batch = pos if pos.ndim == 3 else pos[None]
     tri = _check_tri(tri, batch.shape[1])
+    with glctx._lock:  # before the outputs exist: refused with the size, not killed
+        _clraster.check_rasterize_memory(glctx._ctx, width, height,
+                                         batch.shape[0] * height * width * (32 if grad_db else 16))
     rast = np.empty((batch.shape[0], height, width, 4), np.float32)
     db = np.empty((batch.shape[0], height, width, 4 if grad_db else 0), np.float32)
     with glctx._lock:
