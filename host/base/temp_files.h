@@ -1,15 +1,9 @@
-// temp_files.h — temporary output files, removed when the process is ended
-// by SIGINT, SIGTERM or SIGHUP.
-//
-// Every temporary file an output is staged in (image_io.cpp) is a LiveTemp:
-// created with the three signals blocked in the creating thread and listed
-// in a fixed table before they are unblocked, and listed until it is renamed
-// into place or removed. The signal handler (installed when a file is
-// listed, for each signal whose action is the default, so a program that
-// handles these signals itself, like Python's SIGINT, keeps its own) marks
-// the process as ending, waits for any thread between creating and listing
-// a file, unlinks every listed file (only async-signal-safe calls), then
-// ends the process by the same signal with its default action.
+// temp_files.h — temporary output files, removed when SIGINT, SIGTERM or
+// SIGHUP ends the process. Each is created with those signals blocked in
+// its thread and listed in a fixed table until renamed or removed; the
+// handler (installed for a signal whose action is the default) waits for
+// threads between creating and listing, unlinks the listed files with
+// async-signal-safe calls, then re-raises the signal with its default action.
 #pragma once
 
 #include <cstddef>
@@ -17,14 +11,12 @@
 
 namespace clr {
 
-// How many temporary files may be live at once (the PNG writer's threads
-// and one command's outputs need a handful); more is a clr::Error.
+// Live temporary files at once (the writer threads need a handful); more is a clr::Error.
 inline constexpr size_t kMaxLiveTemps = 64;
 
 class LiveTemp {
  public:
-  // Creates target + ".tmp-XXXXXX" (mode 0600, open: fd()) and lists it; a
-  // failure is a clr::Error "TARGET: cannot write (reason)".
+  // Creates and lists target + ".tmp-XXXXXX" (0600, open); else "TARGET: cannot write (reason)".
   explicit LiveTemp(const std::string& target);
   ~LiveTemp() { release(); }
   LiveTemp(const LiveTemp&) = delete;
