@@ -107,7 +107,7 @@ TEST_CASE("outputs: a views run ended by a signal leaves no temporary file", "[o
   CHECK(left.out == "0\n");
 }
 
-TEST_CASE("outputs: --aov past an address-space limit is refused naming the size", "[outputs]")
+TEST_CASE("outputs: --aov or a PNG past an address-space limit is refused naming the size", "[outputs]")
 {
   // 4096x4096 visibility planes take about 2.7 GB of host memory beyond the
   // frame: under a 1.5 GB address-space limit, one error line, no output.
@@ -122,4 +122,13 @@ TEST_CASE("outputs: --aov past an address-space limit is refused naming the size
   CHECK(r.err.find("RLIMIT_AS") != std::string::npos);
   CHECK(!test::exists(dir + "/a.png"));
   CHECK(!test::exists(dir + "/a.exr"));
+  // A frame whose device buffers or PNG encoding do not fit a 1 GB limit
+  // (stb's encoder failed without a size before).
+  const test::Run png = test::runShell("ulimit -v 1000000; '" + std::string(CLRASTER_BIN) + "' render -o '" + dir +
+                                           "/b.png' --size 8192x8192 2>'" + dir + "/err.txt'",
+                                       dir + "/err.txt");
+  INFO("stderr: " << png.err);
+  CHECK(png.status == 1);
+  CHECK(png.err.find(" bytes (") != std::string::npos);
+  CHECK(!test::exists(dir + "/b.png"));
 }

@@ -164,6 +164,11 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
       checkTarget(name);
   }
   StderrWarnings warnings;
+  // The host memory of the largest frame: the writer's capacity + 1 images
+  // waiting (4 bytes a pixel) and the one it encodes (image_io.h).
+  uint64_t largest = 0;
+  for (size_t v : selected) largest = std::max<uint64_t>(largest, uint64_t(views[v].width) * views[v].height);
+  checkHostMemory("--views " + userText(args.viewsPath) + ": frames in flight", largest * (3 * 4 + 15));
   const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);

@@ -3,6 +3,7 @@
 #include "io/image_io.h"
 
 #include "base/error.h"
+#include "base/memory.h"
 #include "base/temp_files.h"
 
 #include <cstdlib>
@@ -144,6 +145,9 @@ void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes, 
 
 std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
 {
+  // At most 15 bytes a pixel: the RGB copy, stb's filtered rows, zlib's bound, stb's output and the copy here.
+  checkHostMemory(userText(path) + ": a PNG of " + std::to_string(width) + "x" + std::to_string(height),
+                  uint64_t(15) * width * height);
   std::vector<unsigned char> rgb(size_t(width) * height * 3);
   for (size_t i = 0; i < size_t(width) * height; ++i)
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;

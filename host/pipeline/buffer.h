@@ -72,7 +72,7 @@ class DeviceBuffer {
                   (device ? "the device's " + byteCount(memory_->globalMemBytes)
                           : "the memory limit of " + byteCount(memory_->limitBytes)));
     }
-    if (memory_->hostBacked) checkHostMemory(name_, chosen * sizeof(T));
+    if (memory_->hostBacked) checkHostMemory("the frame's device buffer for " + name_, chosen * sizeof(T));
     try {
       buffer_ = cl::Buffer(memory_->context, CL_MEM_READ_WRITE, chosen * sizeof(T));
       if (memory_->hostBacked) memory_->queue.enqueueFillBuffer(buffer_, cl_uchar(0), 0, 1);
