@@ -84,7 +84,12 @@ PYBIND11_MODULE(_clraster, m)
       .def(py::init<const std::string&>(), py::arg("device") = "")
       .def_property_readonly("device_name", [](const clraster::Context& c) { return c.device().name; })
       .def_property_readonly("device_type", [](const clraster::Context& c) { return c.device().type; })
-      .def_property_readonly("platform", [](const clraster::Context& c) { return c.device().platform; });
+      .def_property_readonly("platform", [](const clraster::Context& c) { return c.device().platform; })
+      .def_property("memory_limit", &clraster::Context::memoryLimit, &clraster::Context::setMemoryLimit)
+      .def("release", &clraster::Context::release);
+  // (It builds the kernels on a Context's first call: without the GIL.)
+  m.def("check_rasterize_memory", &clraster::checkRasterizeMemory, py::arg("ctx"), py::arg("width"), py::arg("height"),
+        py::arg("output_bytes"), py::call_guard<py::gil_scoped_release>());
   m.def("rasterize_into", &rasterizeInto, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
         py::arg("rast").noconvert(), py::arg("db").noconvert() = py::none());
   m.def("interpolate_into", &interpolateInto, py::arg("attr").noconvert(), py::arg("rast").noconvert(),

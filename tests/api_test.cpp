@@ -114,6 +114,23 @@ TEST_CASE("api bad arguments are errors naming them", "[api]")
   REQUIRE_THROWS_WITH(clraster::interpolate(context(), attr, 3, 1, r, good), Catch::StartsWith("raster: "));
 }
 
+TEST_CASE("api interpolate refuses a rast naming no triangle", "[api]")
+{
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 2};
+  const float attr[] = {0, 1, 2};
+  const clraster::Raster good = clraster::rasterize(context(), pos, 3, tri, 1, 8, 8);
+  REQUIRE(clraster::interpolate(context(), attr, 3, 1, good, tri).size() == 64);
+  // Channel 3 of one pixel: an id beyond the one triangle, negative, NaN,
+  // huge, or between two ids.
+  for (float bad : {2.0f, 7.0f, -3.0f, std::nanf(""), 1e30f, 0.5f}) {
+    clraster::Raster r = good;
+    r.rast[4 * 5 + 3] = bad;
+    REQUIRE_THROWS_WITH(clraster::interpolate(context(), attr, 3, 1, r, tri),
+                        Catch::StartsWith("rast: pixel 5 holds triangle id channel") && Catch::Contains("0..1"));
+  }
+}
+
 TEST_CASE("api renderer draws the built in scene", "[api]")
 {
   const clraster::Scene scene = clraster::Scene::builtin();
@@ -186,4 +203,34 @@ TEST_CASE("api outputs are refused where the command line refuses them", "[api]"
   REQUIRE_THROWS_WITH(renderer.writeAov("vis.png"), Catch::Contains("ending in .exr"));
   std::unique_ptr<clraster::Context> built;
   REQUIRE_THROWS_WITH(clraster::renderCommand(clraster::RenderOptions(), built), Catch::StartsWith("missing -o"));
+}
+
+TEST_CASE("api calls past the memory limit are refused naming the size", "[api]")
+{
+  clraster::Context ctx(std::getenv("CLRASTER_TEST_DEVICE") ? std::getenv("CLRASTER_TEST_DEVICE") : "");
+  const float pos[] = {-1, -1, 0, 1, 1, -1, 0, 1, 0, 1, 0, 1};
+  const int32_t tri[] = {0, 1, 2};
+  ctx.setMemoryLimit(1 << 20);
+  REQUIRE(ctx.memoryLimit() == 1u << 20);
+  REQUIRE_THROWS_WITH(clraster::rasterize(ctx, pos, 3, tri, 1, 512, 512),
+                      Catch::StartsWith("rasterize at 512x512 needs ") && Catch::Contains("more than the limit of"));
+  std::vector<float> rast(4 * 512 * 512);
+  REQUIRE_THROWS_WITH(clraster::rasterizeInto(ctx, pos, 3, tri, 1, 512, 512, rast.data(), nullptr),
+                      Catch::Contains("bytes"));
+  REQUIRE(clraster::rasterize(ctx, pos, 3, tri, 1, 16, 16).ids[16 * 8 + 8] == 1);
+  // Huge sizes: refused by the limit, the device's memory or the host's, never an abort.
+  ctx.setMemoryLimit(0);
+  for (uint32_t side : {16384u, 12000u, 1u})
+    for (uint64_t outputs : {uint64_t(1) << 50, ~uint64_t(0) / 2}) {
+      try {
+        clraster::checkRasterizeMemory(ctx, side, 16384, outputs);
+        FAIL("outputs of " << outputs << " bytes at " << side << "x16384 were not refused");
+      } catch (const clraster::Error& e) {
+        CHECK_THAT(e.what(), Catch::Contains(" bytes ("));
+      }
+    }
+  REQUIRE_THROWS_WITH(clraster::checkRasterizeMemory(ctx, 0, 8, 0), Catch::StartsWith("resolution"));
+  // release() frees what calls kept; the next call allocates again.
+  ctx.release();
+  REQUIRE(clraster::rasterize(ctx, pos, 3, tri, 1, 16, 16).ids[16 * 8 + 8] == 1);
 }

@@ -1,6 +1,8 @@
 // test_program_cache.cpp — the compiled-program cache (program_cache.h): a
 // stored program loads and renders the pixels the source build renders; a
-// missing, corrupt, truncated or foreign file is ignored, never an error;
+// missing, corrupt, truncated or foreign file is ignored, never an error, and
+// so is a swapped binary whose key and checksum were recomputed, or a folder
+// or file other users can write;
 // `clraster cache` stores what render and the library build, and fails on
 // bad arguments with one line.
 #include "cli_support.h"
@@ -8,6 +10,9 @@
 #include "test_support.h"
 
 #include <catch2/catch.hpp>
+
+#include <openssl/evp.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -87,6 +92,73 @@ TEST_CASE("program cache: a stored program loads, and damaged or foreign files a
   }
   CHECK(!clr::loadCachedProgram(ctx.context, device, options)());
   setenv("CLRASTER_CACHE_DIR", "", 1);  // as test_main.cpp leaves it
+}
+
+TEST_CASE("program cache: a swapped binary with its key and checksum recomputed is not loaded", "[cache]")
+{
+  const std::string dir = cacheDir("swap");
+  REQUIRE(setenv("CLRASTER_CACHE_DIR", dir.c_str(), 1) == 0);
+  clr::ClContext& ctx = test::context();
+  const cl::Device& device = ctx.info.device;
+  const std::string frame = clr::programOptions(ctx.buildOptions(), false);
+  const std::string extras = clr::programOptions(ctx.buildOptions(), true);
+  const std::string framePath = clr::storeProgramBinary(ctx.program, device, frame);
+  const std::string extrasPath = clr::storeProgramBinary(ctx.extras(), device, extras);
+  REQUIRE(clr::loadCachedProgram(ctx.context, device, frame)());
+  // The extras binary under the frame program's key: header key and size
+  // rewritten, and as its check SHA-256 of key and binary (what anyone who
+  // cannot read the folder's secret can compute).
+  const std::string other = slurp(extrasPath);
+  const std::string key = clr::programCacheKey(device, frame);
+  std::string swapped = other;
+  swapped.replace(8, 32, key);
+  unsigned char digest[32];
+  const std::string message = key + other.substr(80);
+  EVP_Digest(message.data(), message.size(), digest, nullptr, EVP_sha256(), nullptr);
+  swapped.replace(48, 32, std::string(reinterpret_cast<const char*>(digest), 32));
+  overwrite(framePath, swapped);
+  CHECK(!clr::loadCachedProgram(ctx.context, device, frame)());
+  // The same file under another secret (another user's cache) is refused too.
+  overwrite(framePath, other.substr(0, 8) + key + other.substr(40));
+  CHECK(!clr::loadCachedProgram(ctx.context, device, frame)());
+  setenv("CLRASTER_CACHE_DIR", "", 1);
+}
+
+TEST_CASE("program cache: a folder or file other users can write is refused", "[cache][cli]")
+{
+  const std::string dir = cacheDir("perm");
+  const Run stored = runWithCache(dir, "cache");
+  INFO("stderr: " << stored.err);
+  REQUIRE(stored.status == 0);
+  struct stat st;
+  REQUIRE(stat(dir.c_str(), &st) == 0);
+  CHECK((st.st_mode & 0777) == 0700);
+  const std::string first = stored.out.substr(0, stored.out.find('\n'));
+  REQUIRE(stat(first.c_str(), &st) == 0);
+  CHECK((st.st_mode & 0777) == 0600);
+  REQUIRE(setenv("CLRASTER_CACHE_DIR", dir.c_str(), 1) == 0);
+  const clr::ClContext& ctx = test::context();
+  const std::string options = clr::programOptions(ctx.buildOptions(), false);
+  const std::string out = test::tempDir() + "/kcache-perm-" + std::to_string(getpid()) + ".png";
+  // A group- or world-writable folder, or entry: a miss for the loader, an
+  // error for `clraster cache`, and a render that still succeeds.
+  REQUIRE(clr::loadCachedProgram(ctx.context, ctx.info.device, options)());
+  for (const auto& [path, mode] : {std::pair<std::string, mode_t>{dir, 0770}, {dir, 0707}, {first, 0660}}) {
+    INFO(path << " mode " << std::oct << mode);
+    REQUIRE(chmod(path.c_str(), mode) == 0);
+    CHECK(!clr::loadCachedProgram(ctx.context, ctx.info.device, options)());
+    const Run render = runWithCache(dir, "render --size 32x24 -o '" + out + "'");
+    CHECK(render.status == 0);
+    CHECK(render.err.empty());
+    if (path == dir) {
+      const Run refused = runWithCache(dir, "cache");
+      CHECK(refused.status == 1);
+      CHECK(refused.err.find("no other user can write") != std::string::npos);
+    }
+    REQUIRE(chmod(path.c_str(), path == dir ? 0700 : 0600) == 0);
+  }
+  CHECK(clr::loadCachedProgram(ctx.context, ctx.info.device, options)());
+  setenv("CLRASTER_CACHE_DIR", "", 1);
 }
 
 TEST_CASE("program cache: `clraster cache` stores programs that render the same pixels", "[cache][cli]")

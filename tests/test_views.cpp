@@ -154,6 +154,26 @@ TEST_CASE("views: each kind of bad file names the file, the view and the problem
   CHECK(frameError("{\"eye\": [3, 2, 1]}").empty());
 }
 
+TEST_CASE("views: a file of many views parses in one pass up to the named limit", "[views]")
+{
+  // kMaxViews empty views parse (a parser quadratic in the count takes hours
+  // on this many); one more is refused while parsing, naming the limit.
+  auto views = [](size_t n) {
+    std::string text = "{\"views\": [";
+    text.reserve(text.size() + 3 * n + 2);
+    for (size_t i = 0; i < n; ++i) text += i ? ",{}" : "{}";
+    return text + "]}";
+  };
+  CHECK(parse(views(clr::kMaxViews)).size() == clr::kMaxViews);
+  CHECK(parseError(views(clr::kMaxViews + 1)) ==
+        "v.json: more than " + std::to_string(clr::kMaxViews) + " views (the limit of a views file)");
+  // Any value counts as a view (a scalar is refused later as not an object).
+  std::string scalars = "{\"views\": [1";
+  for (size_t i = 0; i < clr::kMaxViews; ++i) scalars += ",1";
+  CHECK_THAT(parseError(scalars + "]}"), Contains("views (the limit of a views file)"));
+  CHECK(parseError("{\"views\": [{}, {\"eye\": [1, 2, 3], \"eye\": [1, 2, 3]}]}") == "v.json: duplicate key \"eye\"");
+}
+
 TEST_CASE("views: a bad views file is one error line and writes no output", "[views]")
 {
   const std::string dir = freshDir("views-bad");

@@ -10,10 +10,12 @@
 // clraster::Error (guarded(), api_impl.h). The scene-level calls are api_render.cpp.
 #include "api/api_impl.h"
 
+#include "base/memory.h"
 #include "pipeline/pipeline.h"
 
 #include <clraster/clraster.hpp>
 
+#include <cstdio>
 #include <cstring>
 
 namespace clraster {
@@ -44,10 +46,28 @@ const DeviceInfo& Context::device() const
   return Error::live(impl_.get(), "clraster::Context")->info;
 }
 
+void Context::setMemoryLimit(uint64_t bytes)
+{
+  Impl& i = impl();
+  i.memoryLimit = bytes;
+  if (i.clipPipeline) i.clipPipeline->memory().limitBytes = bytes ? bytes : UINT64_MAX;
+}
+uint64_t Context::memoryLimit() const
+{
+  return Error::live(impl_.get(), "clraster::Context")->memoryLimit;
+}
+void Context::release()
+{
+  impl().clipPipeline.reset();
+}
+
 clr::Pipeline& Context::Impl::rasterPipeline()
 {
   if (!clip) clip = std::make_unique<clr::ClContext>(selector, 0, true);
-  if (!clipPipeline) clipPipeline = std::make_unique<clr::Pipeline>(*clip);
+  if (!clipPipeline) {
+    clipPipeline = std::make_unique<clr::Pipeline>(*clip);
+    clipPipeline->memory().limitBytes = memoryLimit ? memoryLimit : UINT64_MAX;
+  }
   return *clipPipeline;
 }
 
@@ -86,16 +106,62 @@ void checkTriangles(const int32_t* tri, size_t numTriangles, size_t numVertices)
                   " outside 0.." + std::to_string(int64_t(numVertices) - 1));
 }
 
+// Every pixel's channel 3 is 0 (background) or the encoding of an id in 1..numTriangles.
+void checkRastIds(const float* rast, size_t pixels, size_t numTriangles)
+{
+  for (size_t p = 0; p < pixels; ++p) {
+    const float f = rast[4 * p + 3];
+    const uint32_t id = decodeTriangleId(f);
+    if (f != 0.0f && (id == 0 || id > numTriangles || encodeTriangleId(id) != f)) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%.9g", double(f));
+      throw Error("rast: pixel " + std::to_string(p) + " holds triangle id channel " + value + ", not an id in 0.." +
+                  std::to_string(numTriangles) + " (0: background)");
+    }
+  }
+}
+
+// Device bytes per pixel a rasterize takes at least: the visibility buffer
+// and the outputs' device copies (measured 35 retained, more at the peak);
+// the buffers themselves are checked again as they are allocated.
+constexpr uint64_t kRasterizeDeviceBytesPerPixel = 40;
+
+void checkResolution(uint32_t width, uint32_t height)
+{
+  if (width == 0 || height == 0 || width > CLR_MAX_VIEWPORT || height > CLR_MAX_VIEWPORT)
+    throw Error("resolution " + std::to_string(height) + "x" + std::to_string(width) + " (height x width) outside 1.." +
+                std::to_string(CLR_MAX_VIEWPORT));
+}
+
 }  // namespace
+
+void checkRasterizeMemory(Context& ctx, uint32_t width, uint32_t height, uint64_t outputBytes)
+{
+  guarded([&] {
+    checkResolution(width, height);
+    const uint64_t device = kRasterizeDeviceBytesPerPixel * width * height;
+    ctx.impl().rasterPipeline();  // the device's context, built on first use
+    const clr::ClContext& cl = *ctx.impl().clip;
+    const std::string what = "rasterize at " + std::to_string(height) + "x" + std::to_string(width);
+    if (device > cl.globalMemBytes)
+      throw Error(what + " needs " + clr::byteCount(device) + " of device memory, more than the device's " +
+                  clr::byteCount(cl.globalMemBytes));
+    const bool hostBacked = cl.info.type == "CPU";
+    const uint64_t limit = ctx.memoryLimit() ? ctx.memoryLimit() : UINT64_MAX;
+    const uint64_t onHost = hostBacked ? device : 0;
+    clr::checkHostMemory(what, outputBytes > UINT64_MAX - onHost ? UINT64_MAX : outputBytes + onHost, limit);
+    if (!hostBacked && device > limit)
+      throw Error(what + " needs " + clr::byteCount(device) + " of device memory, more than the limit of " +
+                  clr::byteCount(limit));
+  });
+}
 
 void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri, size_t numTriangles,
                    uint32_t width, uint32_t height, float* rast, uint32_t* ids, float* db)
 {
   guarded([&] {
-    // Step 1: the arguments.
-    if (width == 0 || height == 0 || width > CLR_MAX_VIEWPORT || height > CLR_MAX_VIEWPORT)
-      throw Error("resolution " + std::to_string(height) + "x" + std::to_string(width) +
-                  " (height x width) outside 1.." + std::to_string(CLR_MAX_VIEWPORT));
+    // Step 1: the arguments, and the memory they need.
+    checkResolution(width, height);
     if (numVertices && !pos) throw Error("pos: null array");
     checkTriangles(tri, numTriangles, numVertices);
     const size_t pixels = size_t(width) * height;
@@ -105,6 +171,7 @@ void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int
       if (db) std::memset(db, 0, 4 * pixels * sizeof(float));
       return;
     }
+    checkRasterizeMemory(ctx, width, height, 0);
     // Step 2: the frame pipeline's stages on the clip positions, identity
     // mvp (unused), one sample, no culling, the float32 depth test.
     clr::Pipeline& pipeline = ctx.impl().rasterPipeline();
@@ -133,6 +200,7 @@ Raster rasterize(Context& ctx, const float* pos, size_t numVertices, const int32
     r.numTriangles = numTriangles;
     const size_t pixels = size_t(width) * height;
     if (width && height && width <= CLR_MAX_VIEWPORT && height <= CLR_MAX_VIEWPORT) {
+      checkRasterizeMemory(ctx, width, height, pixels * (derivatives ? 36 : 20));  // rast, ids (and db)
       r.rast.resize(4 * pixels);
       r.ids.resize(pixels);
       if (derivatives) r.db.resize(4 * pixels);
@@ -161,12 +229,13 @@ void interpolateInto(const float* attr, size_t numVertices, size_t numAttrs, con
       listed.push_back(size_t(k));
     }
     if (!listed.empty() && (!db || !outDa)) throw Error("diff_attrs: needs rast_db");
+    checkRastIds(rast, pixels, numTriangles);
     // Step 2: per pixel, nvdiffrast's formula (interpolate.cu) in its order.
     for (size_t p = 0; p < pixels; ++p) {
       const uint32_t id = decodeTriangleId(rast[4 * p + 3]);
       float* o = out + p * numAttrs;
       float* da = outDa ? outDa + p * 2 * listed.size() : nullptr;
-      if (id == 0 || id > numTriangles) {
+      if (id == 0) {
         std::fill(o, o + numAttrs, 0.0f);
         if (da) std::fill(da, da + 2 * listed.size(), 0.0f);
         continue;

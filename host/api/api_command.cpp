@@ -87,18 +87,41 @@ std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipelin
   return out;
 }
 
-// A loaded scene's warnings, on stderr.
-void warnAbout(const RenderArgs& args, const Mesh& mesh)
+// A command's warnings on stderr, through one bounded sink (base/warnings.h):
+// each new line as it comes, and at the end (finish) the lines whose kind
+// repeated since, with their counts, and the count of those past the bound.
+class StderrWarnings {
+ public:
+  void add(const std::string& kind, const std::string& line)
+  {
+    if (!sink_.add(kind, line)) return;
+    printed_.push_back(line);
+    std::fprintf(stderr, "clraster: warning: %s\n", line.c_str());
+  }
+  void finish()
+  {
+    const std::vector<std::string>& lines = sink_.lines();
+    for (size_t k = 0; k < lines.size(); ++k)
+      if (k >= printed_.size() || lines[k] != printed_[k])
+        std::fprintf(stderr, "clraster: warning: %s\n", lines[k].c_str());
+  }
+
+ private:
+  Warnings sink_;
+  std::vector<std::string> printed_;
+};
+
+// A loaded scene's warnings (already bounded: each of its lines is a kind).
+void warnAbout(const RenderArgs& args, const Mesh& mesh, StderrWarnings& warnings)
 {
-  for (const std::string& w : mesh.warnings) std::fprintf(stderr, "clraster: warning: %s\n", w.c_str());
+  for (const std::string& w : mesh.warnings.lines()) warnings.add(w, w);
   if (args.shadeMode == CLR_SHADE_ID && mesh.numTris() >= (1u << 24) - 1)
-    std::fprintf(stderr, "clraster: warning: %zu triangles; --shade id encodes only 24 bits, ids wrap\n",
-                 mesh.numTris());
+    warnings.add("ids", std::to_string(mesh.numTris()) + " triangles; --shade id encodes only 24 bits, ids wrap");
 }
 
 // The scene, and the device context with its frame program, at once (see
 // the file's contract); the context goes to `context`.
-Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context)
+Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context, StderrWarnings& warnings)
 {
   Mesh mesh;
   std::future<Mesh> importing;  // a file's import, when valid()
@@ -116,7 +139,7 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& cont
     throw;
   }
   if (importing.valid()) mesh = importing.get();
-  warnAbout(args, mesh);
+  warnAbout(args, mesh, warnings);
   return mesh;
 }
 
@@ -140,7 +163,13 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
     else
       checkTarget(name);
   }
-  const Mesh mesh = loadSceneDuringBuild(args, context);
+  StderrWarnings warnings;
+  // The host memory of the largest frame: the writer's capacity + 1 images
+  // waiting (4 bytes a pixel) and the one it encodes (image_io.h).
+  uint64_t largest = 0;
+  for (size_t v : selected) largest = std::max<uint64_t>(largest, uint64_t(views[v].width) * views[v].height);
+  checkHostMemory("--views " + userText(args.viewsPath) + ": frames in flight", largest * (3 * 4 + 15));
+  const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);
   const std::vector<Camera> cameras = frameViews(args.viewsPath, views, bounds);
@@ -161,14 +190,12 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
     progress.update(0);
     // --aa auto / --quality auto choose once, on the first view of the shard.
     std::optional<FrameSettings> chosen;
-    bool depthWarned = false;
     for (size_t v : selected) {
       const auto frameStart = std::chrono::steady_clock::now();
       Frame frame{outputName(args.outPath, v), views[v].width, views[v].height, {}};
       DepthChoice depth;
       FrameSettings settings = makeFrameSettings(args, cameras[v], frame.width, frame.height, bounds, &depth);
-      if (!depth.warning.empty() && !std::exchange(depthWarned, true))
-        std::fprintf(stderr, "clraster: warning: view %zu: %s\n", v, depth.warning.c_str());
+      if (!depth.warning.empty()) warnings.add("depth", "view " + std::to_string(v) + ": " + depth.warning);
       if ((args.aa == "auto" || args.qualityAuto) && !chosen) {
         chooseAutomatically(pipeline, settings, args.aa == "auto" || args.aa.empty(), args.qualityAuto);
         chosen = settings;
@@ -185,6 +212,7 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
     writer.finish();
     writeMs = writer.writeMs();
   }
+  warnings.finish();
   const double totalMs = msSince(start);
 
   // Step 4: one JSON line for the run.
@@ -210,7 +238,8 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   checkCameraArgs(args.camera);
   if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
-  const Mesh mesh = loadSceneDuringBuild(args, context);
+  StderrWarnings warnings;
+  const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);
   const Camera camera = frameCamera(args.camera, bounds);
@@ -220,7 +249,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   pipeline.uploadScene(mesh);
   DepthChoice depth;
   FrameSettings settings = makeFrameSettings(args, camera, args.width, args.height, bounds, &depth);
-  if (!depth.warning.empty()) std::fprintf(stderr, "clraster: warning: %s\n", depth.warning.c_str());
+  if (!depth.warning.empty()) warnings.add("depth", depth.warning);
   // --aa auto / --quality auto: a probe frame picks the methods (quality.h).
   std::string autoJson;
   if (args.aa == "auto" || args.qualityAuto)
@@ -252,6 +281,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   if (!args.outPath.empty())
     outputs.push_back({args.outPath, encodePng(args.outPath, image.width, image.height, image.pixels)});
   if (!args.aovPath.empty()) {
+    checkAovMemory(args.aovPath, args.width, args.height, cl);
     try {
       pipeline.aov();
       outputs.push_back({args.aovPath, encodeAovExr(args.aovPath, args.width, args.height, pipeline.readAov())});
@@ -261,6 +291,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
     }
   }
   writeFilesAtomic(outputs);
+  warnings.finish();
   return args.stats ? statsLine(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames) : "";
 }
 

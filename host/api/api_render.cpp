@@ -52,7 +52,7 @@ size_t Scene::numTriangles() const
 }
 const std::vector<std::string>& Scene::warnings() const
 {
-  return impl().mesh.warnings;
+  return impl().mesh.warnings.lines();
 }
 
 // ---- RenderOptions ----
@@ -161,7 +161,8 @@ bool RenderOptions::idShading() const
 // ---- Renderer ----
 
 struct Renderer::Impl {
-  explicit Impl(clr::ClContext& cl) : pipeline(cl) {}
+  explicit Impl(clr::ClContext& cl) : cl(cl), pipeline(cl) {}
+  clr::ClContext& cl;
   clr::Pipeline pipeline;
   clr::Bounds bounds;
   bool aovKept = false;
@@ -217,8 +218,9 @@ void Renderer::writeAov(const std::string& path)
     Impl& impl = *Error::live(impl_.get(), "clraster::Renderer");
     clr::checkExtension("--aov", path, ".exr");
     if (!impl.aovKept) throw Error("--aov: the last frame was rendered without --aov");
-    impl.pipeline.aov();
     const FrameParams& p = impl.pipeline.params();
+    checkAovMemory(path, p.width, p.height, impl.cl);
+    impl.pipeline.aov();
     clr::writeAovExr(path, p.width, p.height, impl.pipeline.readAov());
   });
 }

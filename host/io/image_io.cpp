@@ -3,6 +3,8 @@
 #include "io/image_io.h"
 
 #include "base/error.h"
+#include "base/memory.h"
+#include "base/temp_files.h"
 
 #include <cstdlib>
 #include <zlib.h>
@@ -56,17 +58,13 @@ std::string failure(const std::string& path, int err)
   return userText(path) + ": cannot write (" + std::strerror(err) + ")";
 }
 
-// Creates an empty temporary file next to path; returns its fd and name.
-int makeTemp(const std::string& path, std::string& tempName)
-{
-  std::vector<char> name(path.begin(), path.end());
-  const char suffix[] = ".tmp-XXXXXX";
-  name.insert(name.end(), suffix, suffix + sizeof suffix);
-  const int fd = mkstemp(name.data());
-  if (fd < 0) throw Error(failure(path, errno));
-  tempName = name.data();
-  return fd;
-}
+// The process's umask, read once before any thread starts (umask(2) both
+// reads and sets it).
+const mode_t kUmask = [] {
+  const mode_t m = umask(0);
+  umask(m);
+  return m;
+}();
 
 }  // namespace
 
@@ -80,19 +78,19 @@ void checkTarget(const std::string& path)
 void checkWritable(const std::string& path)
 {
   checkTarget(path);
-  std::string temp;
-  const int fd = makeTemp(path, temp);
-  close(fd);
-  unlink(temp.c_str());
+  const LiveTemp temp(path);
+  close(temp.fd());
+  unlink(temp.name().c_str());
 }
 
 namespace {
 
-// bytes in a new temporary file beside path, flushed; returns its name.
-std::string stageFile(const std::string& path, const std::vector<unsigned char>& bytes)
+// bytes in a new temporary file beside path, flushed, with mode less the
+// umask; returns it.
+LiveTemp stageFile(const std::string& path, const std::vector<unsigned char>& bytes, mode_t mode)
 {
-  std::string temp;
-  const int fd = makeTemp(path, temp);
+  LiveTemp temp(path);
+  const int fd = temp.fd();
   size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
@@ -100,14 +98,14 @@ std::string stageFile(const std::string& path, const std::vector<unsigned char>&
     if (n <= 0) {
       const int err = errno;
       close(fd);
-      unlink(temp.c_str());
+      unlink(temp.name().c_str());
       throw Error(failure(path, err));
     }
     done += size_t(n);
   }
-  if (fsync(fd) != 0 || close(fd) != 0 || chmod(temp.c_str(), 0644) != 0) {
+  if (fchmod(fd, mode & ~kUmask) != 0 || fsync(fd) != 0 || close(fd) != 0) {
     const int err = errno;
-    unlink(temp.c_str());
+    unlink(temp.name().c_str());
     throw Error(failure(path, err));
   }
   return temp;
@@ -115,37 +113,41 @@ std::string stageFile(const std::string& path, const std::vector<unsigned char>&
 
 }  // namespace
 
-void writeFilesAtomic(const std::vector<OutputFile>& files)
+void writeFilesAtomic(const std::vector<OutputFile>& files, unsigned mode)
 {
   // Step 1: every file staged; a failure removes those staged before it.
-  std::vector<std::string> temps;
+  std::vector<LiveTemp> temps;
   try {
     for (const OutputFile& f : files) {
       checkTarget(f.path);
-      temps.push_back(stageFile(f.path, f.bytes));
+      temps.push_back(stageFile(f.path, f.bytes, mode_t(mode)));
     }
   } catch (...) {
-    for (const std::string& t : temps) unlink(t.c_str());
+    for (const LiveTemp& t : temps) unlink(t.name().c_str());
     throw;
   }
-  // Step 2: the renames, each within its target's folder.
+  // Step 2: the renames, each within its target's folder; each temporary
+  // file stays listed until it is renamed or removed.
   for (size_t k = 0; k < files.size(); ++k)
-    if (rename(temps[k].c_str(), files[k].path.c_str()) != 0) {
+    if (rename(temps[k].name().c_str(), files[k].path.c_str()) != 0) {
       const int err = errno;
-      for (size_t j = k; j < temps.size(); ++j) unlink(temps[j].c_str());
+      for (size_t j = k; j < temps.size(); ++j) unlink(temps[j].name().c_str());
       throw Error(failure(files[k].path, err));
     }
 }
 
-void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes)
+void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes, unsigned mode)
 {
   std::vector<OutputFile> files(1);
   files[0] = {path, std::move(bytes)};
-  writeFilesAtomic(files);
+  writeFilesAtomic(files, mode);
 }
 
 std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba)
 {
+  // At most 15 bytes a pixel: the RGB copy, stb's filtered rows, zlib's bound, stb's output and the copy here.
+  checkHostMemory(userText(path) + ": a PNG of " + std::to_string(width) + "x" + std::to_string(height),
+                  uint64_t(15) * width * height);
   std::vector<unsigned char> rgb(size_t(width) * height * 3);
   for (size_t i = 0; i < size_t(width) * height; ++i)
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = (rgba[i] >> (8 * c)) & 0xFF;

@@ -21,8 +21,10 @@ inline void writePng(const std::string& path, uint32_t width, uint32_t height, c
 std::vector<unsigned char> encodePng(const std::string& path, uint32_t width, uint32_t height, const uint32_t* rgba);
 
 // Writes bytes to a temporary file beside path, flushes it and renames it
-// over path (the pattern every output file follows).
-void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes);
+// over path (the pattern every output file follows). The file gets `mode`
+// less the process's umask, as open(2) would give a new file; while it is a
+// temporary file, SIGINT, SIGTERM and SIGHUP remove it (base/temp_files.h).
+void writeFileAtomic(const std::string& path, std::vector<unsigned char> bytes, unsigned mode = 0666);
 
 // One render's outputs together: every file is written and flushed to its
 // temporary file first, then all are renamed into place, so a failure
@@ -31,7 +33,7 @@ struct OutputFile {
   std::string path;
   std::vector<unsigned char> bytes;
 };
-void writeFilesAtomic(const std::vector<OutputFile>& files);
+void writeFilesAtomic(const std::vector<OutputFile>& files, unsigned mode = 0666);
 
 // Throws unless path is not a directory (checkTarget) and a file can be
 // created in its directory (checked before rendering so a bad -o fails

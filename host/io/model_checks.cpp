@@ -57,7 +57,8 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       std::tolower(static_cast<unsigned char>(magic[2])) != 'y')
     return;  // not PLY: assimp decides
   if (magic.size() > 3)
-    throw Error(oneLine(path + ": PLY header line " + std::to_string(magicLine) + ": text after the magic 'ply'"));
+    throw Error(
+        oneLine(userText(path) + ": PLY header line " + std::to_string(magicLine) + ": text after the magic 'ply'"));
   // Step 2: the header lines up to end_header.
   static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
                                        "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
@@ -78,13 +79,13 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
     std::istringstream words(line);
     std::string key, a, b, c;
     words >> key;
-    const std::string where = path + ": PLY header line " + std::to_string(lineNo) + ": ";
+    const std::string where = userText(path) + ": PLY header line " + std::to_string(lineNo) + ": ";
     if (key == "end_header") {
       if (!haveFormat || !haveElement) throw Error(oneLine(where + "end_header before format and element lines"));
       bodyBytes += count * itemBytes;
       const auto headerEnd = in.tellg();
       if (binary && headerEnd >= 0 && fileSize - uint64_t(headerEnd) < bodyBytes)
-        throw Error(oneLine(path + ": PLY binary body of " + std::to_string(fileSize - uint64_t(headerEnd)) +
+        throw Error(oneLine(userText(path) + ": PLY binary body of " + std::to_string(fileSize - uint64_t(headerEnd)) +
                             " bytes, less than its elements' " + std::to_string(bodyBytes) + " (a truncated file)"));
       return;
     }
@@ -92,7 +93,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
     if (key == "format") {
       words >> a >> b;
       if ((a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian") || b != "1.0")
-        throw Error(oneLine(where + "unknown format '" + a + " " + b + "'"));
+        throw Error(oneLine(where + "unknown format '" + userText(a + " " + b, 60) + "'"));
       haveFormat = true;
       binary = a != "ascii";
     } else if (key == "element") {
@@ -109,7 +110,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       count = uint64_t(std::stoll(countText));
       itemBytes = 0;
       if (count > fileSize)
-        throw Error(oneLine(where + "element '" + a + "' has " + std::to_string(count) +
+        throw Error(oneLine(where + "element '" + userText(a, 60) + "' has " + std::to_string(count) +
                             " items, more than the file's " + std::to_string(fileSize) + " bytes hold"));
       haveElement = true;
       elementLine = lineNo;
@@ -121,10 +122,11 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       words >> a;
       if (a == "list") {
         words >> b >> c;
-        if (!known(b) || !known(c)) throw Error(oneLine(where + "unknown list property type in '" + line + "'"));
+        if (!known(b) || !known(c))
+          throw Error(oneLine(where + "unknown list property type in '" + userText(line, 60) + "'"));
         itemBytes += bytes(b);
       } else if (!known(a)) {
-        throw Error(oneLine(where + "unknown property type '" + a + "'"));
+        throw Error(oneLine(where + "unknown property type '" + userText(a, 60) + "'"));
       } else {
         itemBytes += bytes(a);
       }
@@ -137,7 +139,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
       continue;
     }
   }
-  throw Error(path + ": PLY header has no end_header");
+  throw Error(userText(path) + ": PLY header has no end_header");
 }
 
 // Assimp 5.2's OFF reader allocates the vertex and face counts of the header
@@ -184,8 +186,8 @@ void checkOffHeader(const std::string& path, uint64_t fileSize)
     nextToken();
     const std::string count = digits();
     if (count.size() > 19 || (!count.empty() && std::stoull(count) > fileSize / 2))
-      throw Error(path + ": OFF header " + name + " count " + count.substr(0, 20) + " exceeds what the file's " +
-                  std::to_string(fileSize) + " bytes hold");
+      throw Error(userText(path) + ": OFF header " + name + " count " + count.substr(0, 20) +
+                  " exceeds what the file's " + std::to_string(fileSize) + " bytes hold");
   }
 }
 
@@ -458,7 +460,10 @@ class GltfCheck {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const { throw Error(oneLine(path_ + ": glTF: " + what)); }
+  [[noreturn]] void fail(const std::string& what) const
+  {
+    throw Error(userText(path_) + ": glTF: " + userText(what, 90));
+  }
 
   // A whole number that fits an int, else -1 (no glTF enum).
   static int enumValue(const Json* v)
@@ -539,19 +544,21 @@ void checkGltf(const std::string& path)
   const char* json = bytes.data() + bom;
   size_t jsonSize = bytes.size() - bom;
   if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0) {
-    if (bytes.size() < 20) throw Error(path + ": GLB header truncated");
+    if (bytes.size() < 20) throw Error(userText(path) + ": GLB header truncated");
     const uint32_t version = readU32(bytes, 4);
     const uint32_t chunkLength = readU32(bytes, 12);
-    if (version != 1 && version != 2) throw Error(path + ": GLB version " + std::to_string(version) + " unknown");
-    if (version == 2 && readU32(bytes, 16) != 0x4E4F534Au) throw Error(path + ": GLB first chunk is not JSON");
+    if (version != 1 && version != 2)
+      throw Error(userText(path) + ": GLB version " + std::to_string(version) + " unknown");
+    if (version == 2 && readU32(bytes, 16) != 0x4E4F534Au)
+      throw Error(userText(path) + ": GLB first chunk is not JSON");
     if (version == 2 && readU32(bytes, 8) > bytes.size())  // a truncated file (glTF 1 exporters wrote loose lengths)
-      throw Error(path + ": GLB header states " + std::to_string(readU32(bytes, 8)) + " bytes, the file has " +
-                  std::to_string(bytes.size()));
-    if (chunkLength > bytes.size() - 20) throw Error(path + ": GLB JSON chunk truncated");
+      throw Error(userText(path) + ": GLB header states " + std::to_string(readU32(bytes, 8)) +
+                  " bytes, the file has " + std::to_string(bytes.size()));
+    if (chunkLength > bytes.size() - 20) throw Error(userText(path) + ": GLB JSON chunk truncated");
     json = bytes.data() + 20;
     jsonSize = chunkLength;
   }
-  const Json doc = JsonParser(path + ": ", json, json + jsonSize).document();
+  const Json doc = JsonParser(userText(path) + ": ", json, json + jsonSize).document();
   GltfCheck(path, doc).run();
 }
 

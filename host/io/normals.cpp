@@ -40,8 +40,8 @@ void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals)
   }
   if (!fileHasNormals || replaced == 0) return;
   mesh.facts.normalsRepaired = replaced;
-  mesh.warnings.push_back(path + ": " + std::to_string(replaced) + " of " + std::to_string(n) +
-                          " vertex normals were zero, NaN or missing; recomputed from the geometry");
+  mesh.warnings.add("normals", userText(path) + ": " + std::to_string(replaced) + " of " + std::to_string(n) +
+                                   " vertex normals were zero, NaN or missing; recomputed from the geometry");
 }
 
 }  // namespace clr

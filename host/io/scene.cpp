@@ -200,7 +200,7 @@ void loadMaterials(ImportState& state)
             else
               budget.claim(what, embedded->mWidth, embedded->mHeight);
           } catch (const Error& e) {  // over the budget or undecodable: as a missing file, below
-            state.mesh.warnings.push_back(userText(e.what(), 250) + "; rendered without the texture");
+            state.mesh.warnings.add("texture", userText(e.what(), 250) + "; rendered without the texture");
             state.mesh.facts.missingTextures.push_back(what);
             state.mesh.materials.push_back(out);
             continue;
@@ -234,8 +234,8 @@ void loadMaterials(ImportState& state)
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.
-            state.mesh.warnings.push_back(userText(state.path, 60) + ": material " + std::to_string(m) + ": " +
-                                          userText(e.what(), 190) + "; rendered without the texture");
+            state.mesh.warnings.add("texture", userText(state.path, 60) + ": material " + std::to_string(m) + ": " +
+                                                   userText(e.what(), 190) + "; rendered without the texture");
             state.mesh.facts.missingTextures.push_back(file);
             state.mesh.materials.push_back(out);
             continue;
@@ -276,11 +276,16 @@ class ImportLog : public Assimp::LogStream {
       firstIndexProblem = m;
     // The OBJ reader goes on without a material library it cannot find.
     const std::string missingLibrary = "Unable to locate material file ";
-    if (m.find(missingLibrary) != std::string::npos)
-      missingLibraries.push_back(m.substr(m.find(missingLibrary) + missingLibrary.size()));
+    if (m.find(missingLibrary) != std::string::npos) {
+      if (missingLibraries.empty())
+        missingLibraries.push_back(m.substr(m.find(missingLibrary) + missingLibrary.size()));
+      else
+        ++moreMissingLibraries;  // counted only: one line names the first (base/warnings.h)
+    }
   }
   std::string firstIndexProblem;
   std::vector<std::string> missingLibraries;
+  size_t moreMissingLibraries = 0;
 };
 
 struct ScopedImportLog {
@@ -382,11 +387,13 @@ Mesh importScene(const std::string& path)
   // Step 2: walk the nodes, concatenating meshes.
   ImportState state{path, scene, {}};
   for (const std::string& refused : io->refusals())
-    state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
+    state.mesh.warnings.add("refused", userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
   if (io->refusals().empty())  // (a refused library is warned of above)
     for (const std::string& library : importLog.log.missingLibraries)
-      state.mesh.warnings.push_back(userText(path, 80) + ": material library '" + userText(library, 100) +
-                                    "' not found; rendered with default materials");
+      state.mesh.warnings.add("library", userText(path, 80) + ": material library '" + userText(library, 100) +
+                                             "' not found; rendered with default materials");
+  if (io->refusals().empty() && importLog.log.moreMissingLibraries)
+    state.mesh.warnings.add("library", "", importLog.log.moreMissingLibraries);
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
     throw Error(userText(path) + ": no triangles, lines or points in file");

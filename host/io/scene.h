@@ -15,6 +15,7 @@
 // file, others are read relative to the model's folder.
 #pragma once
 
+#include "base/warnings.h"
 #include "io/texture.h"
 
 #include <cstdint>
@@ -44,7 +45,7 @@ struct Mesh {
   std::vector<uint32_t> triMaterial;  // 1 per triangle, index into materials; or empty
   std::vector<Material> materials;    // empty: the built-in grey albedo
   std::vector<Texture> textures;      // base-colour textures the materials name
-  std::vector<std::string> warnings;  // what loading left out (a texture file it could not read), one line each
+  Warnings warnings;                  // what loading left out (a texture file it could not read), bounded
   MeshFacts facts;
   bool hasTextures() const { return !textures.empty(); }
   size_t numVerts() const { return positions.size() / 3; }

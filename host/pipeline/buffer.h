@@ -4,10 +4,17 @@
 // keeps the buffer when it is large enough and otherwise reallocates it: to
 // n the first time, then to n plus 1/8 slack (so a moving camera does not
 // reallocate every frame). A request larger than the device's maximum single
-// allocation is a clr::Error naming the buffer, never a crash. The shared
-// byte counter is what --stats reports as device_bytes.
+// allocation, or one that would take the buffers past the device's global
+// memory or the caller's limit (DeviceMemory::limitBytes), is a clr::Error
+// naming the buffer and the sizes, never a crash. On a device whose memory
+// is the host's (a CPU device) the host's headroom is checked too
+// (base/memory.h), and each new buffer is touched at once, so the driver
+// allocates it while the check still holds (PoCL aborts, rather than
+// failing, when it cannot allocate a buffer later). The shared byte counter
+// is what --stats reports as device_bytes.
 #pragma once
 
+#include "base/memory.h"
 #include "pipeline/cl.h"
 
 #include <algorithm>
@@ -21,7 +28,10 @@ struct DeviceMemory {
   cl::Context context;
   cl::CommandQueue queue;
   size_t maxAllocBytes = 0;
-  size_t bytesAllocated = 0;  // sum of live buffer capacities
+  size_t bytesAllocated = 0;             // sum of live buffer capacities
+  uint64_t globalMemBytes = UINT64_MAX;  // the device's global memory
+  uint64_t limitBytes = UINT64_MAX;      // the caller's limit on all buffers (Context::setMemoryLimit)
+  bool hostBacked = false;               // device memory is host memory (a CPU device)
 };
 
 template <typename T>
@@ -55,8 +65,17 @@ class DeviceBuffer {
     buffer_ = cl::Buffer();
     memory_->bytesAllocated -= capacity_ * sizeof(T);
     capacity_ = 0;
+    const uint64_t total = memory_->bytesAllocated + needed;
+    if (total > memory_->globalMemBytes || total > memory_->limitBytes) {
+      const bool device = memory_->globalMemBytes <= memory_->limitBytes;
+      throw Error("the frame needs " + byteCount(total) + " of device memory with " + name_ + ", more than " +
+                  (device ? "the device's " + byteCount(memory_->globalMemBytes)
+                          : "the memory limit of " + byteCount(memory_->limitBytes)));
+    }
+    if (memory_->hostBacked) checkHostMemory("the frame's device buffer for " + name_, chosen * sizeof(T));
     try {
       buffer_ = cl::Buffer(memory_->context, CL_MEM_READ_WRITE, chosen * sizeof(T));
+      if (memory_->hostBacked) memory_->queue.enqueueFillBuffer(buffer_, cl_uchar(0), 0, 1);
     } catch (const cl::Error& e) {
       throw Error("cannot allocate " + std::to_string(chosen * sizeof(T)) + " bytes for " + name_ + " (" +
                   clErrorName(e.err()) + ")");

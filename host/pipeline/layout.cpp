@@ -134,7 +134,7 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   for (uint32_t& i : sortedIndices) i = newVertex[i];
   // Step 4: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
   // replaced here, a quarter of a 10M-triangle upload's time.
-  static_assert(sizeof(Mesh) == 11 * sizeof(std::vector<float>) + sizeof(MeshFacts),
+  static_assert(sizeof(Mesh) == 10 * sizeof(std::vector<float>) + sizeof(Warnings) + sizeof(MeshFacts),
                 "a new Mesh field must be copied or reordered here");
   Mesh& m = out.mesh;
   m.lines = file.lines;

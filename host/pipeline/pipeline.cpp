@@ -96,7 +96,7 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
 
 Pipeline::Pipeline(ClContext& cl)
     : cl_(cl),
-      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0},
+      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0, cl.globalMemBytes, UINT64_MAX, cl.info.type == "CPU"},
       paramsBuf_(memory_, "frame parameters"),
       positions_(memory_, "vertex positions"),
       normals_(memory_, "vertex normals"),

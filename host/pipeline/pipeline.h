@@ -275,6 +275,7 @@ class Pipeline {
 
   const FrameParams& params() const { return params_; }
   size_t deviceBytes() const { return memory_.bytesAllocated; }
+  DeviceMemory& memory() { return memory_; }  // its limits (buffer.h)
   // Bytes per pixel of the per-sample buffers and the image of this frame:
   // per sample of a covered tile 2, 3 or 4 (the visibility buffer's setup
   // index, visIndexBits), 12 more with its depth and barycentric planes,

@@ -1,18 +1,15 @@
 // program_cache.h — compiled kernel programs kept between runs, so a warm
-// start skips the compiler front end (PoCL preprocesses the whole source,
-// opencl-c.h included, just to find its own cache entry).
+// start skips the compiler front end.
 //
-// A cache file holds one program's device binary (CL_PROGRAM_BINARIES) for
-// one key: the embedded sources, the build options, the device and its
-// driver. Files are written only by storeProgramBinary (`clraster cache`,
-// which the bootstrap runs): on PoCL, asking for a binary compiles every
-// kernel of the program, far too slow for a render's path. A render only
-// loads. A file that is missing, truncated, corrupt (checksummed) or refused
-// by the driver is ignored and the program is built from source: the cache
-// can make a start faster, never make a render fail or differ.
-//
-// The directory: CLRASTER_CACHE_DIR when set (empty: no cache), else
-// $XDG_CACHE_HOME/clraster, else $HOME/.cache/clraster.
+// A file holds one program's device binary for one key (SHA-256 of the
+// sources, options, device and driver) and HMAC-SHA-256 of both under the
+// folder's random secret. Only storeProgramBinary (`clraster cache`) writes
+// (on PoCL asking for a binary compiles every kernel); a render only loads.
+// The folder (0700) and its files (0600) are used only while no other user
+// can write them; any doubt is a miss and the program is built from source,
+// so the cache never fails a render or changes it (docs/limits.md, "The
+// kernel cache"). The folder: CLRASTER_CACHE_DIR when set (empty: no
+// cache), else $XDG_CACHE_HOME/clraster, else $HOME/.cache/clraster.
 #pragma once
 
 #include "pipeline/cl.h"
@@ -24,8 +21,9 @@ namespace clr {
 
 std::string programCacheDir();
 
-// The key of a program: sources, full options, device and driver.
-uint64_t programCacheKey(const cl::Device& device, const std::string& options);
+// The key of a program: SHA-256 (32 bytes) of its sources, full options,
+// device and driver.
+std::string programCacheKey(const cl::Device& device, const std::string& options);
 
 // The cached program for the key, built, or a null program when there is
 // none usable.

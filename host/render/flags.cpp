@@ -86,8 +86,6 @@ void checkExtension(const std::string& flag, const std::string& path, const std:
     throw Error(flag + ": '" + userText(path) + "' must be a file name ending in " + extension);
 }
 
-namespace {
-
 float parseFloat(const std::string& flag, const std::string& text)
 {
   // Decimal only: strtof also takes leading spaces and hexadecimal ("0x2Dp0").
@@ -99,6 +97,8 @@ float parseFloat(const std::string& flag, const std::string& text)
     throw Error(flag + ": '" + userText(text) + "' is not a finite number");
   return v;
 }
+
+namespace {
 
 glm::vec3 parseVec3(const std::string& flag, const std::string& text)
 {

@@ -81,6 +81,7 @@ void takeScenePath(const std::string& arg, std::string& scenePath);
 // Shared flag parsers (the bench tools use them too); each throws a
 // clr::Error naming the flag and the bad text.
 uint64_t parseUnsigned(const std::string& flag, const std::string& text, uint64_t lo, uint64_t hi);
+float parseFloat(const std::string& flag, const std::string& text);  // decimal, finite
 void parseSize(const std::string& flag, const std::string& text, uint32_t& width, uint32_t& height);
 uint32_t parseShadeMode(const std::string& flag, const std::string& text);  // a --shade name: its CLR_SHADE_*
 

@@ -3,11 +3,13 @@
 
 #include "render/camera.h"
 #include "base/error.h"
+#include "base/warnings.h"
 #include "render/flags.h"
 #include "io/scene.h"
 
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 
@@ -59,10 +61,7 @@ int infoCommand(const std::vector<std::string>& args)
     if (args[i] == "--json") {
       json = true;
     } else if (args[i] == "--fov") {
-      const std::string& text = flagValue(args, i);
-      char* end = nullptr;
-      cameraArgs.fovDegrees = std::strtof(text.c_str(), &end);
-      if (text.empty() || *end != '\0') throw Error("--fov: '" + text + "' is not a finite number");
+      cameraArgs.fovDegrees = parseFloat("--fov", flagValue(args, i));
       fovGiven = true;
     } else {
       takeScenePath(args[i], path);
@@ -95,28 +94,35 @@ int infoCommand(const std::vector<std::string>& args)
                    {"radius", jsonFloat(radius)}};
     j["materials"] = mesh.materials.size();
     j["textures"] = textures;
-    j["missing_textures"] = f.missingTextures;
+    std::vector<std::string> listed;  // the first ones, within the warnings' bound; then the count of all
+    size_t bytes = 0;
+    for (const std::string& m : f.missingTextures)
+      if ((bytes += m.size()) <= Warnings::kMaxBytes) listed.push_back(m);
+    j["missing_textures"] = listed;
+    j["missing_textures_total"] = f.missingTextures.size();
     j["normals"] = {{"in_file", f.normalsInFile}, {"repaired", f.normalsRepaired}};
     j["uvs"] = {{"in_file", f.uvsInFile}};
     j["camera"] = {{"eye", jsonVec3(cam.eye)},   {"target", jsonVec3(cam.target)},
                    {"up", jsonVec3(cam.up)},     {"near", jsonFloat(cam.zNear)},
                    {"far", jsonFloat(cam.zFar)}, {"fov", jsonFloat(cam.fovDegrees)}};
     j["render_flags"] = flags;
-    j["warnings"] = mesh.warnings;
+    j["warnings"] = mesh.warnings.lines();
     std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
-  std::printf("file       %s\n", path.c_str());
+  std::printf("file       %s\n", userText(path, PATH_MAX).c_str());
   std::printf("triangles  %zu\nvertices   %zu\nlines      %zu\npoints     %zu\n", mesh.numTris(), mesh.numVerts(),
               mesh.lines.size() / 2, mesh.points.size());
   std::printf("bounds     min %s  max %s\n", formatVec3(bounds.min).c_str(), formatVec3(bounds.max).c_str());
   std::printf("           centre %s  radius %s\n", formatVec3(centre).c_str(), formatFloat(radius).c_str());
   std::printf("materials  %zu, textures %zu loaded, %zu missing\n", mesh.materials.size(), textures,
               f.missingTextures.size());
-  for (const std::string& m : f.missingTextures) std::printf("  missing texture: %s\n", m.c_str());
+  Warnings missing;  // bounded as warnings are
+  for (const std::string& m : f.missingTextures) missing.add("missing texture: " + userText(m));
+  for (const std::string& line : missing.lines()) std::printf("  %s\n", line.c_str());
   std::printf("normals    %s\n", normalsText(f).c_str());
   std::printf("uvs        %s\n", f.uvsInFile ? "from file" : "none (texture coordinates read 0,0)");
-  for (const std::string& w : mesh.warnings) std::printf("warning    %s\n", w.c_str());
+  for (const std::string& w : mesh.warnings.lines()) std::printf("warning    %s\n", w.c_str());
   std::printf("default camera (paste into clraster render):\n  %s\n", flags.c_str());
   return 0;
 }

@@ -125,24 +125,80 @@ void forEachView(const std::string& path, const std::vector<ViewSpec>& views, Fn
   }
 }
 
+// nlohmann's DOM parser, plus what the views file needs while parsing: a
+// key repeated in one object is an error, and the values of the top-level
+// array are counted against kMaxViews. (nlohmann's callback parser scans the
+// parent array at every object's end: quadratic in the number of views.)
+class ViewsSax : public nlohmann::detail::json_sax_dom_parser<Json> {
+ public:
+  using Base = nlohmann::detail::json_sax_dom_parser<Json>;
+  ViewsSax(Json& root, const std::string& path) : Base(root), path_(path) {}
+
+  bool null() { return value() && Base::null(); }
+  bool boolean(bool v) { return value() && Base::boolean(v); }
+  bool number_integer(number_integer_t v) { return value() && Base::number_integer(v); }
+  bool number_unsigned(number_unsigned_t v) { return value() && Base::number_unsigned(v); }
+  bool number_float(number_float_t v, const string_t& s) { return value() && Base::number_float(v, s); }
+  bool string(string_t& v) { return value() && Base::string(v); }
+  bool binary(binary_t& v) { return value() && Base::binary(v); }
+  bool start_object(size_t n)
+  {
+    value();
+    open_.push_back({true, {}});
+    return Base::start_object(n);
+  }
+  bool end_object()
+  {
+    open_.pop_back();
+    return Base::end_object();
+  }
+  bool start_array(size_t n)
+  {
+    value();
+    open_.push_back({false, {}});
+    return Base::start_array(n);
+  }
+  bool end_array()
+  {
+    open_.pop_back();
+    return Base::end_array();
+  }
+  bool key(string_t& k)
+  {
+    if (!open_.back().keys.insert(k).second)
+      throw Error(userText(path_) + ": duplicate key \"" + userText(k, 60) + "\"");
+    return Base::key(k);
+  }
+
+ private:
+  struct Open {
+    bool object;
+    std::set<std::string> keys;
+  };
+  // A value begins: one more view when it is an element of the array under the top-level object.
+  bool value()
+  {
+    if (open_.size() == 2 && open_[0].object && !open_[1].object && ++views_ > kMaxViews)
+      throw Error(userText(path_) + ": more than " + std::to_string(kMaxViews) + " views (the limit of a views file)");
+    return true;
+  }
+  const std::string& path_;
+  std::vector<Open> open_;
+  size_t views_ = 0;
+};
+
 }  // namespace
 
 std::vector<ViewSpec> parseViews(const std::string& path, const std::string& text, const CameraArgs& defaults,
                                  uint32_t width, uint32_t height)
 {
-  // Step 1: the JSON itself (nlohmann's message names line and column); a
-  // key repeated in one object is an error, not "the last one wins".
+  // Step 1: the JSON itself (nlohmann's message names line and column), in
+  // one linear pass; a key repeated in one object is an error, not "the last
+  // one wins"; more than kMaxViews views are refused.
   Json doc;
-  std::vector<std::set<std::string>> keys;  // per open object
-  auto uniqueKeys = [&](int, Json::parse_event_t event, Json& parsed) {
-    if (event == Json::parse_event_t::object_start) keys.emplace_back();
-    if (event == Json::parse_event_t::object_end) keys.pop_back();
-    if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second)
-      throw Error(userText(path) + ": duplicate key \"" + userText(parsed.get<std::string>(), 60) + "\"");
-    return true;
-  };
+  ViewsSax sax(doc, path);
   try {
-    doc = Json::parse(text, uniqueKeys);
+    Json::sax_parse(text, &sax);
   } catch (const Json::exception& e) {
     std::string message = e.what();
     if (message.rfind("[json.exception.", 0) == 0 && message.find("] ") != std::string::npos)

@@ -24,6 +24,10 @@
 
 namespace clr {
 
+// The most views one file may hold; more are refused while parsing, so that
+// memory and time stay linear in what is rendered.
+inline constexpr size_t kMaxViews = 1000000;
+
 // One entry of a views file after merging with the command line's defaults.
 struct ViewSpec {
   CameraArgs camera;

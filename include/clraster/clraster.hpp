@@ -53,6 +53,16 @@ class CLRASTER_API Context {
   Context(Context&&) noexcept;
   Context& operator=(Context&&) noexcept;
   const DeviceInfo& device() const;
+  // A limit on the memory one call may take (device buffers in all, and
+  // the host arrays it allocates); 0 (the default): only the device's and
+  // the host's own. Every call checks its needs against the device's
+  // largest allocation and global memory, this limit and the host's free
+  // memory (and RLIMIT_AS) before allocating: an Error naming the size.
+  void setMemoryLimit(uint64_t bytes);
+  uint64_t memoryLimit() const;
+  // Frees the device buffers rasterize keeps between calls (the built
+  // kernels stay); the next call allocates again.
+  void release();
   struct Impl;
   Impl& impl() { return *Error::live(impl_.get(), "clraster::Context"); }
 
@@ -83,6 +93,11 @@ CLRASTER_API Raster rasterize(Context& ctx, const float* pos, size_t numVertices
                               size_t numTriangles, uint32_t width, uint32_t height, bool derivatives = false);
 // The same into the caller's arrays (height·width·4 floats for rast and db,
 // height·width for ids); any of them may be null to skip it.
+// checkRasterizeMemory: an Error naming the size unless a rasterize of
+// width × height, whose caller allocates outputBytes for its outputs,
+// fits the device, the host and ctx's limit (rasterize checks its own; a
+// caller allocating large outputs itself calls it first).
+CLRASTER_API void checkRasterizeMemory(Context& ctx, uint32_t width, uint32_t height, uint64_t outputBytes);
 CLRASTER_API void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri,
                                 size_t numTriangles, uint32_t width, uint32_t height, float* rast, uint32_t* ids,
                                 float* db = nullptr);
@@ -94,7 +109,8 @@ CLRASTER_API void rasterizeInto(Context& ctx, const float* pos, size_t numVertic
 CLRASTER_API std::vector<float> interpolate(Context& ctx, const float* attr, size_t numVertices, size_t numAttrs,
                                             const Raster& r, const int32_t* tri);
 // The same on arrays: rast as in Raster (ids decoded from channel 3), for
-// `pixels` pixels; out: pixels × numAttrs. With db (Raster::db's layout) and
+// `pixels` pixels; a channel 3 that is neither 0 nor an id in 1..numTriangles
+// is an Error naming rast; out: pixels × numAttrs. With db (Raster::db's layout) and
 // diffAttrs (attribute indices), outDa gets pixels × 2·diffAttrs.size()
 // floats, (dA/dX, dA/dY) per listed attribute.
 CLRASTER_API void interpolateInto(const float* attr, size_t numVertices, size_t numAttrs, const float* rast,

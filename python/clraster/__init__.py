@@ -41,9 +41,14 @@ class ArgumentTypeError(TypeError, ValueError):
 class Context:
     """One OpenCL device. device: None or "" (the first GPU, else the first
     CPU), a device index, or a substring of the device or platform name (see
-    devices()). Kernels are built on the first rasterize call."""
+    devices()). Kernels are built on the first rasterize call.
+    memory_limit: None, or the most bytes one call may take (its outputs
+    and device buffers); every call is checked against it, the device's
+    memory and the host's (RLIMIT_AS too) before allocating, and refused
+    with clraster.Error naming the size. release() frees the buffers kept
+    between calls (garbage collection of the Context does too)."""
 
-    def __init__(self, device=None):
+    def __init__(self, device=None, memory_limit=None):
         if device is None:
             device = ""
         if isinstance(device, bool) or not isinstance(device, (str, numbers.Integral)):
@@ -52,8 +57,20 @@ class Context:
             if device < 0:
                 raise ValueError(f"device: index {device} is negative")
             device = str(int(device))
+        if memory_limit is not None and (isinstance(memory_limit, bool)
+                                         or not isinstance(memory_limit, numbers.Integral)):
+            raise ArgumentTypeError(f"memory_limit: expected None or a number of bytes, got {memory_limit!r}")
+        if memory_limit is not None and memory_limit <= 0:
+            raise ValueError(f"memory_limit: expected a positive number of bytes, got {memory_limit}")
         self._ctx = _clraster.Context(device)
+        if memory_limit is not None:
+            self._ctx.memory_limit = int(memory_limit)
         self._lock = threading.Lock()
+
+    def release(self):
+        """Frees the device buffers kept between calls; kernels stay built."""
+        with self._lock:
+            self._ctx.release()
 
     @property
     def device_name(self):
@@ -123,6 +140,9 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     pos = _array("pos", pos, np.float32, (2, 3), 4)
     batch = pos if pos.ndim == 3 else pos[None]
     tri = _check_tri(tri, batch.shape[1])
+    with glctx._lock:  # before the outputs exist: refused with the size, not killed
+        _clraster.check_rasterize_memory(glctx._ctx, width, height,
+                                         batch.shape[0] * height * width * (32 if grad_db else 16))
     rast = np.empty((batch.shape[0], height, width, 4), np.float32)
     db = np.empty((batch.shape[0], height, width, 4 if grad_db else 0), np.float32)
     with glctx._lock:
@@ -142,6 +162,20 @@ def triangle_ids(rast):
     with np.errstate(invalid="ignore"):  # NaN and huge channels cast to garbage, which the where() drops
         ids = np.where(big, f.view(np.int32) - np.int32(0x4A800000), f.astype(np.int32))
     return np.where(f > 0, ids, 0).astype(np.int32)
+
+
+def _check_rast_ids(rast, num_triangles):
+    """ValueError naming rast unless every channel 3 is 0 (background) or
+    the encoding of an id in 1..num_triangles."""
+    f = rast[..., 3]
+    ids = triangle_ids(rast)
+    with np.errstate(invalid="ignore"):
+        exact = (f > 16777216.0) | (np.floor(f) == f)
+    bad = ~((f == 0) | ((ids >= 1) & (ids <= num_triangles) & exact))
+    if bad.any():
+        where = tuple(int(k) for k in np.argwhere(bad)[0])
+        raise ValueError(f"rast: pixel {list(where)} holds triangle id channel {float(f[where])!r}, "
+                         f"not an id in 0..{num_triangles} (0: background)")
 
 
 def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
@@ -181,6 +215,7 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
         rast_db = _array("rast_db", rast_db, np.float32, (4,), 4)
         if rast_db.shape != rast.shape:
             raise ValueError(f"rast_db: shape {list(rast_db.shape)} differs from rast's {list(rast.shape)}")
+    _check_rast_ids(rast, tri.shape[0])
     out = np.empty(rast.shape[:3] + (num_attrs,), np.float32)
     out_da = np.empty(rast.shape[:3] + (2 * len(diff),), np.float32)
     for b in range(batch):

@@ -98,13 +98,12 @@ def test_triangle_ids_rejects():
         clraster.triangle_ids(np.zeros((2, 2, 3), np.float32))
 
 
-def test_garbage_in_rast_reads_as_background(rast):
-    garbage = rast[0].copy()
-    garbage[0, 0, 0, 3] = np.nan
-    garbage[0, 0, 1, 3] = -5.0
-    garbage[0, 0, 2, 3] = 1e30  # decodes to an id far beyond the triangles
-    out, _ = clraster.interpolate(POS, garbage, TRI)
-    assert (out[0, 0, :3] == 0).all()
+@pytest.mark.parametrize("value", [2.0, 7.0, -3.0, np.nan, np.inf, 1e30, 0.5])
+def test_rast_naming_no_triangle_is_refused(rast, value):
+    bad = rast[0].copy()
+    bad[0, 3, 5, 3] = value
+    with pytest.raises(ValueError, match=r"^rast: pixel \[0, 3, 5\] .* not an id in 0\.\.1 "):
+        clraster.interpolate(POS, bad, TRI)
 
 
 def test_extreme_positions_do_not_fail(ctx):
