@@ -61,11 +61,13 @@ class DeviceBuffer {
     if (needed > memory_->maxAllocBytes)
       throw Error("the frame needs " + std::to_string(needed) + " bytes for " + name_ +
                   ", more than the device's largest allocation (" + std::to_string(memory_->maxAllocBytes) + " bytes)");
-    const uint64_t chosen = bytes <= memory_->maxAllocBytes ? grown : n;
+    uint64_t chosen = bytes <= memory_->maxAllocBytes ? grown : n;
     buffer_ = cl::Buffer();
     memory_->bytesAllocated -= capacity_ * sizeof(T);
     capacity_ = 0;
     const uint64_t total = memory_->bytesAllocated + needed;
+    if (memory_->bytesAllocated + chosen * sizeof(T) > std::min(memory_->globalMemBytes, memory_->limitBytes))
+      chosen = n;  // no slack where it would not fit
     if (total > memory_->globalMemBytes || total > memory_->limitBytes) {
       const bool device = memory_->globalMemBytes <= memory_->limitBytes;
       throw Error("the frame needs " + byteCount(total) + " of device memory with " + name_ + ", more than " +
