@@ -1,0 +1,56 @@
+// diff.h — host side of kernels/diff.cl: the backward passes of the
+// library's rasterize and interpolate (include/clraster/diff.hpp), on host
+// arrays. Each call uploads its inputs, runs one kernel over every pixel of
+// the batch and reads the gradients back; buffers are kept between calls
+// and grow as needed (buffer.h: a request beyond the device's largest
+// allocation is a clr::Error naming the buffer).
+#pragma once
+
+#include "pipeline/buffer.h"
+#include "pipeline/device.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace clr {
+
+// A batch of `images` images of width × height pixels, image-major.
+struct DiffImages {
+  size_t images = 0;
+  uint32_t width = 0, height = 0;
+  size_t pixels() const { return images * width * height; }
+};
+
+class DiffKernels {
+ public:
+  explicit DiffKernels(ClContext& cl);
+
+  // gradPos (posImages · numVertices · 4 floats, posImages 1 or
+  // batch.images) = d L / d pos from gradRast (4 floats per pixel) and,
+  // when not null, gradDb (4 floats per pixel); rast: rasterize's output.
+  void rasterizeGrad(const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, size_t numTriangles,
+                     const DiffImages& batch, const float* rast, const float* gradRast, const float* gradDb,
+                     float* gradPos);
+
+  // gradAttr (attrImages · numVertices · numAttrs), gradRast (4 per pixel)
+  // and, with diff (attribute indices in 0..numAttrs-1), gradDb (4 per
+  // pixel) from gradOut (numAttrs per pixel) and gradDa (2 · diff.size()
+  // per pixel); db is rasterize's rast_db (needed with diff).
+  void interpolateGrad(const float* attr, size_t numVertices, size_t numAttrs, size_t attrImages, const float* rast,
+                       const DiffImages& batch, const int32_t* tri, size_t numTriangles, const float* gradOut,
+                       const float* db, const std::vector<int>& diff, const float* gradDa, float* gradAttr,
+                       float* gradRast, float* gradDb);
+
+ private:
+  template <typename T>
+  void upload(DeviceBuffer<T>& buffer, const T* data, uint64_t n);
+  cl::NDRange linear(uint64_t n) const;
+
+  ClContext& cl_;
+  DeviceMemory memory_;
+  DeviceBuffer<float> in0_, in1_, in2_, in3_, in4_, out0_, out1_, out2_;
+  DeviceBuffer<int32_t> tri_, list_;
+  cl::Kernel rasterizeGrad_, interpolateGrad_;
+};
+
+}  // namespace clr

@@ -1,0 +1,286 @@
+"""clraster.torch: nvdiffrast.torch's differentiable operations on CPU tensors.
+
+    import clraster.torch as dr        # was: import nvdiffrast.torch as dr
+    glctx = dr.RasterizeCudaContext()  # or dr.RasterizeGLContext(), dr.Context()
+    rast, rast_db = dr.rasterize(glctx, pos, tri, resolution=[H, W])
+    out, out_da = dr.interpolate(attr, rast, tri, rast_db=rast_db, diff_attrs='all')
+
+Each operation is a torch.autograd.Function: the forward runs clraster's
+rasterizer (the numpy module's calls), the backward runs OpenCL kernels
+(kernels/diff.cl) on the same device. Gradients follow nvdiffrast: those of
+the forward formulas at the pixel centres with coverage held fixed. Where
+clraster differs (the rasterize gradient also flows through z/w; coverage
+rules): docs/nvdiffrast.md.
+
+Inputs may be torch tensors, numpy arrays, or anything with __array__ or
+__dlpack__; float64 and int64 are converted, with a ValueError naming the
+argument only where the conversion would lose information (a finite value
+beyond float32's range, an index beyond int32's). Outputs are float32 CPU
+tensors.
+"""
+
+import numbers
+
+import numpy as np
+import torch
+
+from . import _clraster
+from . import ArgumentTypeError, Context, Error  # noqa: F401  (re-exported)
+from . import _MAX_RESOLUTION, triangle_ids  # noqa: F401
+from . import rasterize as np_rasterize
+
+__all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate",
+           "triangle_ids", "set_default_context"]
+
+_default = None
+
+
+class RasterizeCudaContext(Context):
+    """nvdiffrast's context classes map to a clraster Context on the default
+    OpenCL device (the first GPU, else the first CPU). A torch device
+    argument (tensors here live on the CPU) is ignored; a clraster device
+    selector (an index or a name substring) picks that device."""
+
+    def __init__(self, device=None, **_nvdiffrast_options):
+        if isinstance(device, torch.device) or (isinstance(device, str) and device.split(":")[0] in ("cuda", "cpu")):
+            device = None
+        super().__init__(device)
+        set_default_context(self)
+
+
+RasterizeGLContext = RasterizeCudaContext
+
+
+def set_default_context(glctx):
+    """The Context that interpolate's backward (which takes none) runs on;
+    set by every rasterize call and context construction."""
+    global _default
+    if not isinstance(glctx, Context):
+        raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
+    _default = glctx
+
+
+def _context():
+    global _default
+    if _default is None:
+        _default = Context()
+    return _default
+
+
+def _to_tensor(name, value):
+    if isinstance(value, torch.Tensor):
+        return value
+    if hasattr(value, "__dlpack__") and not isinstance(value, np.ndarray):
+        return torch.utils.dlpack.from_dlpack(value)
+    if isinstance(value, np.ndarray) or hasattr(value, "__array__"):
+        return torch.as_tensor(np.asarray(value))
+    raise ArgumentTypeError(f"{name}: expected a tensor or an array, got {type(value).__name__}")
+
+
+def _floats(name, t):
+    """t (a tensor) as a C-contiguous float32 numpy array."""
+    if not (t.dtype.is_floating_point or t.dtype in (torch.int32, torch.int64, torch.int16, torch.uint8)):
+        raise ValueError(f"{name}: expected a floating-point tensor, got {t.dtype}")
+    a = t.detach().to("cpu").numpy()
+    with np.errstate(over="ignore"):  # checked just below
+        out = np.ascontiguousarray(a, np.float32)
+    if a.dtype != np.float32 and a.size and (np.isfinite(a) & ~np.isfinite(out)).any():
+        raise ValueError(f"{name}: a finite value beyond float32's range ({a.dtype.name} converts with loss)")
+    return out
+
+
+def _indices(name, t):
+    """t as a C-contiguous int32 numpy array (integers only, within int32)."""
+    if t.dtype.is_floating_point or t.dtype == torch.bool or t.is_complex():
+        raise ValueError(f"{name}: expected an integer tensor, got {t.dtype}")
+    a = t.detach().to("cpu").numpy()
+    if a.dtype != np.int32 and a.size and (a.min() < -(2**31) or a.max() >= 2**31):
+        raise ValueError(f"{name}: an index beyond int32's range ({a.dtype.name} converts with loss)")
+    return np.ascontiguousarray(a, np.int32)
+
+
+def _check_tri(tri, num_vertices):
+    if tri.ndim != 2 or tri.shape[1] != 3:
+        raise ValueError(f"tri: expected shape [T, 3], got {list(tri.shape)}")
+    if tri.size and (tri.min() < 0 or tri.max() >= num_vertices):
+        bad = int(tri.min()) if tri.min() < 0 else int(tri.max())
+        raise ValueError(f"tri: vertex index {bad} outside [0, {num_vertices})")
+
+
+def _resolution(resolution):
+    try:
+        height, width = resolution
+    except (TypeError, ValueError):
+        raise ArgumentTypeError(f"resolution: expected (height, width), got {resolution!r}") from None
+    out = []
+    for n in (height, width):
+        if isinstance(n, torch.Tensor) and n.numel() == 1 and not n.dtype.is_floating_point:
+            n = int(n)
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral):
+            raise ArgumentTypeError(f"resolution: expected two integers, got {resolution!r}")
+        if not 1 <= n <= _MAX_RESOLUTION:
+            raise ValueError(f"resolution: expected two integers in 1..{_MAX_RESOLUTION}, got {resolution!r}")
+        out.append(int(n))
+    return out
+
+
+def _encode_ids(ids):
+    """nvdiffrast's float encoding of triangle id + 1 (rast channel 3)."""
+    ids = ids.astype(np.int64)
+    small = ids.astype(np.float32)
+    big = (ids + 0x4A800000).astype(np.uint32).view(np.float32)
+    return np.where(ids <= 0x01000000, small, big).astype(np.float32)
+
+
+def _rasterize_forward(glctx, pos, tri, resolution, ranges, grad_db):
+    """(rast, db) float32 numpy [B, H, W, 4] (db [B, H, W, 0] without grad_db)."""
+    height, width = resolution
+    if ranges is None:
+        return np_rasterize(glctx, pos, tri, (height, width), grad_db=grad_db)
+    images = []
+    dbs = []
+    for start, count in ranges:
+        sub = tri[start:start + count]
+        rast, db = np_rasterize(glctx, pos, np.ascontiguousarray(sub), (height, width), grad_db=grad_db)
+        ids = triangle_ids(rast)
+        covered = ids > 0
+        rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
+        images.append(rast)
+        dbs.append(db)
+    if not images:
+        return (np.zeros((0, height, width, 4), np.float32), np.zeros((0, height, width, 4 if grad_db else 0),
+                                                                      np.float32))
+    return np.concatenate(images), np.concatenate(dbs)
+
+
+class _Rasterize(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, glctx, pos, tri_np, resolution, ranges_np, grad_db):
+        pos_np = _floats("pos", pos)
+        rast, db = _rasterize_forward(glctx, pos_np, tri_np, resolution, ranges_np, grad_db)
+        ctx.glctx, ctx.pos_np, ctx.tri_np, ctx.rast_np, ctx.grad_db = glctx, pos_np, tri_np, rast, grad_db
+        ctx.pos_dtype = pos.dtype
+        out = torch.from_numpy(rast), torch.from_numpy(db)
+        if not grad_db:
+            ctx.mark_non_differentiable(out[1])
+        return out
+
+    @staticmethod
+    def backward(ctx, dy, ddb):
+        if not ctx.needs_input_grad[1]:
+            return None, None, None, None, None, None
+        pos = ctx.pos_np if ctx.pos_np.ndim == 3 else ctx.pos_np[None]
+        dy = np.ascontiguousarray(dy.detach().numpy(), np.float32)
+        ddb = np.ascontiguousarray(ddb.detach().numpy(), np.float32) if ctx.grad_db and ddb is not None else None
+        with ctx.glctx._lock:
+            g = _clraster.rasterize_grad(ctx.glctx._ctx, pos, ctx.tri_np, ctx.rast_np, dy, ddb)
+        g = torch.from_numpy(g.reshape(ctx.pos_np.shape)).to(ctx.pos_dtype)
+        return None, g, None, None, None, None
+
+
+def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
+    """nvdiffrast's rasterize: (rast, rast_db), float32 [B, H, W, 4]; rast =
+    (u, v, z/w, triangle_id + 1), rast_db = (du/dX, du/dY, dv/dX, dv/dY)
+    ([B, H, W, 0] with grad_db=False). pos [B, V, 4] is instanced mode;
+    pos [V, 4] with ranges ([N, 2] int32 (start, count) triangle ranges,
+    one image each) is range mode, triangle ids absolute; pos [V, 4]
+    alone gives one image. Differentiable in pos through u, v, z/w and
+    rast_db."""
+    if not isinstance(glctx, Context):
+        raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
+    if not isinstance(grad_db, (bool, np.bool_)):
+        raise ArgumentTypeError(f"grad_db: expected True or False, got {type(grad_db).__name__} {grad_db!r}")
+    set_default_context(glctx)
+    pos = _to_tensor("pos", pos)
+    if pos.dim() not in (2, 3) or pos.shape[-1] != 4:
+        raise ValueError(f"pos: expected shape [V, 4] or [B, V, 4], got {list(pos.shape)}")
+    tri_np = _indices("tri", _to_tensor("tri", tri))
+    _check_tri(tri_np, pos.shape[-2])
+    ranges_np = None
+    if ranges is not None:
+        if pos.dim() != 2:
+            raise ValueError(f"ranges: range mode takes pos [V, 4], got {list(pos.shape)}")
+        ranges_np = _indices("ranges", _to_tensor("ranges", ranges))
+        if ranges_np.ndim != 2 or ranges_np.shape[1] != 2:
+            raise ValueError(f"ranges: expected shape [N, 2], got {list(ranges_np.shape)}")
+        if ranges_np.size and (ranges_np.min() < 0 or (ranges_np[:, 0] + ranges_np[:, 1]).max() > len(tri_np)):
+            raise ValueError(f"ranges: a range reaches outside the {len(tri_np)} triangles")
+    return _Rasterize.apply(glctx, pos, tri_np, _resolution(resolution), ranges_np, bool(grad_db))
+
+
+def _diff_list(diff_attrs, num_attrs):
+    if diff_attrs is None:
+        return []
+    if isinstance(diff_attrs, str):
+        if diff_attrs != "all":
+            raise ValueError(f"diff_attrs: expected a list of indices or 'all', got {diff_attrs!r}")
+        return list(range(num_attrs))
+    try:
+        diff = [int(j) for j in diff_attrs if not isinstance(j, bool) and isinstance(j, numbers.Integral)]
+        ok = len(diff) == len(diff_attrs)
+    except TypeError:
+        ok = False
+    if not ok:
+        raise ValueError(f"diff_attrs: expected a list of integer indices or 'all', got {diff_attrs!r}")
+    for j in diff:
+        if not -num_attrs <= j < num_attrs:
+            raise ValueError(f"diff_attrs: attribute index {j} outside [-{num_attrs}, {num_attrs})")
+    return [j % num_attrs for j in diff]
+
+
+class _Interpolate(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, attr, rast, rast_db, tri_np, diff):
+        attr_np, rast_np = _floats("attr", attr), _floats("rast", rast)
+        db_np = _floats("rast_db", rast_db) if diff else None
+        attrs = attr_np if attr_np.ndim == 3 else attr_np[None]
+        out = np.empty(rast_np.shape[:3] + (attrs.shape[2],), np.float32)
+        out_da = np.empty(rast_np.shape[:3] + (2 * len(diff),), np.float32)
+        for b in range(rast_np.shape[0]):
+            a = attrs[b if attrs.shape[0] > 1 else 0]
+            _clraster.interpolate_into(a, rast_np[b], tri_np, out[b], db_np[b] if diff else None, diff,
+                                       out_da[b] if diff else None)
+        ctx.attr_np, ctx.rast_np, ctx.db_np, ctx.tri_np, ctx.diff = attr_np, rast_np, db_np, tri_np, diff
+        ctx.dtypes = attr.dtype, rast.dtype, rast_db.dtype if diff else None
+        return torch.from_numpy(out), torch.from_numpy(out_da)
+
+    @staticmethod
+    def backward(ctx, dy, dda):
+        attrs = ctx.attr_np if ctx.attr_np.ndim == 3 else ctx.attr_np[None]
+        dy = np.ascontiguousarray(dy.detach().numpy(), np.float32)
+        dda = np.ascontiguousarray(dda.detach().numpy(), np.float32) if ctx.diff else None
+        glctx = _context()
+        with glctx._lock:
+            ga, gr, gdb = _clraster.interpolate_grad(glctx._ctx, attrs, ctx.rast_np, ctx.tri_np, dy, ctx.db_np,
+                                                     ctx.diff, dda)
+        ga = torch.from_numpy(ga.reshape(ctx.attr_np.shape)).to(ctx.dtypes[0])
+        gr = torch.from_numpy(gr).to(ctx.dtypes[1])
+        gdb = torch.from_numpy(gdb).to(ctx.dtypes[2]) if ctx.diff else None
+        return ga, gr, gdb, None, None
+
+
+def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
+    """nvdiffrast's interpolate: (out [B, H, W, C], out_da [B, H, W, 2·len])
+    with out = u·a0 + v·a1 + (1 − u − v)·a2 of the pixel's triangle (0 where
+    none) and out_da = (dA/dX, dA/dY) per attribute of diff_attrs (a list of
+    indices or 'all'; needs rast_db). attr [V, C] or [B, V, C] (B 1
+    broadcasts). Differentiable in attr, rast (u, v) and rast_db."""
+    attr, rast = _to_tensor("attr", attr), _to_tensor("rast", rast)
+    if attr.dim() not in (2, 3):
+        raise ValueError(f"attr: expected shape [V, C] or [B, V, C], got {list(attr.shape)}")
+    if rast.dim() != 4 or rast.shape[-1] != 4:
+        raise ValueError(f"rast: expected shape [B, H, W, 4], got {list(rast.shape)}")
+    if attr.dim() == 3 and attr.shape[0] not in (1, rast.shape[0]):
+        raise ValueError(f"attr: {attr.shape[0]} attribute sets for {rast.shape[0]} images in rast")
+    tri_np = _indices("tri", _to_tensor("tri", tri))
+    _check_tri(tri_np, attr.shape[-2])
+    diff = _diff_list(diff_attrs, attr.shape[-1])
+    if diff:
+        if rast_db is None:
+            raise ValueError("rast_db: needed with diff_attrs (rasterize(..., grad_db=True))")
+        rast_db = _to_tensor("rast_db", rast_db)
+        if tuple(rast_db.shape) != tuple(rast.shape):
+            raise ValueError(f"rast_db: shape {list(rast_db.shape)} differs from rast's {list(rast.shape)}")
+    else:
+        rast_db = torch.zeros(0)
+    return _Interpolate.apply(attr, rast, rast_db, tri_np, diff)
