@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <string>
 
 namespace py = pybind11;
@@ -89,6 +90,102 @@ py::tuple interpolateGrad(clraster::Context& ctx, const FloatArray& attr, const 
   return py::make_tuple(gradAttr, gradRast, gradDb);
 }
 
+// tex [T, H, W, C]; uv [B, h, w, 2]; uv_da [B, h, w, 4] and bias [B, h, w]
+// or None: the TextureSpec of a call.
+clraster::TextureSpec textureSpec(const FloatArray& tex, const FloatArray& uv, bool hasUvDa, bool hasBias, int filter,
+                                  int boundary, int maxMipLevel)
+{
+  expectDims("tex", tex, {-1, -1, -1, -1});
+  expectDims("uv", uv, {-1, -1, -1, 2});
+  if (filter < 0 || filter > 3) throw py::value_error("filter_mode: unknown");
+  if (boundary < 0 || boundary > 2) throw py::value_error("boundary_mode: unknown");
+  clraster::TextureSpec s;
+  s.batch = {size_t(uv.shape(0)), uint32_t(uv.shape(2)), uint32_t(uv.shape(1))};
+  s.texImages = size_t(tex.shape(0));
+  s.texHeight = uint32_t(tex.shape(1));
+  s.texWidth = uint32_t(tex.shape(2));
+  s.channels = uint32_t(tex.shape(3));
+  s.filter = clraster::TextureFilter(filter);
+  s.boundary = clraster::TextureBoundary(boundary);
+  s.maxMipLevel = maxMipLevel;
+  s.hasUvDa = hasUvDa;
+  s.hasBias = hasBias;
+  return s;
+}
+
+void checkPixels(const FloatArray& uv, const std::optional<FloatArray>& uvDa, const std::optional<FloatArray>& bias)
+{
+  if (uvDa) expectDims("uv_da", *uvDa, {uv.shape(0), uv.shape(1), uv.shape(2), 4});
+  if (bias) expectDims("mip_level_bias", *bias, {uv.shape(0), uv.shape(1), uv.shape(2)});
+}
+
+void checkMips(const clraster::TextureSpec& s, const std::optional<FloatArray>& mips)
+{
+  if (mips && size_t(mips->size()) != clraster::textureMipFloats(s))
+    throw py::value_error("mip: built for another texture or max_mip_level");
+}
+
+// The mip levels 1.. of tex, flat (textureMipFloats floats).
+FloatArray textureMips(clraster::Context& ctx, const FloatArray& tex, int maxMipLevel)
+{
+  expectDims("tex", tex, {-1, -1, -1, -1});
+  FloatArray uv(std::vector<py::ssize_t>{tex.shape(0), 1, 1, 2});
+  const clraster::TextureSpec s = textureSpec(tex, uv, true, false, 3, 0, maxMipLevel);
+  FloatArray mips(py::ssize_t(clraster::textureMipFloats(s)));
+  const float* t = tex.data();
+  float* m = mips.mutable_data();
+  {
+    py::gil_scoped_release release;
+    clraster::textureMips(ctx, s, t, m);
+  }
+  return mips;
+}
+
+FloatArray textureForward(clraster::Context& ctx, const FloatArray& tex, std::optional<FloatArray> mips,
+                          const FloatArray& uv, std::optional<FloatArray> uvDa, std::optional<FloatArray> bias,
+                          int filter, int boundary, int maxMipLevel)
+{
+  const clraster::TextureSpec s = textureSpec(tex, uv, bool(uvDa), bool(bias), filter, boundary, maxMipLevel);
+  checkPixels(uv, uvDa, bias);
+  checkMips(s, mips);
+  FloatArray out({uv.shape(0), uv.shape(1), uv.shape(2), tex.shape(3)});
+  const float *t = tex.data(), *m = mips ? mips->data() : nullptr, *u = uv.data();
+  const float *d = uvDa ? uvDa->data() : nullptr, *b = bias ? bias->data() : nullptr;
+  float* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    clraster::texture(ctx, s, t, m, u, d, b, o);
+  }
+  return out;
+}
+
+// (grad_tex, grad_uv, grad_uv_da or None, grad_bias or None).
+py::tuple textureGrad(clraster::Context& ctx, const FloatArray& tex, std::optional<FloatArray> mips,
+                      const FloatArray& uv, std::optional<FloatArray> uvDa, std::optional<FloatArray> bias,
+                      const FloatArray& gradOut, int filter, int boundary, int maxMipLevel)
+{
+  const clraster::TextureSpec s = textureSpec(tex, uv, bool(uvDa), bool(bias), filter, boundary, maxMipLevel);
+  checkPixels(uv, uvDa, bias);
+  checkMips(s, mips);
+  expectDims("grad_out", gradOut, {uv.shape(0), uv.shape(1), uv.shape(2), tex.shape(3)});
+  FloatArray gradTex({tex.shape(0), tex.shape(1), tex.shape(2), tex.shape(3)});
+  FloatArray gradUv({uv.shape(0), uv.shape(1), uv.shape(2), py::ssize_t(2)});
+  FloatArray gradUvDa({uv.shape(0), uv.shape(1), uv.shape(2), py::ssize_t(uvDa ? 4 : 0)});
+  FloatArray gradBias({uv.shape(0), uv.shape(1), bias ? uv.shape(2) : py::ssize_t(0)});
+  const float *t = tex.data(), *m = mips ? mips->data() : nullptr, *u = uv.data(), *g = gradOut.data();
+  const float *d = uvDa ? uvDa->data() : nullptr, *b = bias ? bias->data() : nullptr;
+  float *gt = gradTex.mutable_data(), *gu = gradUv.mutable_data();
+  float *gd = uvDa ? gradUvDa.mutable_data() : nullptr, *gb = bias ? gradBias.mutable_data() : nullptr;
+  {
+    py::gil_scoped_release release;
+    std::fill(gd, gd + (gd ? gradUvDa.size() : 0), 0.0f);
+    std::fill(gb, gb + (gb ? gradBias.size() : 0), 0.0f);
+    clraster::textureGrad(ctx, s, t, m, u, d, b, g, gt, gu, gd, gb);
+  }
+  return py::make_tuple(gradTex, gradUv, uvDa ? py::object(gradUvDa) : py::object(py::none()),
+                        bias ? py::object(gradBias) : py::object(py::none()));
+}
+
 }  // namespace
 
 void bindDiff(py::module_& m)
@@ -98,4 +195,11 @@ void bindDiff(py::module_& m)
   m.def("interpolate_grad", &interpolateGrad, py::arg("ctx"), py::arg("attr").noconvert(), py::arg("rast").noconvert(),
         py::arg("tri").noconvert(), py::arg("grad_out").noconvert(), py::arg("db").noconvert() = py::none(),
         py::arg("diff") = std::vector<int>{}, py::arg("grad_da").noconvert() = py::none());
+  m.def("texture_mips", &textureMips, py::arg("ctx"), py::arg("tex").noconvert(), py::arg("max_mip_level"));
+  m.def("texture_fwd", &textureForward, py::arg("ctx"), py::arg("tex").noconvert(), py::arg("mips").noconvert(),
+        py::arg("uv").noconvert(), py::arg("uv_da").noconvert(), py::arg("bias").noconvert(), py::arg("filter"),
+        py::arg("boundary"), py::arg("max_mip_level"));
+  m.def("texture_grad", &textureGrad, py::arg("ctx"), py::arg("tex").noconvert(), py::arg("mips").noconvert(),
+        py::arg("uv").noconvert(), py::arg("uv_da").noconvert(), py::arg("bias").noconvert(),
+        py::arg("grad_out").noconvert(), py::arg("filter"), py::arg("boundary"), py::arg("max_mip_level"));
 }

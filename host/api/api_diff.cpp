@@ -93,4 +93,116 @@ void interpolateGrad(Context& ctx, const float* attr, size_t numVertices, size_t
   });
 }
 
+namespace {
+
+clr::TextureCall textureCall(const TextureSpec& spec)
+{
+  checkBatch(spec.batch, "texture");
+  if (spec.texImages != 1 && spec.texImages != spec.batch.images)
+    throw Error("tex: " + std::to_string(spec.texImages) + " textures for a batch of " +
+                std::to_string(spec.batch.images));
+  if (spec.texWidth == 0 || spec.texHeight == 0 || spec.texWidth > CLR_MAX_VIEWPORT ||
+      spec.texHeight > CLR_MAX_VIEWPORT)
+    throw Error("tex: size " + std::to_string(spec.texHeight) + "x" + std::to_string(spec.texWidth) + " outside 1.." +
+                std::to_string(CLR_MAX_VIEWPORT));
+  if (spec.channels == 0) throw Error("tex: no channels");
+  const bool mipmapped =
+      spec.filter == TextureFilter::LinearMipmapNearest || spec.filter == TextureFilter::LinearMipmapLinear;
+  if (mipmapped && !spec.hasUvDa && !spec.hasBias)
+    throw Error("filter_mode: mipmapped filtering needs uv_da or mip_level_bias");
+  clr::TextureCall c;
+  c.batch = {spec.batch.images, spec.batch.width, spec.batch.height};
+  c.texImages = spec.texImages;
+  c.texWidth = spec.texWidth;
+  c.texHeight = spec.texHeight;
+  c.channels = spec.channels;
+  c.filter = uint32_t(spec.filter);
+  c.boundary = uint32_t(spec.boundary);
+  c.hasUvDa = spec.hasUvDa;
+  c.hasBias = spec.hasBias;
+  uint32_t w = spec.texWidth, h = spec.texHeight, level = 0;
+  while ((w > 1 || h > 1) && (w == 1 || w % 2 == 0) && (h == 1 || h % 2 == 0) &&
+         (spec.maxMipLevel < 0 || level < uint32_t(spec.maxMipLevel))) {
+    w = std::max(1u, w / 2);
+    h = std::max(1u, h / 2);
+    ++level;
+  }
+  c.maxLevel = level;
+  return c;
+}
+
+}  // namespace
+
+uint32_t textureMaxLevel(const TextureSpec& spec)
+{
+  return guarded([&] {
+    const clr::TextureCall c = textureCall(spec);
+    return c.filter == uint32_t(TextureFilter::Nearest) || c.filter == uint32_t(TextureFilter::Linear) ? 0u
+                                                                                                       : c.maxLevel;
+  });
+}
+
+size_t textureMipFloats(const TextureSpec& spec)
+{
+  return guarded([&] {
+    const clr::TextureCall c = textureCall(spec);
+    return (c.pyramidTexels() - size_t(c.texWidth) * c.texHeight * c.texImages) * c.channels;
+  });
+}
+
+void textureMips(Context& ctx, const TextureSpec& spec, const float* tex, float* mips)
+{
+  guarded([&] {
+    const clr::TextureCall c = textureCall(spec);
+    need(tex, true, "tex");
+    need(mips, c.maxLevel > 0, "mip");
+    ctx.impl().diffKernels().buildMips(c, tex, mips);
+  });
+}
+
+namespace {
+
+clr::TextureCall checkedTextureCall(const TextureSpec& spec, const float* tex, const float* uv, const float* uvDa,
+                                    const float* bias)
+{
+  clr::TextureCall c = textureCall(spec);
+  if (c.filter == uint32_t(TextureFilter::Nearest) || c.filter == uint32_t(TextureFilter::Linear)) {
+    c.maxLevel = 0;
+    c.hasUvDa = c.hasBias = false;
+  }
+  const bool pixels = c.batch.pixels() != 0;
+  need(tex, true, "tex");
+  need(uv, pixels, "uv");
+  need(uvDa, pixels && c.hasUvDa, "uv_da");
+  need(bias, pixels && c.hasBias, "mip_level_bias");
+  return c;
+}
+
+}  // namespace
+
+void texture(Context& ctx, const TextureSpec& spec, const float* tex, const float* mips, const float* uv,
+             const float* uvDa, const float* bias, float* out)
+{
+  guarded([&] {
+    const clr::TextureCall c = checkedTextureCall(spec, tex, uv, uvDa, bias);
+    need(out, c.batch.pixels() != 0, "out");
+    ctx.impl().diffKernels().textureForward(c, tex, c.maxLevel ? mips : nullptr, uv, uvDa, bias, out);
+  });
+}
+
+void textureGrad(Context& ctx, const TextureSpec& spec, const float* tex, const float* mips, const float* uv,
+                 const float* uvDa, const float* bias, const float* gradOut, float* gradTex, float* gradUv,
+                 float* gradUvDa, float* gradBias)
+{
+  guarded([&] {
+    const clr::TextureCall c = checkedTextureCall(spec, tex, uv, uvDa, bias);
+    const bool pixels = c.batch.pixels() != 0;
+    need(gradOut, pixels, "grad_out");
+    need(gradTex, true, "grad_tex");
+    need(gradUv, pixels, "grad_uv");
+    ctx.impl().diffKernels().textureGrad(c, tex, c.maxLevel ? mips : nullptr, uv, uvDa, bias, gradOut, gradTex, gradUv,
+                                         gradUvDa, gradBias);
+  });
+}
+
 }  // namespace clraster

@@ -24,8 +24,11 @@ DiffKernels::DiffKernels(ClContext& cl)
       out0_(memory_, "gradient output 0"),
       out1_(memory_, "gradient output 1"),
       out2_(memory_, "gradient output 2"),
+      pyramid_(memory_, "texture mip pyramid"),
+      gradPyramid_(memory_, "texture gradient pyramid"),
       tri_(memory_, "triangles"),
-      list_(memory_, "attribute list")
+      list_(memory_, "attribute list"),
+      levelInfo_(memory_, "mip level table")
 {
 }
 
@@ -126,6 +129,157 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
   if (attrFloats) cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, attrFloats * sizeof(float), gradAttr);
   if (n) cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradRast);
   if (n && !diff.empty()) cl_.queue.enqueueReadBuffer(out2_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradDb);
+  cl_.queue.finish();
+}
+
+std::vector<uint32_t> TextureCall::levelSizes() const
+{
+  std::vector<uint32_t> sizes;
+  for (uint32_t k = 0; k <= maxLevel; ++k) {
+    sizes.push_back(std::max(1u, texWidth >> k));
+    sizes.push_back(std::max(1u, texHeight >> k));
+  }
+  return sizes;
+}
+
+size_t TextureCall::pyramidTexels() const
+{
+  const std::vector<uint32_t> sizes = levelSizes();
+  size_t n = 0;
+  for (size_t k = 0; k < sizes.size(); k += 2) n += size_t(sizes[k]) * sizes[k + 1] * texImages;
+  return n;
+}
+
+void DiffKernels::uploadPyramid(const TextureCall& call, const float* tex, const float* mips)
+{
+  const std::vector<uint32_t> sizes = call.levelSizes();
+  std::vector<int32_t> info;
+  uint64_t offset = 0;
+  for (size_t k = 0; k < sizes.size(); k += 2) {
+    checkCount(offset, "texture texels");
+    info.insert(info.end(), {int32_t(offset), int32_t(sizes[k]), int32_t(sizes[k + 1])});
+    offset += uint64_t(sizes[k]) * sizes[k + 1] * call.texImages;
+  }
+  checkCount(offset * call.channels, "texture floats");
+  levelInfo_.upload(info);  // blocking: info is local
+  pyramid_.reserve(offset * call.channels);
+  const uint64_t base = uint64_t(call.texWidth) * call.texHeight * call.texImages * call.channels;
+  if (base) cl_.queue.enqueueWriteBuffer(pyramid_.get(), CL_FALSE, 0, base * sizeof(float), tex);
+  if (mips && offset * call.channels > base)
+    cl_.queue.enqueueWriteBuffer(pyramid_.get(), CL_FALSE, base * sizeof(float),
+                                 (offset * call.channels - base) * sizeof(float), mips);
+  if (mips) return;
+  if (!mipBuild_()) mipBuild_ = cl::Kernel(cl_.extras(), "mip_build");
+  for (uint32_t k = 1; k <= call.maxLevel; ++k) {
+    const uint64_t n = uint64_t(sizes[2 * k]) * sizes[2 * k + 1] * call.texImages;
+    mipBuild_.setArg(0, pyramid_.get());
+    mipBuild_.setArg(1, levelInfo_.get());
+    mipBuild_.setArg(2, cl_uint(k));
+    mipBuild_.setArg(3, cl_uint(call.channels));
+    mipBuild_.setArg(4, cl_uint(call.texImages));
+    cl_.queue.enqueueNDRangeKernel(mipBuild_, cl::NullRange, linear(n));
+  }
+}
+
+void DiffKernels::setTextureArgs(cl::Kernel& kernel, const TextureCall& call)
+{
+  const uint64_t n = call.batch.pixels();
+  checkCount(n * std::max<uint64_t>(call.channels, 4), "pixel values");
+  const cl_uint params[12] = {call.filter,
+                              call.boundary,
+                              call.channels,
+                              cl_uint(call.texImages),
+                              call.batch.width,
+                              call.batch.height,
+                              cl_uint(n),
+                              call.maxLevel,
+                              call.hasUvDa,
+                              call.hasBias,
+                              0,
+                              0};
+  cl_uint a = 0;
+  kernel.setArg(a++, sizeof params, params);
+  kernel.setArg(a++, pyramid_.get());
+  kernel.setArg(a++, levelInfo_.get());
+  kernel.setArg(a++, in0_.get());
+  kernel.setArg(a++, in1_.get());
+  kernel.setArg(a++, in2_.get());
+}
+
+void DiffKernels::buildMips(const TextureCall& call, const float* tex, float* mips)
+{
+  uploadPyramid(call, tex, nullptr);
+  const uint64_t base = uint64_t(call.texWidth) * call.texHeight * call.texImages * call.channels;
+  const uint64_t rest = call.pyramidTexels() * call.channels - base;
+  if (rest) cl_.queue.enqueueReadBuffer(pyramid_.get(), CL_FALSE, base * sizeof(float), rest * sizeof(float), mips);
+  cl_.queue.finish();
+}
+
+void DiffKernels::textureForward(const TextureCall& call, const float* tex, const float* mips, const float* uv,
+                                 const float* uvDa, const float* bias, float* out)
+{
+  const uint64_t n = call.batch.pixels();
+  uploadPyramid(call, tex, mips);
+  upload(in0_, uv, 2 * n);
+  upload(in1_, uvDa, call.hasUvDa ? 4 * n : 0);
+  upload(in2_, bias, call.hasBias ? n : 0);
+  out0_.reserve(n * call.channels);
+  if (n && call.channels) {
+    if (!textureFwd_()) textureFwd_ = cl::Kernel(cl_.extras(), "texture_fwd");
+    setTextureArgs(textureFwd_, call);
+    textureFwd_.setArg(6, out0_.get());
+    cl_.queue.enqueueNDRangeKernel(textureFwd_, cl::NullRange, linear(n));
+    cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * call.channels * sizeof(float), out);
+  }
+  cl_.queue.finish();
+}
+
+void DiffKernels::textureGrad(const TextureCall& call, const float* tex, const float* mips, const float* uv,
+                              const float* uvDa, const float* bias, const float* gradOut, float* gradTex, float* gradUv,
+                              float* gradUvDa, float* gradBias)
+{
+  const uint64_t n = call.batch.pixels();
+  const uint64_t texels = call.pyramidTexels();
+  uploadPyramid(call, tex, mips);
+  upload(in0_, uv, 2 * n);
+  upload(in1_, uvDa, call.hasUvDa ? 4 * n : 0);
+  upload(in2_, bias, call.hasBias ? n : 0);
+  upload(in3_, gradOut, n * call.channels);
+  gradPyramid_.zero(texels * call.channels);
+  out0_.reserve(2 * n);
+  out1_.reserve(call.hasUvDa ? 4 * n : 0);
+  out2_.reserve(call.hasBias ? n : 0);
+  if (n && call.channels) {
+    if (!textureGrad_()) textureGrad_ = cl::Kernel(cl_.extras(), "texture_grad");
+    setTextureArgs(textureGrad_, call);
+    cl_uint a = 6;
+    textureGrad_.setArg(a++, in3_.get());
+    textureGrad_.setArg(a++, gradPyramid_.get());
+    textureGrad_.setArg(a++, out0_.get());
+    textureGrad_.setArg(a++, out1_.get());
+    textureGrad_.setArg(a++, out2_.get());
+    cl_.queue.enqueueNDRangeKernel(textureGrad_, cl::NullRange, linear(n));
+  }
+  // Every level's gradient down to level 0, deepest first (not through a caller's levels).
+  const std::vector<uint32_t> sizes = call.levelSizes();
+  if (!mips && call.maxLevel) {
+    if (!mipGradDown_()) mipGradDown_ = cl::Kernel(cl_.extras(), "mip_grad_down");
+    for (uint32_t k = call.maxLevel; k >= 1; --k) {
+      const uint64_t m = uint64_t(sizes[2 * k - 2]) * sizes[2 * k - 1] * call.texImages;
+      mipGradDown_.setArg(0, gradPyramid_.get());
+      mipGradDown_.setArg(1, levelInfo_.get());
+      mipGradDown_.setArg(2, cl_uint(k));
+      mipGradDown_.setArg(3, cl_uint(call.channels));
+      mipGradDown_.setArg(4, cl_uint(call.texImages));
+      cl_.queue.enqueueNDRangeKernel(mipGradDown_, cl::NullRange, linear(m));
+    }
+  }
+  const uint64_t base = uint64_t(call.texWidth) * call.texHeight * call.texImages * call.channels;
+  if (base) cl_.queue.enqueueReadBuffer(gradPyramid_.get(), CL_FALSE, 0, base * sizeof(float), gradTex);
+  if (n) cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, 2 * n * sizeof(float), gradUv);
+  if (n && call.hasUvDa && gradUvDa)
+    cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradUvDa);
+  if (n && call.hasBias && gradBias) cl_.queue.enqueueReadBuffer(out2_.get(), CL_FALSE, 0, n * sizeof(float), gradBias);
   cl_.queue.finish();
 }
 

@@ -21,6 +21,21 @@ struct DiffImages {
   size_t pixels() const { return images * width * height; }
 };
 
+// A texture call (diff_texture.cl): output images × height × width
+// pixels sampling texImages (1 or images) textures of texWidth × texHeight
+// × channels through mip levels 0..maxLevel.
+struct TextureCall {
+  DiffImages batch;
+  size_t texImages = 0;
+  uint32_t texWidth = 0, texHeight = 0, channels = 0;
+  uint32_t filter = 0, boundary = 0;  // TEX_* of diff_texture.cl
+  uint32_t maxLevel = 0;
+  bool hasUvDa = false, hasBias = false;
+  // The sizes of levels 0..maxLevel (level k: max(1, size >> k)).
+  std::vector<uint32_t> levelSizes() const;
+  size_t pyramidTexels() const;  // over all levels and texture images
+};
+
 class DiffKernels {
  public:
   explicit DiffKernels(ClContext& cl);
@@ -41,7 +56,26 @@ class DiffKernels {
                        const float* db, const std::vector<int>& diff, const float* gradDa, float* gradAttr,
                        float* gradRast, float* gradDb);
 
+  // The mip levels 1..maxLevel of tex (level 0), built on the device
+  // (mip_build), written after each other into mips.
+  void buildMips(const TextureCall& call, const float* tex, float* mips);
+  // out (channels per pixel) sampled from tex, with its levels 1.. from
+  // mips when not null (else built here). uv: 2 floats per pixel; uvDa: 4
+  // (with hasUvDa); bias: 1 (with hasBias).
+  void textureForward(const TextureCall& call, const float* tex, const float* mips, const float* uv, const float* uvDa,
+                      const float* bias, float* out);
+  // Gradients of textureForward: gradTex (tex's shape: every level's
+  // gradient pushed down to level 0 unless mips came from the caller, whose
+  // levels then get none), gradUv, gradUvDa, gradBias (those given).
+  void textureGrad(const TextureCall& call, const float* tex, const float* mips, const float* uv, const float* uvDa,
+                   const float* bias, const float* gradOut, float* gradTex, float* gradUv, float* gradUvDa,
+                   float* gradBias);
+
  private:
+  // Uploads tex and its levels into pyramid_ (building those not given).
+  void uploadPyramid(const TextureCall& call, const float* tex, const float* mips);
+  void setTextureArgs(cl::Kernel& kernel, const TextureCall& call);
+  // Non-blocking: data must live until the call's closing finish().
   template <typename T>
   void upload(DeviceBuffer<T>& buffer, const T* data, uint64_t n);
   cl::NDRange linear(uint64_t n) const;
@@ -49,8 +83,9 @@ class DiffKernels {
   ClContext& cl_;
   DeviceMemory memory_;
   DeviceBuffer<float> in0_, in1_, in2_, in3_, in4_, out0_, out1_, out2_;
-  DeviceBuffer<int32_t> tri_, list_;
-  cl::Kernel rasterizeGrad_, interpolateGrad_;
+  DeviceBuffer<float> pyramid_, gradPyramid_;
+  DeviceBuffer<int32_t> tri_, list_, levelInfo_;
+  cl::Kernel rasterizeGrad_, interpolateGrad_, textureFwd_, textureGrad_, mipBuild_, mipGradDown_;
 };
 
 }  // namespace clr

@@ -39,4 +39,43 @@ CLRASTER_API void interpolateGrad(Context& ctx, const float* attr, size_t numVer
                                   const std::vector<int>& diffAttrs, const float* gradDa, float* gradAttr,
                                   float* gradRast, float* gradDb);
 
+// nvdiffrast's texture sampling (texture(), texture_construct_mip()).
+enum class TextureFilter { Nearest, Linear, LinearMipmapNearest, LinearMipmapLinear };
+enum class TextureBoundary { Wrap, Clamp, Zero };
+
+// A texture call: batch output pixels (uv 2 floats, uvDa 4 floats and bias
+// 1 float per pixel, the last two when hasUvDa, hasBias) sampling texImages
+// (1 or batch.images) textures of texHeight × texWidth × channels floats,
+// row 0 at v = 0. Mip level k is max(1, size >> k) on each side, each texel
+// the mean of its 2×2 children (2 where a side is 1); the pyramid stops
+// before a level whose parent has an odd side above 1, at level 1 ×
+// 1, or at maxMipLevel (-1: no bound). The level of a pixel is nvdiffrast's
+// (the footprint's major axis from uvDa, plus bias).
+struct TextureSpec {
+  ImageBatch batch;
+  size_t texImages = 1;
+  uint32_t texWidth = 0, texHeight = 0, channels = 0;
+  TextureFilter filter = TextureFilter::Linear;
+  TextureBoundary boundary = TextureBoundary::Wrap;
+  int maxMipLevel = -1;
+  bool hasUvDa = false, hasBias = false;
+};
+
+// The deepest mip level a call uses (0 for nearest and linear).
+CLRASTER_API uint32_t textureMaxLevel(const TextureSpec& spec);
+// Floats of mip levels 1..textureMaxLevel (all texture images), as
+// textureMips writes them, level after level.
+CLRASTER_API size_t textureMipFloats(const TextureSpec& spec);
+CLRASTER_API void textureMips(Context& ctx, const TextureSpec& spec, const float* tex, float* mips);
+// out: channels floats per pixel. mips: levels from textureMips (or null:
+// built from tex on the device).
+CLRASTER_API void texture(Context& ctx, const TextureSpec& spec, const float* tex, const float* mips, const float* uv,
+                          const float* uvDa, const float* bias, float* out);
+// Gradients of texture(): gradTex has tex's shape (every level's share
+// pushed down to tex unless mips came from the caller: then only level 0's
+// share); gradUvDa, gradBias only with hasUvDa, hasBias.
+CLRASTER_API void textureGrad(Context& ctx, const TextureSpec& spec, const float* tex, const float* mips,
+                              const float* uv, const float* uvDa, const float* bias, const float* gradOut,
+                              float* gradTex, float* gradUv, float* gradUvDa, float* gradBias);
+
 }  // namespace clraster

@@ -29,7 +29,8 @@ from . import ArgumentTypeError, Context, Error  # noqa: F401  (re-exported)
 from . import _MAX_RESOLUTION, triangle_ids  # noqa: F401
 from . import rasterize as np_rasterize
 
-__all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate",
+__all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
+           "texture_construct_mip", "TextureMip",
            "triangle_ids", "set_default_context"]
 
 _default = None
@@ -284,3 +285,118 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
     else:
         rast_db = torch.zeros(0)
     return _Interpolate.apply(attr, rast, rast_db, tri_np, diff)
+
+
+_FILTERS = {"nearest": 0, "linear": 1, "linear-mipmap-nearest": 2, "linear-mipmap-linear": 3}
+_BOUNDARIES = {"wrap": 0, "clamp": 1, "zero": 2}
+
+
+class TextureMip:
+    """A mip pyramid from texture_construct_mip (levels 1.., flat), for
+    texture(..., mip=...). Built for one texture shape and max_mip_level."""
+
+    def __init__(self, levels, shape, max_mip_level):
+        self.levels, self.shape, self.max_mip_level = levels, shape, max_mip_level
+
+
+def _max_level(max_mip_level):
+    if max_mip_level is None:
+        return -1
+    if isinstance(max_mip_level, bool) or not isinstance(max_mip_level, numbers.Integral) or max_mip_level < 0:
+        raise ValueError(f"max_mip_level: expected None or a non-negative integer, got {max_mip_level!r}")
+    return int(max_mip_level)
+
+
+def _tex_array(tex):
+    tex_np = _floats("tex", tex)
+    if tex_np.ndim != 4:
+        raise ValueError(f"tex: expected shape [B, H, W, C], got {list(tex_np.shape)}")
+    return tex_np
+
+
+def texture_construct_mip(tex, max_mip_level=None, cube_mode=False):
+    """nvdiffrast's texture_construct_mip: the mip levels of tex [B, H, W, C]
+    (each texel the mean of its 2×2 children), for texture(..., mip=).
+    Gradients do not flow into a pyramid built here (texture() then
+    differentiates only level 0, tex itself)."""
+    if cube_mode:
+        raise ValueError("cube_mode: cube maps are not supported")
+    tex_np = _tex_array(_to_tensor("tex", tex))
+    level = _max_level(max_mip_level)
+    glctx = _context()
+    with glctx._lock:
+        levels = _clraster.texture_mips(glctx._ctx, tex_np, level)
+    return TextureMip(levels, tex_np.shape, level)
+
+
+class _Texture(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, tex, uv, uv_da, bias, mip, filter_mode, boundary, max_level):
+        arrays = [_tex_array(tex), _floats("uv", uv), _floats("uv_da", uv_da) if uv_da is not None else None,
+                  _floats("mip_level_bias", bias) if bias is not None else None]
+        mips = mip.levels if mip is not None else None
+        glctx = _context()
+        with glctx._lock:
+            out = _clraster.texture_fwd(glctx._ctx, arrays[0], mips, arrays[1], arrays[2], arrays[3], filter_mode,
+                                        boundary, max_level)
+        ctx.arrays, ctx.mips, ctx.modes = arrays, mips, (filter_mode, boundary, max_level)
+        ctx.dtypes = [t.dtype if t is not None else None for t in (tex, uv, uv_da, bias)]
+        return torch.from_numpy(out)
+
+    @staticmethod
+    def backward(ctx, dy):
+        tex, uv, uv_da, bias = ctx.arrays
+        dy = np.ascontiguousarray(dy.detach().numpy(), np.float32)
+        glctx = _context()
+        with glctx._lock:
+            grads = _clraster.texture_grad(glctx._ctx, tex, ctx.mips, uv, uv_da, bias, dy, *ctx.modes)
+        out = [torch.from_numpy(g).to(d) if g is not None else None for g, d in zip(grads, ctx.dtypes)]
+        return out[0], out[1], out[2], out[3], None, None, None, None
+
+
+def texture(tex, uv, uv_da=None, mip_level_bias=None, mip=None, filter_mode="auto", boundary_mode="wrap",
+            max_mip_level=None):
+    """nvdiffrast's texture: tex [B or 1, H, W, C] sampled at uv [B, h, w, 2]
+    (u along W, v along H, texel centres at (i + 0.5) / size) into
+    [B, h, w, C]. filter_mode 'nearest', 'linear', 'linear-mipmap-nearest',
+    'linear-mipmap-linear' or 'auto' (the last with uv_da or
+    mip_level_bias, else 'linear'); boundary_mode 'wrap', 'clamp' or 'zero'
+    (no cube maps). uv_da [B, h, w, 4] = (du/dX, du/dY, dv/dX, dv/dY) and
+    mip_level_bias [B, h, w] pick the mip level. Differentiable in tex, uv,
+    uv_da and mip_level_bias."""
+    if filter_mode == "auto":
+        filter_mode = "linear-mipmap-linear" if uv_da is not None or mip_level_bias is not None else "linear"
+    if filter_mode not in _FILTERS:
+        raise ValueError(f"filter_mode: expected one of {', '.join(['auto'] + list(_FILTERS))}, got {filter_mode!r}")
+    if boundary_mode not in _BOUNDARIES:
+        if boundary_mode == "cube":
+            raise ValueError("boundary_mode: cube maps are not supported")
+        raise ValueError(f"boundary_mode: expected one of {', '.join(_BOUNDARIES)}, got {boundary_mode!r}")
+    level = _max_level(max_mip_level)
+    tex, uv = _to_tensor("tex", tex), _to_tensor("uv", uv)
+    if tex.dim() != 4:
+        raise ValueError(f"tex: expected shape [B, H, W, C], got {list(tex.shape)}")
+    if uv.dim() != 4 or uv.shape[-1] != 2:
+        raise ValueError(f"uv: expected shape [B, H, W, 2], got {list(uv.shape)}")
+    if tex.shape[0] not in (1, uv.shape[0]):
+        raise ValueError(f"tex: {tex.shape[0]} textures for {uv.shape[0]} images in uv")
+    mipmapped = filter_mode.startswith("linear-mipmap")
+    if mipmapped and uv_da is None and mip_level_bias is None:
+        raise ValueError(f"filter_mode: {filter_mode!r} needs uv_da or mip_level_bias")
+    if not mipmapped:
+        uv_da = mip_level_bias = mip = None
+    if uv_da is not None:
+        uv_da = _to_tensor("uv_da", uv_da)
+        if tuple(uv_da.shape) != tuple(uv.shape[:3]) + (4,):
+            raise ValueError(f"uv_da: expected shape {list(uv.shape[:3]) + [4]}, got {list(uv_da.shape)}")
+    if mip_level_bias is not None:
+        mip_level_bias = _to_tensor("mip_level_bias", mip_level_bias)
+        if tuple(mip_level_bias.shape) != tuple(uv.shape[:3]):
+            raise ValueError(f"mip_level_bias: expected shape {list(uv.shape[:3])}, got {list(mip_level_bias.shape)}")
+    if mip is not None:
+        if not isinstance(mip, TextureMip):
+            raise ArgumentTypeError(f"mip: expected texture_construct_mip's result, got {type(mip).__name__}")
+        if tuple(mip.shape) != tuple(tex.shape) or mip.max_mip_level != level:
+            raise ValueError("mip: built for another texture shape or max_mip_level")
+    return _Texture.apply(tex, uv, uv_da, mip_level_bias, mip, _FILTERS[filter_mode], _BOUNDARIES[boundary_mode],
+                          level)
