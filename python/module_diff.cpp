@@ -186,6 +186,70 @@ py::tuple textureGrad(clraster::Context& ctx, const FloatArray& tex, std::option
                         bias ? py::object(gradBias) : py::object(py::none()));
 }
 
+// color [B, H, W, C], rast [B, H, W, 4], pos [P, V, 4], tri and opp [T, 3].
+void checkAntialias(const FloatArray& color, const FloatArray& rast, const FloatArray& pos, const IntArray& tri,
+                    const IntArray& opp)
+{
+  const clraster::ImageBatch b = batchOf(rast);
+  expectDims("color", color, {py::ssize_t(b.images), b.height, b.width, -1});
+  expectDims("pos", pos, {-1, -1, 4});
+  expectDims("tri", tri, {-1, 3});
+  expectDims("topology_hash", opp, {tri.shape(0), 3});
+}
+
+FloatArray antialiasForward(clraster::Context& ctx, const FloatArray& color, const FloatArray& rast,
+                            const FloatArray& pos, const IntArray& tri, const IntArray& opp)
+{
+  checkAntialias(color, rast, pos, tri, opp);
+  const clraster::ImageBatch b = batchOf(rast);
+  FloatArray out({color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
+  const float *c = color.data(), *r = rast.data(), *p = pos.data();
+  const int32_t *t = tri.data(), *o = opp.data();
+  float* d = out.mutable_data();
+  const uint32_t channels = uint32_t(color.shape(3));
+  const size_t v = size_t(pos.shape(1)), images = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  {
+    py::gil_scoped_release release;
+    clraster::antialias(ctx, c, channels, r, b, p, v, images, t, o, n, d);
+  }
+  return out;
+}
+
+py::tuple antialiasGrad(clraster::Context& ctx, const FloatArray& color, const FloatArray& rast, const FloatArray& pos,
+                        const IntArray& tri, const IntArray& opp, const FloatArray& gradOut, float posBoost)
+{
+  checkAntialias(color, rast, pos, tri, opp);
+  expectDims("grad_out", gradOut, {color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
+  const clraster::ImageBatch b = batchOf(rast);
+  FloatArray gradColor({color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
+  FloatArray gradPos({pos.shape(0), pos.shape(1), py::ssize_t(4)});
+  const float *c = color.data(), *r = rast.data(), *p = pos.data(), *g = gradOut.data();
+  const int32_t *t = tri.data(), *o = opp.data();
+  float *gc = gradColor.mutable_data(), *gp = gradPos.mutable_data();
+  const uint32_t channels = uint32_t(color.shape(3));
+  const size_t v = size_t(pos.shape(1)), images = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  {
+    py::gil_scoped_release release;
+    clraster::antialiasGrad(ctx, c, channels, r, b, p, v, images, t, o, n, g, posBoost, gc, gp);
+  }
+  return py::make_tuple(gradColor, gradPos);
+}
+
+IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
+{
+  expectDims("tri", tri, {-1, 3});
+  std::vector<int32_t> opp;
+  const int32_t* t = tri.data();
+  const size_t n = size_t(tri.shape(0));
+  {
+    py::gil_scoped_release release;
+    opp = clraster::antialiasTopology(t, n, numVertices);
+  }
+  IntArray out({tri.shape(0), py::ssize_t(3)});
+  std::copy(opp.begin(), opp.end(), out.mutable_data());
+  return out;
+}
+
 }  // namespace
 
 void bindDiff(py::module_& m)
@@ -202,4 +266,10 @@ void bindDiff(py::module_& m)
   m.def("texture_grad", &textureGrad, py::arg("ctx"), py::arg("tex").noconvert(), py::arg("mips").noconvert(),
         py::arg("uv").noconvert(), py::arg("uv_da").noconvert(), py::arg("bias").noconvert(),
         py::arg("grad_out").noconvert(), py::arg("filter"), py::arg("boundary"), py::arg("max_mip_level"));
+  m.def("antialias_fwd", &antialiasForward, py::arg("ctx"), py::arg("color").noconvert(), py::arg("rast").noconvert(),
+        py::arg("pos").noconvert(), py::arg("tri").noconvert(), py::arg("opp").noconvert());
+  m.def("antialias_grad", &antialiasGrad, py::arg("ctx"), py::arg("color").noconvert(), py::arg("rast").noconvert(),
+        py::arg("pos").noconvert(), py::arg("tri").noconvert(), py::arg("opp").noconvert(),
+        py::arg("grad_out").noconvert(), py::arg("pos_gradient_boost"));
+  m.def("antialias_topology", &antialiasTopology, py::arg("tri").noconvert(), py::arg("num_vertices"));
 }

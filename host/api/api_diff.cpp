@@ -8,6 +8,8 @@
 
 #include <clraster/diff.hpp>
 
+#include <algorithm>
+
 namespace clraster {
 
 clr::DiffKernels& Context::Impl::diffKernels()
@@ -202,6 +204,88 @@ void textureGrad(Context& ctx, const TextureSpec& spec, const float* tex, const 
     need(gradUv, pixels, "grad_uv");
     ctx.impl().diffKernels().textureGrad(c, tex, c.maxLevel ? mips : nullptr, uv, uvDa, bias, gradOut, gradTex, gradUv,
                                          gradUvDa, gradBias);
+  });
+}
+
+namespace {
+
+void checkAntialias(const float* color, uint32_t channels, const float* rast, const ImageBatch& batch, const float* pos,
+                    size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp, size_t numTriangles)
+{
+  checkBatch(batch, "antialias");
+  if (posImages != 1 && posImages != batch.images)
+    throw Error("pos: " + std::to_string(posImages) + " images for a batch of " + std::to_string(batch.images));
+  checkTri(tri, numTriangles, numVertices);
+  need(opp, numTriangles != 0, "topology_hash");
+  for (size_t k = 0; k < 3 * numTriangles; ++k)
+    if (opp[k] < -1 || (opp[k] >= 0 && size_t(opp[k]) >= numVertices))
+      throw Error("topology_hash: vertex " + std::to_string(opp[k]) + " outside -1.." +
+                  std::to_string(int64_t(numVertices) - 1));
+  const size_t pixels = batch.images * batch.width * batch.height;
+  need(color, pixels != 0 && channels != 0, "color");
+  need(rast, pixels != 0, "rast");
+  need(pos, numVertices != 0, "pos");
+}
+
+}  // namespace
+
+void antialias(Context& ctx, const float* color, uint32_t channels, const float* rast, const ImageBatch& batch,
+               const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp,
+               size_t numTriangles, float* out)
+{
+  guarded([&] {
+    checkAntialias(color, channels, rast, batch, pos, numVertices, posImages, tri, opp, numTriangles);
+    need(out, batch.images * batch.width * batch.height * channels != 0, "out");
+    ctx.impl().diffKernels().antialiasForward(color, channels, rast, {batch.images, batch.width, batch.height}, pos,
+                                              numVertices, posImages, tri, opp, numTriangles, out);
+  });
+}
+
+void antialiasGrad(Context& ctx, const float* color, uint32_t channels, const float* rast, const ImageBatch& batch,
+                   const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp,
+                   size_t numTriangles, const float* gradOut, float posBoost, float* gradColor, float* gradPos)
+{
+  guarded([&] {
+    checkAntialias(color, channels, rast, batch, pos, numVertices, posImages, tri, opp, numTriangles);
+    const bool values = batch.images * batch.width * batch.height * channels != 0;
+    need(gradOut, values, "grad_out");
+    need(gradColor, values, "grad_color");
+    need(gradPos, numVertices != 0, "grad_pos");
+    ctx.impl().diffKernels().antialiasGrad(color, channels, rast, {batch.images, batch.width, batch.height}, pos,
+                                           numVertices, posImages, tri, opp, numTriangles, gradOut, posBoost, gradColor,
+                                           gradPos);
+  });
+}
+
+std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, size_t numVertices)
+{
+  return guarded([&] {
+    checkTri(tri, numTriangles, numVertices);
+    // Each edge (low, high vertex) with its triangle and the vertex opposite; sorted, runs of one edge.
+    struct Side {
+      uint64_t key;
+      size_t slot;  // 3 · triangle + the opposite vertex's position
+    };
+    std::vector<Side> sides;
+    sides.reserve(3 * numTriangles);
+    for (size_t t = 0; t < numTriangles; ++t)
+      for (size_t i = 0; i < 3; ++i) {
+        const uint64_t a = uint32_t(tri[3 * t + (i + 1) % 3]), b = uint32_t(tri[3 * t + (i + 2) % 3]);
+        if (a != b) sides.push_back({std::min(a, b) << 32 | std::max(a, b), 3 * t + i});
+      }
+    std::sort(sides.begin(), sides.end(),
+              [](const Side& x, const Side& y) { return x.key != y.key ? x.key < y.key : x.slot < y.slot; });
+    std::vector<int32_t> opp(3 * numTriangles, -1);
+    for (size_t k = 0; k < sides.size();) {
+      size_t end = k;
+      while (end < sides.size() && sides[end].key == sides[k].key) ++end;
+      if (end - k == 2) {
+        opp[sides[k].slot] = tri[sides[k + 1].slot];
+        opp[sides[k + 1].slot] = tri[sides[k].slot];
+      }
+      k = end;
+    }
+    return opp;
   });
 }
 

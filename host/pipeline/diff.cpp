@@ -28,7 +28,8 @@ DiffKernels::DiffKernels(ClContext& cl)
       gradPyramid_(memory_, "texture gradient pyramid"),
       tri_(memory_, "triangles"),
       list_(memory_, "attribute list"),
-      levelInfo_(memory_, "mip level table")
+      levelInfo_(memory_, "mip level table"),
+      opp_(memory_, "triangle neighbours")
 {
 }
 
@@ -280,6 +281,73 @@ void DiffKernels::textureGrad(const TextureCall& call, const float* tex, const f
   if (n && call.hasUvDa && gradUvDa)
     cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradUvDa);
   if (n && call.hasBias && gradBias) cl_.queue.enqueueReadBuffer(out2_.get(), CL_FALSE, 0, n * sizeof(float), gradBias);
+  cl_.queue.finish();
+}
+
+void DiffKernels::antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels,
+                                 const float* rast, const DiffImages& batch, const float* pos, size_t numVertices,
+                                 size_t posImages, const int32_t* tri, const int32_t* opp, size_t numTriangles)
+{
+  const uint64_t n = batch.pixels(), posFloats = uint64_t(posImages) * numVertices * 4;
+  checkCount(n * std::max<uint32_t>(channels, 4), "pixel values");
+  checkCount(posFloats, "pos floats");
+  checkCount(3 * uint64_t(numTriangles), "triangle indices");
+  upload(in0_, color, n * channels);
+  upload(in1_, rast, 4 * n);
+  upload(in2_, pos, posFloats);
+  upload(tri_, tri, 3 * uint64_t(numTriangles));
+  upload(opp_, opp, 3 * uint64_t(numTriangles));
+  if (!kernel()) kernel = cl::Kernel(cl_.extras(), name);
+  cl_uint a = 0;
+  kernel.setArg(a++, in0_.get());
+  kernel.setArg(a++, in1_.get());
+  kernel.setArg(a++, in2_.get());
+  kernel.setArg(a++, cl_uint(posImages > 1 ? numVertices * 4 : 0));
+  kernel.setArg(a++, tri_.get());
+  kernel.setArg(a++, opp_.get());
+  kernel.setArg(a++, cl_uint(numTriangles));
+  kernel.setArg(a++, cl_uint(batch.width));
+  kernel.setArg(a++, cl_uint(batch.height));
+  kernel.setArg(a++, cl_uint(n));
+  kernel.setArg(a++, cl_uint(channels));
+}
+
+void DiffKernels::antialiasForward(const float* color, uint32_t channels, const float* rast, const DiffImages& batch,
+                                   const float* pos, size_t numVertices, size_t posImages, const int32_t* tri,
+                                   const int32_t* opp, size_t numTriangles, float* out)
+{
+  const uint64_t n = batch.pixels();
+  antialiasSetup(aaFwd_, "antialias_fwd", color, channels, rast, batch, pos, numVertices, posImages, tri, opp,
+                 numTriangles);
+  upload(out0_, color, n * channels);
+  if (n && channels) {
+    aaFwd_.setArg(11, out0_.get());
+    cl_.queue.enqueueNDRangeKernel(aaFwd_, cl::NullRange, linear(n));
+    cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * channels * sizeof(float), out);
+  }
+  cl_.queue.finish();
+}
+
+void DiffKernels::antialiasGrad(const float* color, uint32_t channels, const float* rast, const DiffImages& batch,
+                                const float* pos, size_t numVertices, size_t posImages, const int32_t* tri,
+                                const int32_t* opp, size_t numTriangles, const float* gradOut, float posBoost,
+                                float* gradColor, float* gradPos)
+{
+  const uint64_t n = batch.pixels(), posFloats = uint64_t(posImages) * numVertices * 4;
+  antialiasSetup(aaGrad_, "antialias_grad", color, channels, rast, batch, pos, numVertices, posImages, tri, opp,
+                 numTriangles);
+  upload(in3_, gradOut, n * channels);
+  upload(out0_, gradOut, n * channels);
+  out1_.zero(posFloats);
+  if (n && channels) {
+    aaGrad_.setArg(11, in3_.get());
+    aaGrad_.setArg(12, posBoost);
+    aaGrad_.setArg(13, out0_.get());
+    aaGrad_.setArg(14, out1_.get());
+    cl_.queue.enqueueNDRangeKernel(aaGrad_, cl::NullRange, linear(n));
+    cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * channels * sizeof(float), gradColor);
+  }
+  if (posFloats) cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, posFloats * sizeof(float), gradPos);
   cl_.queue.finish();
 }
 

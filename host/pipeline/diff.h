@@ -71,7 +71,23 @@ class DiffKernels {
                    const float* bias, const float* gradOut, float* gradTex, float* gradUv, float* gradUvDa,
                    float* gradBias);
 
+  // nvdiffrast's antialias of colour (channels per pixel of the batch)
+  // into out, from rasterize's rast of pos (posImages × numVertices × 4)
+  // and tri, with opp (per triangle, the vertex across each edge, or −1).
+  void antialiasForward(const float* color, uint32_t channels, const float* rast, const DiffImages& batch,
+                        const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp,
+                        size_t numTriangles, float* out);
+  // Its gradients: gradColor (colour's shape), gradPos (pos's shape, the
+  // silhouette terms times posBoost).
+  void antialiasGrad(const float* color, uint32_t channels, const float* rast, const DiffImages& batch,
+                     const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp,
+                     size_t numTriangles, const float* gradOut, float posBoost, float* gradColor, float* gradPos);
+
  private:
+  // Uploads colour, rast, pos, tri and opp, and sets the antialias kernels' common arguments 0..10.
+  void antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels, const float* rast,
+                      const DiffImages& batch, const float* pos, size_t numVertices, size_t posImages,
+                      const int32_t* tri, const int32_t* opp, size_t numTriangles);
   // Uploads tex and its levels into pyramid_ (building those not given).
   void uploadPyramid(const TextureCall& call, const float* tex, const float* mips);
   void setTextureArgs(cl::Kernel& kernel, const TextureCall& call);
@@ -84,8 +100,8 @@ class DiffKernels {
   DeviceMemory memory_;
   DeviceBuffer<float> in0_, in1_, in2_, in3_, in4_, out0_, out1_, out2_;
   DeviceBuffer<float> pyramid_, gradPyramid_;
-  DeviceBuffer<int32_t> tri_, list_, levelInfo_;
-  cl::Kernel rasterizeGrad_, interpolateGrad_, textureFwd_, textureGrad_, mipBuild_, mipGradDown_;
+  DeviceBuffer<int32_t> tri_, list_, levelInfo_, opp_;
+  cl::Kernel rasterizeGrad_, interpolateGrad_, textureFwd_, textureGrad_, mipBuild_, mipGradDown_, aaFwd_, aaGrad_;
 };
 
 }  // namespace clr

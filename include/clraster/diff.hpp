@@ -78,4 +78,23 @@ CLRASTER_API void textureGrad(Context& ctx, const TextureSpec& spec, const float
                               const float* uv, const float* uvDa, const float* bias, const float* gradOut,
                               float* gradTex, float* gradUv, float* gradUvDa, float* gradBias);
 
+// nvdiffrast's analytic antialias (Laine et al. 2020): colour (channels
+// floats per pixel of batch) blended across the silhouette edges of the
+// mesh rasterized into rast, into out. pos: posImages × numVertices × 4
+// (posImages 1 or batch.images); opp: per triangle, for each vertex i the
+// vertex across the edge opposite it, or −1 on a boundary
+// (antialiasTopology).
+CLRASTER_API void antialias(Context& ctx, const float* color, uint32_t channels, const float* rast,
+                            const ImageBatch& batch, const float* pos, size_t numVertices, size_t posImages,
+                            const int32_t* tri, const int32_t* opp, size_t numTriangles, float* out);
+// Its gradients to colour and (times posBoost) to pos.
+CLRASTER_API void antialiasGrad(Context& ctx, const float* color, uint32_t channels, const float* rast,
+                                const ImageBatch& batch, const float* pos, size_t numVertices, size_t posImages,
+                                const int32_t* tri, const int32_t* opp, size_t numTriangles, const float* gradOut,
+                                float posBoost, float* gradColor, float* gradPos);
+// opp (3 · numTriangles) for tri: the vertex across each edge when exactly
+// one other triangle shares it (else −1: a boundary, or a non-manifold
+// edge, counted as a silhouette).
+CLRASTER_API std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, size_t numVertices);
+
 }  // namespace clraster

@@ -30,7 +30,7 @@ from . import _MAX_RESOLUTION, triangle_ids  # noqa: F401
 from . import rasterize as np_rasterize
 
 __all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
-           "texture_construct_mip", "TextureMip",
+           "texture_construct_mip", "TextureMip", "antialias", "antialias_construct_topology_hash", "TopologyHash",
            "triangle_ids", "set_default_context"]
 
 _default = None
@@ -400,3 +400,73 @@ def texture(tex, uv, uv_da=None, mip_level_bias=None, mip=None, filter_mode="aut
             raise ValueError("mip: built for another texture shape or max_mip_level")
     return _Texture.apply(tex, uv, uv_da, mip_level_bias, mip, _FILTERS[filter_mode], _BOUNDARIES[boundary_mode],
                           level)
+
+
+class TopologyHash:
+    """antialias_construct_topology_hash's result: per triangle, the vertex
+    across each edge (−1 on a boundary), for one tri array."""
+
+    def __init__(self, opp, tri):
+        self.opp, self.tri = opp, tri
+
+
+def antialias_construct_topology_hash(tri):
+    """nvdiffrast's antialias_construct_topology_hash: the mesh's edge
+    neighbours, for antialias(..., topology_hash=)."""
+    tri_np = _indices("tri", _to_tensor("tri", tri))
+    if tri_np.ndim != 2 or tri_np.shape[1] != 3:
+        raise ValueError(f"tri: expected shape [T, 3], got {list(tri_np.shape)}")
+    if tri_np.size and tri_np.min() < 0:
+        raise ValueError(f"tri: vertex index {int(tri_np.min())} is negative")
+    num_vertices = int(tri_np.max()) + 1 if tri_np.size else 0
+    return TopologyHash(_clraster.antialias_topology(tri_np, num_vertices), tri_np)
+
+
+class _Antialias(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, color, rast, pos, tri_np, opp, boost):
+        color_np, rast_np, pos_np = _floats("color", color), _floats("rast", rast), _floats("pos", pos)
+        pos3 = pos_np if pos_np.ndim == 3 else pos_np[None]
+        glctx = _context()
+        with glctx._lock:
+            out = _clraster.antialias_fwd(glctx._ctx, color_np, rast_np, pos3, tri_np, opp)
+        ctx.arrays = color_np, rast_np, pos_np, pos3, tri_np, opp
+        ctx.boost, ctx.dtypes = boost, (color.dtype, pos.dtype)
+        return torch.from_numpy(out)
+
+    @staticmethod
+    def backward(ctx, dy):
+        color_np, rast_np, pos_np, pos3, tri_np, opp = ctx.arrays
+        dy = np.ascontiguousarray(dy.detach().numpy(), np.float32)
+        glctx = _context()
+        with glctx._lock:
+            gc, gp = _clraster.antialias_grad(glctx._ctx, color_np, rast_np, pos3, tri_np, opp, dy, ctx.boost)
+        return (torch.from_numpy(gc).to(ctx.dtypes[0]), None,
+                torch.from_numpy(gp.reshape(pos_np.shape)).to(ctx.dtypes[1]), None, None, None)
+
+
+def antialias(color, rast, pos, tri, topology_hash=None, pos_gradient_boost=1.0):
+    """nvdiffrast's antialias: color [B, H, W, C] blended across the
+    silhouette edges of the mesh (pos [B, V, 4] or [V, 4], tri) that
+    rasterize drew into rast, by the edge's crossing between each pair of
+    neighbouring pixels (Laine et al. 2020). Differentiable in color and,
+    through the crossings, in pos (times pos_gradient_boost)."""
+    color, rast, pos = _to_tensor("color", color), _to_tensor("rast", rast), _to_tensor("pos", pos)
+    if rast.dim() != 4 or rast.shape[-1] != 4:
+        raise ValueError(f"rast: expected shape [B, H, W, 4], got {list(rast.shape)}")
+    if color.dim() != 4 or tuple(color.shape[:3]) != tuple(rast.shape[:3]):
+        raise ValueError(f"color: expected shape {list(rast.shape[:3]) + ['C']}, got {list(color.shape)}")
+    if pos.dim() not in (2, 3) or pos.shape[-1] != 4 or (pos.dim() == 3 and pos.shape[0] != rast.shape[0]):
+        raise ValueError(f"pos: expected shape [V, 4] or [{rast.shape[0]}, V, 4], got {list(pos.shape)}")
+    tri_np = _indices("tri", _to_tensor("tri", tri))
+    _check_tri(tri_np, pos.shape[-2])
+    if topology_hash is None:
+        topology_hash = antialias_construct_topology_hash(tri_np)
+    if not isinstance(topology_hash, TopologyHash):
+        raise ArgumentTypeError(f"topology_hash: expected antialias_construct_topology_hash's result, "
+                                f"got {type(topology_hash).__name__}")
+    if not np.array_equal(topology_hash.tri, tri_np):
+        raise ValueError("topology_hash: built for another tri")
+    if not isinstance(pos_gradient_boost, numbers.Real) or not np.isfinite(pos_gradient_boost):
+        raise ValueError(f"pos_gradient_boost: expected a finite number, got {pos_gradient_boost!r}")
+    return _Antialias.apply(color, rast, pos, tri_np, topology_hash.opp, float(pos_gradient_boost))
