@@ -14,7 +14,7 @@
  *      u = k_0 / S, v = k_1 / S, z/w = Σ k_i z_i / Σ k_i w_i,
  *      du/dx_ndc = (r_0.x − u R.x) / S with R = Σ r_i (rast_outputs.cl),
  *    and the chain rule runs back through those formulas to P and z.
- *  interpolate_grad: out = u a0 + v a1 + (1 − u − v) a2 and
+ *  interpolate_grad (DIFF_SPAN pixels per work-item): out = u a0 + v a1 + (1 − u − v) a2 and
  *    out_da = (db.x dsdu + db.z dsdv, db.y dsdu + db.w dsdv) with dsdu =
  *    a0 − a2, dsdv = a1 − a2: gradients to attr (atomic), to rast's u and v
  *    (channels 2 and 3 get 0, as in nvdiffrast) and to rast_db.
@@ -116,6 +116,27 @@ __kernel void rasterize_grad(__global const float* pos,  // posImages · numVert
   }
 }
 
+/* Pixels per work-item of interpolate_grad, and the channels it sums in private at a time. */
+#define DIFF_SPAN 16u
+#define DIFF_CHUNK 8u
+
+/* The attr offsets of pixel p's triangle's vertices (in its image), or false where p names none. */
+CLR_INLINE bool diff_attr_vertices(__global const float4* rast, __global const int* tri, uint numTriangles,
+                                   uint numVertices, uint numAttrs, uint attrStride, uint pixelsPerImage, uint p,
+                                   uint* vi)
+{
+  const uint id = diff_decode_id(rast[p].w);
+  if (id == 0u || id > numTriangles) return false;
+  for (int j = 0; j < 3; ++j) {
+    const int v = tri[3 * (id - 1u) + j];
+    if (v < 0 || (uint)v >= numVertices) return false;
+    vi[j] = (uint)v * numAttrs + (p / pixelsPerImage) * attrStride;
+  }
+  return true;
+}
+
+/* DIFF_SPAN consecutive pixels per work-item: their rast and rast_db gradients, then the attr gradients summed
+ * in private over each run of pixels of one triangle, so that a run costs one atomic add per value. */
 __kernel void interpolate_grad(__global const float* attr,  // attrImages · numVertices · numAttrs
                                uint attrStride,             // floats per image of attr; 0: shared
                                uint numVertices, uint numAttrs, __global const float4* rast, __global const int* tri,
@@ -129,49 +150,77 @@ __kernel void interpolate_grad(__global const float* attr,  // attrImages · num
                                __global float4* gradRast,  // numPixels
                                __global float4* gradDb)    // numPixels, when numDiff
 {
-  const uint p = get_global_id(0);
-  if (p >= numPixels) return;
-  const uint id = diff_decode_id(rast[p].w);
-  uint vi[3] = {0u, 0u, 0u};
-  bool ok = id != 0u && id <= numTriangles;
-  for (int j = 0; j < 3 && ok; ++j) {
-    const int v = tri[3 * (id - 1u) + j];
-    ok = v >= 0 && (uint)v < numVertices;
-    vi[j] = ok ? (uint)v * numAttrs + (p / pixelsPerImage) * attrStride : 0u;
+  const uint first = get_global_id(0) * DIFF_SPAN;
+  if (first >= numPixels) return;
+  const uint end = min(first + DIFF_SPAN, numPixels);
+  // Step 1: per pixel, d L / d (u, v) and d L / d rast_db.
+  for (uint p = first; p < end; ++p) {
+    uint vi[3];
+    if (!diff_attr_vertices(rast, tri, numTriangles, numVertices, numAttrs, attrStride, pixelsPerImage, p, vi)) {
+      gradRast[p] = (float4)(0.0f);
+      if (numDiff) gradDb[p] = (float4)(0.0f);
+      continue;
+    }
+    float gu = 0.0f, gv = 0.0f;
+    for (uint c = 0; c < numAttrs; ++c) {
+      const float go = gradOut[(size_t)p * numAttrs + c];
+      gu += go * (attr[vi[0] + c] - attr[vi[2] + c]);
+      gv += go * (attr[vi[1] + c] - attr[vi[2] + c]);
+    }
+    gradRast[p] = (float4)(gu, gv, 0.0f, 0.0f);
+    if (!numDiff) continue;
+    float4 gdb = (float4)(0.0f);
+    for (uint k = 0; k < numDiff; ++k) {
+      const uint c = (uint)diff[k];
+      const float g0 = gradDa[((size_t)p * numDiff + k) * 2u], g1 = gradDa[((size_t)p * numDiff + k) * 2u + 1u];
+      const float dsdu = attr[vi[0] + c] - attr[vi[2] + c], dsdv = attr[vi[1] + c] - attr[vi[2] + c];
+      gdb += (float4)(g0 * dsdu, g1 * dsdu, g0 * dsdv, g1 * dsdv);
+    }
+    gradDb[p] = gdb;
   }
-  if (!ok) {
-    gradRast[p] = (float4)(0.0f);
-    if (numDiff) gradDb[p] = (float4)(0.0f);
-    return;
+  // Step 2: d L / d attr, DIFF_CHUNK channels at a time, flushed when the triangle changes.
+  for (uint c0 = 0; c0 < numAttrs; c0 += DIFF_CHUNK) {
+    const uint nc = min(DIFF_CHUNK, numAttrs - c0);
+    float acc[3][DIFF_CHUNK];
+    uint cur[3] = {0u, 0u, 0u};
+    bool have = false;
+    for (uint p = first; p <= end; ++p) {
+      uint vi[3] = {0u, 0u, 0u};
+      const bool ok = p < end && diff_attr_vertices(rast, tri, numTriangles, numVertices, numAttrs, attrStride,
+                                                    pixelsPerImage, p, vi);
+      const bool same = ok && have && vi[0] == cur[0] && vi[1] == cur[1] && vi[2] == cur[2];
+      if (have && !same) {
+        for (int j = 0; j < 3; ++j)
+          for (uint i = 0; i < nc; ++i) diff_atomic_add(gradAttr + cur[j] + c0 + i, acc[j][i]);
+        have = false;
+      }
+      if (!ok) continue;
+      if (!have) {
+        for (int j = 0; j < 3; ++j) {
+          cur[j] = vi[j];
+          for (uint i = 0; i < DIFF_CHUNK; ++i) acc[j][i] = 0.0f;
+        }
+        have = true;
+      }
+      const float u = rast[p].x, v = rast[p].y, w = 1.0f - u - v;
+      for (uint i = 0; i < nc; ++i) {
+        const float go = gradOut[(size_t)p * numAttrs + c0 + i];
+        acc[0][i] += u * go;
+        acc[1][i] += v * go;
+        acc[2][i] += w * go;
+      }
+      if (!numDiff) continue;
+      const float4 d = db[p];
+      for (uint k = 0; k < numDiff; ++k) {
+        const uint i = (uint)diff[k] - c0;
+        if (i >= nc) continue;
+        const float g0 = gradDa[((size_t)p * numDiff + k) * 2u], g1 = gradDa[((size_t)p * numDiff + k) * 2u + 1u];
+        const float gsu = g0 * d.x + g1 * d.y, gsv = g0 * d.z + g1 * d.w;
+        acc[0][i] += gsu;
+        acc[1][i] += gsv;
+        acc[2][i] -= gsu + gsv;
+      }
+    }
   }
-  // Step 1: out's gradients to attr and to u, v.
-  const float u = rast[p].x, v = rast[p].y, w = 1.0f - u - v;
-  float gu = 0.0f, gv = 0.0f;
-  for (uint c = 0; c < numAttrs; ++c) {
-    const float go = gradOut[(size_t)p * numAttrs + c];
-    if (go == 0.0f) continue;
-    const float s0 = attr[vi[0] + c], s1 = attr[vi[1] + c], s2 = attr[vi[2] + c];
-    gu += go * (s0 - s2);
-    gv += go * (s1 - s2);
-    diff_atomic_add(gradAttr + vi[0] + c, u * go);
-    diff_atomic_add(gradAttr + vi[1] + c, v * go);
-    diff_atomic_add(gradAttr + vi[2] + c, w * go);
-  }
-  gradRast[p] = (float4)(gu, gv, 0.0f, 0.0f);
-  if (!numDiff) return;
-  // Step 2: out_da's gradients to rast_db and to attr.
-  const float4 d = db[p];
-  float4 gdb = (float4)(0.0f);
-  for (uint k = 0; k < numDiff; ++k) {
-    const uint c = (uint)diff[k];
-    const float g0 = gradDa[((size_t)p * numDiff + k) * 2u], g1 = gradDa[((size_t)p * numDiff + k) * 2u + 1u];
-    const float s0 = attr[vi[0] + c], s1 = attr[vi[1] + c], s2 = attr[vi[2] + c];
-    gdb += (float4)(g0 * (s0 - s2), g1 * (s0 - s2), g0 * (s1 - s2), g1 * (s1 - s2));
-    const float gsu = g0 * d.x + g1 * d.y, gsv = g0 * d.z + g1 * d.w;
-    diff_atomic_add(gradAttr + vi[0] + c, gsu);
-    diff_atomic_add(gradAttr + vi[1] + c, gsv);
-    diff_atomic_add(gradAttr + vi[2] + c, -(gsu + gsv));
-  }
-  gradDb[p] = gdb;
 }
 #endif

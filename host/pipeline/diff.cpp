@@ -6,6 +6,9 @@ namespace clr {
 
 namespace {
 
+// Pixels per work-item of interpolate_grad (DIFF_SPAN, diff.cl).
+constexpr uint64_t kInterpolateSpan = 16;
+
 void checkCount(uint64_t n, const char* what)
 {
   if (n > UINT32_MAX) throw Error(std::string(what) + ": " + std::to_string(n) + " is more than 2^32 - 1");
@@ -125,7 +128,7 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
     k.setArg(a++, out0_.get());
     k.setArg(a++, out1_.get());
     k.setArg(a++, out2_.get());
-    cl_.queue.enqueueNDRangeKernel(k, cl::NullRange, linear(n));
+    cl_.queue.enqueueNDRangeKernel(k, cl::NullRange, linear((n + kInterpolateSpan - 1) / kInterpolateSpan));
   }
   if (attrFloats) cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, attrFloats * sizeof(float), gradAttr);
   if (n) cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradRast);
