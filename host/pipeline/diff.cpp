@@ -43,6 +43,17 @@ void DiffKernels::upload(DeviceBuffer<T>& buffer, const T* data, uint64_t n)
   if (n) cl_.queue.enqueueWriteBuffer(buffer.get(), CL_FALSE, 0, n * sizeof(T), data);
 }
 
+cl::Buffer DiffKernels::callerBuffer(const float* data, uint64_t n, bool written)
+{
+  if (n * sizeof(float) > cl_.maxAllocBytes)
+    throw Error("a gradient array of " + std::to_string(n * sizeof(float)) +
+                " bytes is more than the device's largest allocation (" + std::to_string(cl_.maxAllocBytes) +
+                " bytes)");
+  if (n == 0) return in4_.get();  // any buffer: the kernel reads none of it
+  return cl::Buffer(cl_.context, CL_MEM_USE_HOST_PTR | (written ? CL_MEM_WRITE_ONLY : CL_MEM_READ_ONLY),
+                    n * sizeof(float), const_cast<float*>(data));
+}
+
 cl::NDRange DiffKernels::linear(uint64_t n) const
 {
   const uint64_t group = 64;
@@ -99,13 +110,13 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
     if (c < 0 || size_t(c) >= numAttrs) throw Error("diff_attrs: attribute " + std::to_string(c) + " out of range");
   upload(in0_, attr, attrFloats);
   upload(tri_, tri, 3 * uint64_t(numTriangles));
-  upload(in1_, rast, 4 * n);
-  upload(in2_, gradOut, n * numAttrs);
+  // The per-pixel arrays in the caller's memory where the device can read it there (a CPU: no copies).
+  const cl::Buffer rastBuf = callerBuffer(rast, 4 * n, false), gradOutBuf = callerBuffer(gradOut, n * numAttrs, false);
+  const cl::Buffer gradRastBuf = callerBuffer(gradRast, 4 * n, true);
   upload(in3_, db, diff.empty() ? 0 : 4 * n);
   upload(in4_, gradDa, n * 2 * diff.size());
   upload(list_, diff.data(), diff.size());
   out0_.zero(attrFloats);
-  out1_.reserve(4 * n);
   out2_.reserve(diff.empty() ? 0 : 4 * n);
   if (n) {
     if (!interpolateGrad_()) interpolateGrad_ = cl::Kernel(cl_.extras(), "interpolate_grad");
@@ -115,10 +126,10 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
     k.setArg(a++, cl_uint(attrImages > 1 ? numVertices * numAttrs : 0));
     k.setArg(a++, cl_uint(numVertices));
     k.setArg(a++, cl_uint(numAttrs));
-    k.setArg(a++, in1_.get());
+    k.setArg(a++, rastBuf);
     k.setArg(a++, tri_.get());
     k.setArg(a++, cl_uint(numTriangles));
-    k.setArg(a++, in2_.get());
+    k.setArg(a++, gradOutBuf);
     k.setArg(a++, in3_.get());
     k.setArg(a++, in4_.get());
     k.setArg(a++, list_.get());
@@ -126,12 +137,14 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
     k.setArg(a++, cl_uint(uint64_t(batch.width) * batch.height));
     k.setArg(a++, cl_uint(n));
     k.setArg(a++, out0_.get());
-    k.setArg(a++, out1_.get());
+    k.setArg(a++, gradRastBuf);
     k.setArg(a++, out2_.get());
     cl_.queue.enqueueNDRangeKernel(k, cl::NullRange, linear((n + kInterpolateSpan - 1) / kInterpolateSpan));
+    // Mapping a caller-memory buffer makes the caller's array hold what the kernel wrote.
+    void* mapped = cl_.queue.enqueueMapBuffer(gradRastBuf, CL_TRUE, CL_MAP_READ, 0, 4 * n * sizeof(float));
+    cl_.queue.enqueueUnmapMemObject(gradRastBuf, mapped);
   }
   if (attrFloats) cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, attrFloats * sizeof(float), gradAttr);
-  if (n) cl_.queue.enqueueReadBuffer(out1_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradRast);
   if (n && !diff.empty()) cl_.queue.enqueueReadBuffer(out2_.get(), CL_FALSE, 0, 4 * n * sizeof(float), gradDb);
   cl_.queue.finish();
 }

@@ -95,6 +95,9 @@ class DiffKernels {
   template <typename T>
   void upload(DeviceBuffer<T>& buffer, const T* data, uint64_t n);
   cl::NDRange linear(uint64_t n) const;
+  // A buffer over the caller's n floats (CL_MEM_USE_HOST_PTR), which the
+  // device may use in place; `written`: the kernel writes it (map it after).
+  cl::Buffer callerBuffer(const float* data, uint64_t n, bool written);
 
   ClContext& cl_;
   DeviceMemory memory_;
