@@ -49,7 +49,10 @@ cl::Buffer DiffKernels::callerBuffer(const float* data, uint64_t n, bool written
     throw Error("a gradient array of " + std::to_string(n * sizeof(float)) +
                 " bytes is more than the device's largest allocation (" + std::to_string(cl_.maxAllocBytes) +
                 " bytes)");
-  if (n == 0) return in4_.get();  // any buffer: the kernel reads none of it
+  if (n == 0) {  // any buffer: the kernel reads none of it
+    in4_.reserve(1);
+    return in4_.get();
+  }
   return cl::Buffer(cl_.context, CL_MEM_USE_HOST_PTR | (written ? CL_MEM_WRITE_ONLY : CL_MEM_READ_ONLY),
                     n * sizeof(float), const_cast<float*>(data));
 }
@@ -70,9 +73,8 @@ void DiffKernels::rasterizeGrad(const float* pos, size_t numVertices, size_t pos
   checkCount(3 * uint64_t(numTriangles), "triangle indices");
   upload(in0_, pos, posFloats);
   upload(tri_, tri, 3 * uint64_t(numTriangles));
-  upload(in1_, rast, 4 * n);
-  upload(in2_, gradRast, 4 * n);
-  upload(in3_, gradDb, gradDb ? 4 * n : 0);
+  const cl::Buffer rastBuf = callerBuffer(rast, 4 * n, false), gradRastBuf = callerBuffer(gradRast, 4 * n, false);
+  const cl::Buffer gradDbBuf = callerBuffer(gradDb, gradDb ? 4 * n : 0, false);
   out0_.zero(posFloats);
   if (n && numTriangles) {
     if (!rasterizeGrad_()) rasterizeGrad_ = cl::Kernel(cl_.extras(), "rasterize_grad");
@@ -83,9 +85,9 @@ void DiffKernels::rasterizeGrad(const float* pos, size_t numVertices, size_t pos
     k.setArg(a++, tri_.get());
     k.setArg(a++, cl_uint(numTriangles));
     k.setArg(a++, cl_uint(numVertices));
-    k.setArg(a++, in1_.get());
-    k.setArg(a++, in2_.get());
-    k.setArg(a++, in3_.get());
+    k.setArg(a++, rastBuf);
+    k.setArg(a++, gradRastBuf);
+    k.setArg(a++, gradDbBuf);
     k.setArg(a++, cl_uint(gradDb ? 1 : 0));
     k.setArg(a++, cl_uint(batch.width));
     k.setArg(a++, cl_uint(batch.height));
