@@ -6,8 +6,9 @@ against one (bench/diff.sh runs it).
 Each case builds one iteration's graph (the example's render and its
 mean squared loss against a fixed target) `--iterations` times after one
 warm-up; the operations' forward calls and their autograd backward
-methods are wrapped with wall-clock timers. Times are host wall clock on
-whatever else the machine runs: compare them within one run.
+methods are wrapped with wall-clock timers, and each time printed is the
+median over the iterations. Times are host wall clock on whatever else
+the machine runs: compare them within one run.
 """
 import argparse
 import collections
@@ -63,27 +64,29 @@ def cases(resolution):
 
 
 def bench(name, render, params, iterations):
+    """Medians over the iterations (after a warm-up): a shared machine's
+    other work lands in a few iterations, which a median leaves out."""
     target = render().detach() * 0.9
-    for p in params:
-        p.grad = None
-    SPENT.clear()
-    fwd = bwd = 0.0
+    rows = []
     for it in range(iterations + 1):
-        if it == 1:  # the first is a warm-up (kernel builds, buffer growth)
-            SPENT.clear()
-            fwd = bwd = 0.0
+        for p in params:
+            p.grad = None
+        SPENT.clear()
         t0 = time.perf_counter()
         loss = torch.mean((render() - target) ** 2)
         t1 = time.perf_counter()
         loss.backward()
         t2 = time.perf_counter()
-        fwd += t1 - t0
-        bwd += t2 - t1
-    ms = 1000.0 / iterations
-    ops = sorted({op for op, _ in SPENT})
-    split = "  ".join(f"{op} {SPENT[(op, 'forward')] * ms:.2f}/{SPENT[(op, 'backward')] * ms:.2f}"
-                      f" (x{SPENT[(op, 'backward')] / max(SPENT[(op, 'forward')], 1e-12):.2f})" for op in ops)
-    print(f"{name:6s} forward {fwd * ms:7.2f} ms  backward {bwd * ms:7.2f} ms  per op fwd/bwd ms: {split}")
+        if it > 0:  # the first is a warm-up (kernel builds, buffer growth)
+            rows.append(dict(SPENT, total=(t1 - t0, t2 - t1)))
+    med = lambda values: float(np.median(values)) * 1000  # noqa: E731
+    ops = sorted({op for op in rows[0] if op != "total" for op in [op[0]]})
+    parts = []
+    for op in ops:
+        f, b = med([r.get((op, "forward"), 0.0) for r in rows]), med([r.get((op, "backward"), 0.0) for r in rows])
+        parts.append(f"{op} {f:.2f}/{b:.2f} (x{b / max(f, 1e-9):.2f})")
+    print(f"{name:6s} forward {med([r['total'][0] for r in rows]):7.2f} ms  backward "
+          f"{med([r['total'][1] for r in rows]):7.2f} ms  per op fwd/bwd ms (median): {'  '.join(parts)}")
 
 
 def instanced(resolution, iterations):
@@ -101,7 +104,7 @@ def instanced(resolution, iterations):
         start = time.perf_counter()
         for _ in range(iterations):
             dr.rasterize(glctx, views[:n], tri, [resolution, resolution])
-        per_image[n] = (time.perf_counter() - start) / iterations / n * 1000
+        per_image[n] = (time.perf_counter() - start) / iterations / n * 1000  # a mean: one call is short
     print(f"instanced rasterize: {per_image[1]:.2f} ms per image for 1 view, {per_image[8]:.2f} ms per image for 8"
           f" (ratio {per_image[8] / per_image[1]:.2f})")
 
