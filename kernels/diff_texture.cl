@@ -42,7 +42,12 @@ CLR_INLINE float2 tex_quad(const TexParams* p, float2 uv, uint image, __global c
                            int4* tc)
 {
   const int w = levelInfo[3 * level + 1], h = levelInfo[3 * level + 2];
-  float u = uv.x, v = uv.y;
+  if (!isfinite(uv.x) || !isfinite(uv.y)) {  // reads nothing (zero), with zero gradients
+    *tc = (int4)(-1);
+    return (float2)(0.0f);
+  }
+  // Far outside the texture every mode reads what it reads at 2^20 texels out; the integer conversions stay defined.
+  float u = clamp(uv.x, -1048576.0f, 1048576.0f), v = clamp(uv.y, -1048576.0f, 1048576.0f);
   if (p->boundary == TEX_WRAP) {
     u -= floor(u);
     v -= floor(v);

@@ -175,3 +175,17 @@ def test_bad_modes_are_named(ctx):
         dr.texture(tex, uv, boundary_mode="mirror")
     with pytest.raises(ValueError, match="^uv: "):
         dr.texture(tex, uv[..., :1])
+
+
+@pytest.mark.parametrize("boundary", BOUNDARIES)
+def test_non_finite_and_huge_uv_read_within_the_texture(ctx, boundary):
+    tex = torch.rand(1, 4, 4, 1, requires_grad=True)
+    uv = torch.tensor([[[[np.nan, 0.5], [np.inf, -np.inf], [1e30, -1e30], [0.5, 0.5]]]], dtype=torch.float32,
+                      requires_grad=True)
+    for mode in FILTERS:
+        kwargs = dict(mip_level_bias=torch.zeros(1, 1, 4)) if mode.startswith("linear-mipmap") else {}
+        out = dr.texture(tex, uv, filter_mode=mode, boundary_mode=boundary, **kwargs)
+        assert out[0, 0, :2].abs().sum() == 0  # non-finite: zero
+        assert torch.isfinite(out).all()
+        out.sum().backward()
+        assert torch.isfinite(tex.grad).all() and torch.isfinite(uv.grad[0, 0, 2:]).all()
