@@ -69,6 +69,7 @@ def _context():
 
 
 def _to_tensor(name, value):
+    """value as a torch tensor: itself, through DLPack, or through __array__."""
     if isinstance(value, torch.Tensor):
         return value
     if hasattr(value, "__dlpack__") and not isinstance(value, np.ndarray):
@@ -87,6 +88,8 @@ def _floats(name, t):
         out = np.ascontiguousarray(a, np.float32)
     if a.dtype != np.float32 and a.size and (np.isfinite(a) & ~np.isfinite(out)).any():
         raise ValueError(f"{name}: a finite value beyond float32's range ({a.dtype.name} converts with loss)")
+    if a.dtype.kind in "iu" and a.size and np.abs(a.astype(np.int64)).max() > 2**24:
+        raise ValueError(f"{name}: an integer beyond 2^24, which float32 cannot hold exactly")
     return out
 
 
