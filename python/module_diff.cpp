@@ -250,6 +250,27 @@ IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
   return out;
 }
 
+// One peeling layer of one image: pos [V, 4], tri [T, 3], floor [H, W]:
+// (rast [H, W, 4], db [H, W, 4] or [H, W, 0], next floor [H, W]).
+py::tuple rasterizePeel(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, const FloatArray& floor,
+                        bool withDb)
+{
+  expectDims("pos", pos, {-1, 4});
+  expectDims("tri", tri, {-1, 3});
+  expectDims("floor", floor, {-1, -1});
+  const py::ssize_t h = floor.shape(0), w = floor.shape(1);
+  FloatArray rast({h, w, py::ssize_t(4)}), db({h, w, py::ssize_t(withDb ? 4 : 0)}), next({h, w});
+  const float *p = pos.data(), *f = floor.data();
+  const int32_t* t = tri.data();
+  float *r = rast.mutable_data(), *d = withDb ? db.mutable_data() : nullptr, *nx = next.mutable_data();
+  const size_t v = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  {
+    py::gil_scoped_release release;
+    clraster::rasterizePeel(ctx, p, v, t, n, uint32_t(w), uint32_t(h), f, r, d, nx);
+  }
+  return py::make_tuple(rast, db, next);
+}
+
 }  // namespace
 
 void bindDiff(py::module_& m)
@@ -272,4 +293,6 @@ void bindDiff(py::module_& m)
         py::arg("pos").noconvert(), py::arg("tri").noconvert(), py::arg("opp").noconvert(),
         py::arg("grad_out").noconvert(), py::arg("pos_gradient_boost"));
   m.def("antialias_topology", &antialiasTopology, py::arg("tri").noconvert(), py::arg("num_vertices"));
+  m.def("rasterize_peel", &rasterizePeel, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
+        py::arg("floor").noconvert(), py::arg("grad_db"));
 }

@@ -9,6 +9,7 @@
 #include <clraster/diff.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace clraster {
 
@@ -286,6 +287,36 @@ std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, 
       k = end;
     }
     return opp;
+  });
+}
+
+void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri, size_t numTriangles,
+                   uint32_t width, uint32_t height, const float* floorDepth, float* rast, float* db, float* nextFloor)
+{
+  guarded([&] {
+    checkBatch({1, width, height}, "rasterize");
+    checkTri(tri, numTriangles, numVertices);
+    need(pos, numVertices != 0, "pos");
+    need(floorDepth, true, "floor");
+    need(rast, true, "rast");
+    need(nextFloor, true, "next_floor");
+    const size_t pixels = size_t(width) * height;
+    if (numTriangles == 0) {
+      std::fill(rast, rast + 4 * pixels, 0.0f);
+      if (db) std::fill(db, db + 4 * pixels, 0.0f);
+      std::fill(nextFloor, nextFloor + pixels, INFINITY);
+      return;
+    }
+    clr::Pipeline& pipeline = ctx.impl().rasterPipeline();
+    pipeline.uploadClipScene(pos, numVertices, reinterpret_cast<const uint32_t*>(tri), numTriangles);
+    clr::FrameSettings settings;  // as rasterizeInto's frame, without raster
+    settings.width = width;
+    settings.height = height;
+    settings.shadeMode = CLR_SHADE_ID;
+    pipeline.beginFrame(settings);
+    pipeline.setup();
+    pipeline.bin();
+    pipeline.peelLayer(floorDepth, rast, db, nextFloor);
   });
 }
 

@@ -97,4 +97,14 @@ CLRASTER_API void antialiasGrad(Context& ctx, const float* color, uint32_t chann
 // edge, counted as a silhouette).
 CLRASTER_API std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, size_t numVertices);
 
+// One layer of depth peeling (nvdiffrast's DepthPeeler) of one image: as
+// rasterizeInto (the same coverage, ids and outputs), but each pixel takes
+// the nearest fragment strictly behind floorDepth (width·height window
+// depths, z/w · 0.5 + 0.5; −inf for the first layer, which equals
+// rasterize's). nextFloor receives this layer's window depths (+inf where
+// nothing is left): the floor of the next layer. db may be null.
+CLRASTER_API void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri,
+                                size_t numTriangles, uint32_t width, uint32_t height, const float* floorDepth,
+                                float* rast, float* db, float* nextFloor);
+
 }  // namespace clraster

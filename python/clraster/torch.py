@@ -30,7 +30,7 @@ from . import _MAX_RESOLUTION, triangle_ids  # noqa: F401
 from . import rasterize as np_rasterize
 
 __all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
-           "texture_construct_mip", "TextureMip", "antialias", "antialias_construct_topology_hash", "TopologyHash",
+           "texture_construct_mip", "TextureMip", "DepthPeeler", "antialias", "antialias_construct_topology_hash", "TopologyHash",
            "triangle_ids", "set_default_context"]
 
 _default = None
@@ -159,9 +159,12 @@ def _rasterize_forward(glctx, pos, tri, resolution, ranges, grad_db):
 
 class _Rasterize(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, glctx, pos, tri_np, resolution, ranges_np, grad_db):
+    def forward(ctx, glctx, pos, tri_np, resolution, ranges_np, grad_db, peeler=None):
         pos_np = _floats("pos", pos)
-        rast, db = _rasterize_forward(glctx, pos_np, tri_np, resolution, ranges_np, grad_db)
+        if peeler is None:
+            rast, db = _rasterize_forward(glctx, pos_np, tri_np, resolution, ranges_np, grad_db)
+        else:
+            rast, db = peeler._next(pos_np)
         ctx.glctx, ctx.pos_np, ctx.tri_np, ctx.rast_np, ctx.grad_db = glctx, pos_np, tri_np, rast, grad_db
         ctx.pos_dtype = pos.dtype
         out = torch.from_numpy(rast), torch.from_numpy(db)
@@ -172,14 +175,14 @@ class _Rasterize(torch.autograd.Function):
     @staticmethod
     def backward(ctx, dy, ddb):
         if not ctx.needs_input_grad[1]:
-            return None, None, None, None, None, None
+            return None, None, None, None, None, None, None
         pos = ctx.pos_np if ctx.pos_np.ndim == 3 else ctx.pos_np[None]
         dy = np.ascontiguousarray(dy.detach().numpy(), np.float32)
         ddb = np.ascontiguousarray(ddb.detach().numpy(), np.float32) if ctx.grad_db and ddb is not None else None
         with ctx.glctx._lock:
             g = _clraster.rasterize_grad(ctx.glctx._ctx, pos, ctx.tri_np, ctx.rast_np, dy, ddb)
         g = torch.from_numpy(g.reshape(ctx.pos_np.shape)).to(ctx.pos_dtype)
-        return None, g, None, None, None, None
+        return None, g, None, None, None, None, None
 
 
 def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
@@ -190,6 +193,12 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     one image each) is range mode, triangle ids absolute; pos [V, 4]
     alone gives one image. Differentiable in pos through u, v, z/w and
     rast_db."""
+    glctx, pos, tri_np, resolution, ranges_np, grad_db = _rasterize_args(glctx, pos, tri, resolution, ranges, grad_db)
+    return _Rasterize.apply(glctx, pos, tri_np, resolution, ranges_np, grad_db)
+
+
+def _rasterize_args(glctx, pos, tri, resolution, ranges, grad_db):
+    """rasterize's arguments checked and converted (DepthPeeler takes the same)."""
     if not isinstance(glctx, Context):
         raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
     if not isinstance(grad_db, (bool, np.bool_)):
@@ -209,7 +218,61 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
             raise ValueError(f"ranges: expected shape [N, 2], got {list(ranges_np.shape)}")
         if ranges_np.size and (ranges_np.min() < 0 or (ranges_np[:, 0] + ranges_np[:, 1]).max() > len(tri_np)):
             raise ValueError(f"ranges: a range reaches outside the {len(tri_np)} triangles")
-    return _Rasterize.apply(glctx, pos, tri_np, _resolution(resolution), ranges_np, bool(grad_db))
+    return glctx, pos, tri_np, _resolution(resolution), ranges_np, bool(grad_db)
+
+
+class DepthPeeler:
+    """nvdiffrast's DepthPeeler: rasterize_next_layer() gives (rast, rast_db)
+    of the first layer, then of what lies behind it pixel by pixel, as
+    rasterize() takes its arguments (instanced and range mode too). Layer
+    0 equals rasterize's result; each later one keeps, per pixel, the
+    nearest fragment strictly behind the last layer's depth (empty once
+    nothing is left). Differentiable in pos as rasterize is.
+
+        with dr.DepthPeeler(glctx, pos, tri, resolution) as peeler:
+            for i in range(layers):
+                rast, rast_db = peeler.rasterize_next_layer()
+    """
+
+    def __init__(self, glctx, pos, tri, resolution, ranges=None, grad_db=True):
+        (self._glctx, self._pos, self._tri, self._resolution, self._ranges,
+         self._grad_db) = _rasterize_args(glctx, pos, tri, resolution, ranges, grad_db)
+        self._floors = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self._floors = None
+        return False
+
+    def rasterize_next_layer(self):
+        return _Rasterize.apply(self._glctx, self._pos, self._tri, self._resolution, self._ranges, self._grad_db,
+                                self)
+
+    def _next(self, pos_np):
+        height, width = self._resolution
+        if self._ranges is None:
+            images = [(p, self._tri, 0) for p in (pos_np if pos_np.ndim == 3 else pos_np[None])]
+        else:
+            images = [(pos_np, np.ascontiguousarray(self._tri[a:a + n]), a) for a, n in self._ranges]
+        if self._floors is None:
+            self._floors = [np.full((height, width), -np.inf, np.float32) for _ in images]
+        rasts, dbs = [], []
+        with self._glctx._lock:
+            for i, (p, tri, start) in enumerate(images):
+                rast, db, self._floors[i] = _clraster.rasterize_peel(self._glctx._ctx, np.ascontiguousarray(p), tri,
+                                                                     self._floors[i], self._grad_db)
+                if start:
+                    ids = triangle_ids(rast[None])[0]
+                    covered = ids > 0
+                    rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
+                rasts.append(rast)
+                dbs.append(db)
+        if not rasts:
+            return (np.zeros((0, height, width, 4), np.float32),
+                    np.zeros((0, height, width, 4 if self._grad_db else 0), np.float32))
+        return np.stack(rasts), np.stack(dbs)
 
 
 def _diff_list(diff_attrs, num_attrs):
