@@ -16,6 +16,8 @@
 
 namespace py = pybind11;
 
+void bindDiff(py::module_& m);  // module_diff.cpp: the backward passes
+
 namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style>;
@@ -95,6 +97,7 @@ PYBIND11_MODULE(_clraster, m)
   m.def("interpolate_into", &interpolateInto, py::arg("attr").noconvert(), py::arg("rast").noconvert(),
         py::arg("tri").noconvert(), py::arg("out").noconvert(), py::arg("db").noconvert() = py::none(),
         py::arg("diff") = std::vector<int>{}, py::arg("out_da").noconvert() = py::none());
+  bindDiff(m);
   m.def("devices", [] {
     py::list out;
     for (const clraster::DeviceInfo& d : clraster::listDevices())

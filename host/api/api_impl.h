@@ -8,6 +8,7 @@
 #include "base/memory.h"
 #include "render/flags.h"
 #include "pipeline/device.h"
+#include "pipeline/diff.h"
 #include "pipeline/pipeline.h"
 #include "io/scene.h"
 
@@ -52,8 +53,10 @@ struct Context::Impl {
   std::unique_ptr<clr::ClContext> clip;
   std::unique_ptr<clr::Pipeline> clipPipeline;
   std::unique_ptr<clr::ClContext> frames;
+  std::unique_ptr<clr::DiffKernels> diff;  // the backward passes, on clip (api_diff.cpp)
   clr::Pipeline& rasterPipeline();
   clr::ClContext& frameContext();
+  clr::DiffKernels& diffKernels();
 };
 
 struct Scene::Impl {

@@ -136,7 +136,9 @@ Pipeline::Pipeline(ClContext& cl)
       aov_(memory_, "visibility-buffer outputs"),
       rastOut_(memory_, "rasterize output"),
       rastDb_(memory_, "rasterize derivatives"),
-      rastIds_(memory_, "rasterize triangle ids")
+      rastIds_(memory_, "rasterize triangle ids"),
+      peelFloor_(memory_, "depth peeling floor"),
+      peelNext_(memory_, "depth peeling layer depth")
 {
   transformKernel_ = cl::Kernel(cl.program, "transform_vertices");
   setupCountKernel_ = cl::Kernel(cl.program, "setup_triangles");  // its two passes, each with its own arguments

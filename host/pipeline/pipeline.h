@@ -225,6 +225,11 @@ class Pipeline {
   // null skips one.
   void rastOutputs(bool ids, bool derivatives);
   void readRastOutputs(float* rast, uint32_t* ids, float* db) const;
+  // After setup and bin of a clip-input frame: one depth-peeling layer
+  // (diff_peel.cl, peel.cpp) into the caller's width·height float4s (rast,
+  // db: null skips it), behind floor (window depth per pixel, -inf for the
+  // first layer); next gets this layer's depths (+inf where none).
+  void peelLayer(const float* floor, float* rast, float* db, float* next);
 
   // Runs a whole frame and reads the RGBA8 image (top row first) back.
   FrameStats render(const FrameSettings& settings, std::vector<uint32_t>& rgba);
@@ -451,7 +456,7 @@ class Pipeline {
       scanPartialsKernel_, scanApplyKernel_, binFillClippedKernel_, rasterKernel_, rasterHierarchicalKernel_,
       rasterFloatKernel_, rasterSpansKernel_, rasterSpansFloatKernel_, resolveKernel_, resolveLambertKernel_,
       linesFromSetupKernel_, linesBinCountKernel_, linesBinFillKernel_, linesDrawKernel_, aovKernel_,
-      rastOutputsKernel_;
+      rastOutputsKernel_, peelKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
@@ -492,6 +497,7 @@ class Pipeline {
   DeviceBuffer<float> aov_;
   DeviceBuffer<cl_float4> rastOut_, rastDb_;
   DeviceBuffer<uint32_t> rastIds_;
+  DeviceBuffer<float> peelFloor_, peelNext_;  // peelLayer's depths (peel.cpp)
   bool rastIdsWritten_ = false, rastDbWritten_ = false;
 };
 

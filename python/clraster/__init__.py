@@ -6,7 +6,10 @@
     out, _ = dr.interpolate(attr, rast, tri)
 
 Arrays are numpy: pos float32 [V, 4] or [B, V, 4] (clip space, OpenGL
-conventions), tri int32 [T, 3], attr float32 [V, C] or [B, V, C]. rast is
+conventions), tri int32 [T, 3], attr float32 [V, C] or [B, V, C]. Other
+dtypes, and anything with __array__ or __dlpack__, are converted where
+nothing is lost (else a ValueError naming the argument); out= takes the
+caller's output arrays. rast is
 float32 [B, H, W, 4] = (u, v, z/w, triangle_id + 1), row 0 at the bottom,
 zero where nothing covers; u and v weigh the triangle's vertices 0 and 1.
 triangle_ids(rast) gives the exact int32 triangle_id + 1 for any triangle
@@ -89,21 +92,76 @@ def devices():
     return _clraster.devices()
 
 
+def _numpy(name, value):
+    """value as a numpy array: an ndarray, or anything with __dlpack__ or
+    __array__ (a torch tensor, a CuPy array on the host, ...)."""
+    if isinstance(value, np.ndarray):
+        return value
+    if hasattr(value, "__dlpack__") or hasattr(value, "__array__"):
+        try:
+            return np.from_dlpack(value) if hasattr(value, "__dlpack__") else np.asarray(value)
+        except (RuntimeError, TypeError, BufferError, ValueError):
+            try:
+                return np.asarray(value)
+            except (RuntimeError, TypeError, ValueError) as e:
+                raise ValueError(f"{name}: cannot read it as an array ({e})") from None
+    raise ArgumentTypeError(f"{name}: expected a numpy array (or anything with __array__), got {type(value).__name__}")
+
+
+def _convert(name, value, dtype):
+    """value converted to dtype (float32 or int32), or a ValueError naming
+    the argument where that would lose information: a finite float beyond
+    float32's range, an integer beyond int32's (or, to float32, beyond
+    2^24), or a kind that does not convert (bool, complex, floats to
+    indices)."""
+    kind, target = value.dtype.kind, np.dtype(dtype)
+    if value.dtype.newbyteorder("=") == target:
+        return value.astype(dtype)  # the values are right, maybe in the other byte order
+    if kind not in "iuf" or (target.kind == "i" and kind == "f"):
+        raise ValueError(f"{name}: expected dtype {target.name}, got {value.dtype.name}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = value.astype(dtype)
+    if value.size == 0:
+        return out
+    if target.kind == "f" and kind == "f":
+        lost = (np.isfinite(value) & ~np.isfinite(out)).any()
+    else:
+        lost = not np.array_equal(out.astype(value.dtype), value) if kind != "f" else False
+        if target.kind == "f":
+            lost = lost or np.abs(value).max() > 2**24
+    if lost:
+        raise ValueError(f"{name}: {value.dtype.name} values that {target.name} cannot hold exactly")
+    return out
+
+
 def _array(name, value, dtype, ndims, last=None):
     """value as a C-contiguous array of dtype with one of ndims dimensions
-    (and last extent `last`), or a ValueError naming the argument."""
-    if not isinstance(value, np.ndarray):
-        raise ArgumentTypeError(f"{name}: expected a numpy array, got {type(value).__name__}")
-    if value.dtype != dtype and value.dtype.newbyteorder("=") == dtype:
-        value = value.astype(dtype)  # the values are right, in the other byte order
+    (and last extent `last`), converted where nothing is lost (_convert),
+    or a ValueError naming the argument."""
+    value = _numpy(name, value)
     if value.dtype != dtype:
-        raise ValueError(f"{name}: expected dtype {np.dtype(dtype).name}, got {value.dtype.name}")
+        value = _convert(name, value, dtype)
     if value.ndim not in ndims:
         dims = " or ".join(str(n) for n in ndims)
         raise ValueError(f"{name}: expected {dims} dimensions, got shape {list(value.shape)}")
     if last is not None and value.shape[-1] != last:
         raise ValueError(f"{name}: the last dimension must be {last}, got shape {list(value.shape)}")
     return np.ascontiguousarray(value)
+
+
+def _outputs(out, shapes):
+    """The caller's output arrays (out: a tuple of len(shapes) arrays, each
+    float32, C-contiguous, writeable, of its shape), or fresh ones."""
+    if out is None:
+        return [np.empty(shape, np.float32) for shape in shapes]
+    if not isinstance(out, (tuple, list)) or len(out) != len(shapes):
+        raise ArgumentTypeError(f"out: expected a tuple of {len(shapes)} arrays, got {type(out).__name__}")
+    for a, shape in zip(out, shapes):
+        if not isinstance(a, np.ndarray) or a.dtype != np.float32 or not a.flags.c_contiguous or not a.flags.writeable:
+            raise ValueError("out: each array must be a writeable C-contiguous float32 numpy array")
+        if a.shape != tuple(shape):
+            raise ValueError(f"out: expected shape {list(shape)}, got {list(a.shape)}")
+    return list(out)
 
 
 def _check_tri(tri, num_vertices):
@@ -114,12 +172,13 @@ def _check_tri(tri, num_vertices):
     return tri
 
 
-def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
+def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True, *, out=None):
     """nvdiffrast's rasterize: returns (rast, rast_db), both float32
     [B, H, W, 4]; rast_db = (du/dX, du/dY, dv/dX, dv/dY) per pixel, or
     [B, H, W, 0] with grad_db=False. pos [V, 4] gives B = 1; [B, V, 4] is
     instanced mode (one image per entry, the same tri). Range mode (ranges)
-    is not supported."""
+    is not supported. out: optional (rast, rast_db) arrays to write into
+    instead (float32, C-contiguous, of the result's shapes)."""
     if not isinstance(glctx, Context):
         raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
     if ranges is not None:
@@ -143,8 +202,7 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True):
     with glctx._lock:  # before the outputs exist: refused with the size, not killed
         _clraster.check_rasterize_memory(glctx._ctx, width, height,
                                          batch.shape[0] * height * width * (32 if grad_db else 16))
-    rast = np.empty((batch.shape[0], height, width, 4), np.float32)
-    db = np.empty((batch.shape[0], height, width, 4 if grad_db else 0), np.float32)
+    rast, db = _outputs(out, [(batch.shape[0], height, width, 4), (batch.shape[0], height, width, 4 if grad_db else 0)])
     with glctx._lock:
         for b in range(batch.shape[0]):
             _clraster.rasterize_into(glctx._ctx, batch[b], tri, rast[b], db[b] if grad_db else None)
@@ -178,12 +236,13 @@ def _check_rast_ids(rast, num_triangles):
                          f"not an id in 0..{num_triangles} (0: background)")
 
 
-def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
+def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None, *, out=None):
     """nvdiffrast's interpolate: out [B, H, W, C] = u·a0 + v·a1 + (1−u−v)·a2
     of the covering triangle (0 where none), and out_da [B, H, W, 2·len]
     = (dA/dX, dA/dY) per attribute of diff_attrs (a list of indices or
     'all', with rast_db), else [B, H, W, 0]. attr [V, C] is shared by every
-    image; [B, V, C] gives each image its own (B matching rast, or 1)."""
+    image; [B, V, C] gives each image its own (B matching rast, or 1).
+    out: optional (out, out_da) arrays to write into instead."""
     attr = _array("attr", attr, np.float32, (2, 3))
     rast = _array("rast", rast, np.float32, (4,), 4)
     batch = rast.shape[0]
@@ -216,8 +275,7 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
         if rast_db.shape != rast.shape:
             raise ValueError(f"rast_db: shape {list(rast_db.shape)} differs from rast's {list(rast.shape)}")
     _check_rast_ids(rast, tri.shape[0])
-    out = np.empty(rast.shape[:3] + (num_attrs,), np.float32)
-    out_da = np.empty(rast.shape[:3] + (2 * len(diff),), np.float32)
+    out, out_da = _outputs(out, [rast.shape[:3] + (num_attrs,), rast.shape[:3] + (2 * len(diff),)])
     for b in range(batch):
         a = attrs[b if attrs.shape[0] == batch else 0]
         _clraster.interpolate_into(a, rast[b], tri, out[b], rast_db[b] if diff else None, diff,

@@ -21,12 +21,13 @@ def rast(ctx):
         ("glctx", dict(glctx=None)),
         ("glctx", dict(glctx="cpu")),
         ("pos", dict(pos=POS.tolist())),
-        ("pos", dict(pos=POS.astype(np.float64))),
+        ("pos", dict(pos=np.full((3, 4), 1e300))),  # beyond float32
         ("pos", dict(pos=POS[:, :3].copy())),
         ("pos", dict(pos=POS[0])),
         ("pos", dict(pos=POS[None, None])),
-        ("tri", dict(tri=TRI.astype(np.int64))),
-        ("tri", dict(tri=TRI.astype(np.uint32))),
+        ("tri", dict(tri=np.array([[0, 1, 2**40]], np.int64))),  # beyond int32
+        ("tri", dict(tri=np.array([[0, 1, 2**32 - 1]], np.uint32))),
+        ("tri", dict(tri=TRI.astype(np.float32))),
         ("tri", dict(tri=TRI[:, :2].copy())),
         ("tri", dict(tri=TRI[0])),
         ("tri", dict(tri=np.array([[0, 1, 3]], np.int32))),
@@ -55,16 +56,16 @@ def test_rasterize_rejects(ctx, name, kwargs):
     "name, kwargs",
     [
         ("attr", dict(attr=POS.tolist())),
-        ("attr", dict(attr=POS.astype(np.float16))),
+        ("attr", dict(attr=POS.astype(np.complex64))),
         ("attr", dict(attr=POS[0])),
         ("attr", dict(attr=np.zeros((2, 3, 3, 1), np.float32))),
         ("attr", dict(attr=np.zeros((3, 3, 4), np.float32))),  # 3 sets for 1 image
         ("rast", dict(rast="rast")),
         ("rast", dict(rast=np.zeros((8, 8, 4), np.float32))),
         ("rast", dict(rast=np.zeros((1, 8, 8, 3), np.float32))),
-        ("rast", dict(rast=np.zeros((1, 8, 8, 4), np.float64))),
+        ("rast", dict(rast=np.full((1, 8, 8, 4), -1e300))),
         ("tri", dict(tri=np.array([[0, 1, 5]], np.int32))),
-        ("tri", dict(tri=TRI.astype(np.int16))),
+        ("tri", dict(tri=TRI.astype(bool))),
         ("diff_attrs", dict(diff_attrs="some")),
         ("diff_attrs", dict(diff_attrs=[0, 4])),
         ("diff_attrs", dict(diff_attrs=[-5])),
@@ -72,7 +73,7 @@ def test_rasterize_rejects(ctx, name, kwargs):
         ("diff_attrs", dict(diff_attrs=7)),
         ("rast_db", dict(diff_attrs=[0])),
         ("rast_db", dict(diff_attrs=[0], rast_db=np.zeros((1, 8, 4, 4), np.float32))),
-        ("rast_db", dict(diff_attrs=[0], rast_db=np.zeros((1, 8, 8, 4), np.float64))),
+        ("rast_db", dict(diff_attrs=[0], rast_db=np.full((1, 8, 8, 4), 1e300))),
     ],
 )
 def test_interpolate_rejects(rast, name, kwargs):

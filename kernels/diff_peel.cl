@@ -1,0 +1,100 @@
+/* diff_peel.cl — one layer of depth peeling (nvdiffrast's DepthPeeler) over a
+ * clip-input frame that ran setup and bin (host/pipeline/peel.cpp).
+ *
+ * One work-item per pixel tests every setup record binned into its tile at
+ * the pixel's sample as raster.cl does with fixed edges (exact 64-bit edge
+ * functions, CLR_EDGE_HOLDS_SAMPLES, b = E · 1/(2·area), window depth
+ * z0 + b1 (z1 − z0) + b2 (z2 − z0), LESS against the clear depth 1, ties to
+ * the lower record) but takes only fragments strictly behind floorDepth,
+ * the window depth of the pixel's previous layer (−inf for the first, which
+ * is then raster's own choice). It writes rast and rast_db as
+ * rast_outputs.cl does, and the layer's depth into nextFloor (+inf where
+ * nothing is left, so later layers stay empty).
+ */
+#pragma OPENCL FP_CONTRACT OFF
+#if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
+
+CLR_INLINE long peel_edge(int ax, int ay, int bx, int by, int px, int py)
+{
+  return (long)(bx - ax) * (long)(py - ay) - (long)(by - ay) * (long)(px - ax) +
+         (CLR_EDGE_HOLDS_SAMPLES(ax, ay, bx, by) ? 1 : 0);
+}
+
+__kernel void peel_layer(__constant FrameParams* params, __global const TriSetup* setup,
+                         __global const uint* tileOffset,  // tiles + 1
+                         __global const uint* binEntries, __global const uint* source,
+                         __global const ClipBary* clipBary,
+                         __global const uint* indices,      // 3·numTris
+                         __global const float* positions,   // 4·numVerts, clip space
+                         __global const float* floorDepth,  // width · height
+                         __global float4* rast, __global float4* db, uint withDb, __global float* nextFloor)
+{
+  const uint px = get_global_id(0), py = get_global_id(1);
+  if (px >= params->width || py >= params->height) return;
+  const uint p = py * params->width + px;
+  // Step 1: the nearest fragment behind the floor.
+  const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleX[0];
+  const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[0];
+  const uint tile = (py / CLR_TILE_SIZE) * params->tilesX + px / CLR_TILE_SIZE;
+  const float floor = floorDepth[p];
+  float best = 1.0f, b1 = 0.0f, b2 = 0.0f;
+  uint bestS = CLR_NONE;
+  for (uint n = tileOffset[tile]; n < tileOffset[tile + 1]; ++n) {
+    const uint s = binEntries[n];
+    const TriSetup t = setup[s];
+    const long e0 = peel_edge(t.x[1], t.y[1], t.x[2], t.y[2], sx, sy);
+    const long e1 = peel_edge(t.x[2], t.y[2], t.x[0], t.y[0], sx, sy);
+    const long e2 = peel_edge(t.x[0], t.y[0], t.x[1], t.y[1], sx, sy);
+    if (e0 <= 0 || e1 <= 0 || e2 <= 0) continue;
+    const float inv = CLR_RECORD_INV_AREA2(t);
+    // raster's b: the edge function without the fill rule's bias.
+    const float c1 = (float)(e1 - (CLR_EDGE_HOLDS_SAMPLES(t.x[2], t.y[2], t.x[0], t.y[0]) ? 1 : 0)) * inv;
+    const float c2 = (float)(e2 - (CLR_EDGE_HOLDS_SAMPLES(t.x[0], t.y[0], t.x[1], t.y[1]) ? 1 : 0)) * inv;
+    const float z = t.z[0] + c1 * (t.z[1] - t.z[0]) + c2 * (t.z[2] - t.z[0]);
+    if (!(z > floor) || !(z < best || (z == best && s < bestS))) continue;
+    best = z;
+    bestS = s;
+    b1 = c1;
+    b2 = c2;
+  }
+  if (bestS == CLR_NONE) {
+    rast[p] = (float4)(0.0f);
+    if (withDb) db[p] = (float4)(0.0f);
+    nextFloor[p] = INFINITY;
+    return;
+  }
+  nextFloor[p] = best;
+  // Step 2: rast_outputs.cl's outputs for that fragment.
+  const uint from = source[bestS], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
+  const float b[3] = {1.0f - b1 - b2, b1, b2};
+  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
+  float w[3];
+  record_clip_w(params, positions, clipBary, from, vertex, w);
+  const float q[3] = {b[0] * (1.0f / w[0]), b[1] * (1.0f / w[1]), b[2] * (1.0f / w[2])};
+  const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
+  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
+  const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
+  float mu[3] = {0.0f, 0.0f, 0.0f};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int identity = swapped && i != 0 ? 3 - i : i;
+      const float wt = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
+      mu[j] += (q[i] * eyeDepth) * wt;
+    }
+  rast[p] = (float4)(mu[0], mu[1], 2.0f * best - 1.0f, rast_id_float(triId + 1u));
+  if (!withDb) return;
+  float4 c[3];
+  for (int j = 0; j < 3; ++j) c[j] = vload4(indices[3 * triId + j], positions);
+  const float3 p0 = (float3)(c[0].x, c[0].y, c[0].w), p1 = (float3)(c[1].x, c[1].y, c[1].w),
+               p2 = (float3)(c[2].x, c[2].y, c[2].w);
+  const float3 r0 = cross(p1, p2), r1 = cross(p2, p0), r2 = cross(p0, p1);
+  const float3 sc = (float3)(2.0f * ((float)px + 0.5f) / (float)params->width - 1.0f,
+                             2.0f * ((float)py + 0.5f) / (float)params->height - 1.0f, 1.0f);
+  const float k0 = dot(r0, sc), k1 = dot(r1, sc), k2 = dot(r2, sc);
+  const float sum = k0 + k1 + k2, l0 = k0 / sum, l1 = k1 / sum;
+  const float sxs = r0.x + r1.x + r2.x, sys = r0.y + r1.y + r2.y;
+  const float dx = 2.0f / (float)params->width, dy = 2.0f / (float)params->height;
+  db[p] = (float4)((r0.x - l0 * sxs) / sum * dx, (r0.y - l0 * sys) / sum * dy, (r1.x - l1 * sxs) / sum * dx,
+                   (r1.y - l1 * sys) / sum * dy);
+}
+#endif
