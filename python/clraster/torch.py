@@ -26,7 +26,7 @@ import torch
 
 from . import _clraster
 from . import ArgumentTypeError, Context, Error  # noqa: F401  (re-exported)
-from . import _MAX_RESOLUTION, triangle_ids  # noqa: F401
+from . import _MAX_RESOLUTION, _check_rast_ids, triangle_ids  # noqa: F401
 from . import rasterize as np_rasterize
 
 __all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
@@ -341,6 +341,7 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None):
         raise ValueError(f"attr: {attr.shape[0]} attribute sets for {rast.shape[0]} images in rast")
     tri_np = _indices("tri", _to_tensor("tri", tri))
     _check_tri(tri_np, attr.shape[-2])
+    _check_rast_ids(rast.detach().numpy(), tri_np.shape[0])
     diff = _diff_list(diff_attrs, attr.shape[-1])
     if diff:
         if rast_db is None:
@@ -526,6 +527,7 @@ def antialias(color, rast, pos, tri, topology_hash=None, pos_gradient_boost=1.0)
         raise ValueError(f"pos: expected shape [V, 4] or [{rast.shape[0]}, V, 4], got {list(pos.shape)}")
     tri_np = _indices("tri", _to_tensor("tri", tri))
     _check_tri(tri_np, pos.shape[-2])
+    _check_rast_ids(rast.detach().numpy(), tri_np.shape[0])
     if topology_hash is None:
         topology_hash = antialias_construct_topology_hash(tri_np)
     if not isinstance(topology_hash, TopologyHash):

@@ -101,3 +101,16 @@ def test_cube_maps_are_refused_by_name():
     with pytest.raises(ValueError, match="^cube_mode: "):
         dr.texture_construct_mip(TEX, cube_mode=True)
     assert np.isfinite(dr.texture(TEX, UV).numpy()).all()
+
+
+@pytest.mark.parametrize("channel", [2.0, 7.0, -3.0, float("nan")])
+def test_rast_naming_no_triangle_is_refused(rast, channel):
+    """interpolate and antialias read the id channel: one naming no triangle
+    of tri (7 with one triangle, -3, NaN) is refused, never read as 0."""
+    bad = rast.clone()
+    bad[0, 4, 4, 3] = channel
+    attr = torch.ones(3, 2)
+    with pytest.raises(ValueError, match="^rast"):
+        dr.interpolate(attr, bad, TRI)
+    with pytest.raises(ValueError, match="^rast"):
+        dr.antialias(torch.zeros(1, 8, 8, 3), bad, POS, TRI)
