@@ -38,6 +38,7 @@ class InputFile {
   InputFile& operator=(const InputFile&) = delete;
 
   uint64_t size() const { return size_; }
+  int descriptor() const { return fd_; }
   // Hands the descriptor over (to a FILE*, say); the caller closes it.
   int release();
   // Reads at most `limit` bytes from the start (all of them by default).

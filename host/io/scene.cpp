@@ -5,6 +5,7 @@
 #include "io/scene.h"
 
 #include "base/error.h"
+#include "io/asset_root.h"
 #include "io/exact_positions.h"
 #include "io/file_rule.h"
 #include "io/model_checks.h"
@@ -46,6 +47,7 @@ std::string formatVector(const aiVector3D& v)
 
 struct ImportState {
   const std::string& path;
+  const AssetRoot& root;
   const aiScene* scene;
   Mesh mesh;
   bool anyNormals = false;
@@ -141,6 +143,21 @@ std::string percentDecoded(const std::string& s)
   return out;
 }
 
+// A texture file the model names, under the model-folder rule: under it,
+// every failure but the texture budget reads alike (asset_root.h).
+Texture loadTexture(const AssetRoot& root, const std::string& file, const std::string& reference, TextureBudget& budget)
+{
+  try {
+    const std::string bytes = root.open(file, reference, kTextureInput)->read();
+    return decodeTexture(file, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
+  } catch (const TextureOverBudget&) {
+    throw;
+  } catch (const Error& e) {
+    if (!root.confined() || std::string(e.what()).find("exceeds the limit") != std::string::npos) throw;
+    throw Error(AssetRoot::refusal(reference));
+  }
+}
+
 // The scene's materials: base colour factor (glTF's baseColorFactor, else
 // the diffuse colour) and base-colour texture (else the diffuse texture).
 // Materials assimp invents for formats without any (no name or
@@ -151,7 +168,8 @@ void loadMaterials(ImportState& state)
   const std::string folder =
       state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
   std::map<std::string, int> byPath;
-  TextureBudget budget;  // all textures of the scene, mip chains counted
+  std::map<std::string, std::string> failedFiles;  // texture file -> its warning: each file is read once
+  TextureBudget budget;                            // all textures of the scene, mip chains counted
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* mat = scene->mMaterials[m];
     // Step 1: the colour factor.
@@ -229,14 +247,22 @@ void loadMaterials(ImportState& state)
           const std::string decoded = percentDecoded(file);
           struct stat st;
           if (decoded != file && stat(file.c_str(), &st) != 0 && stat(decoded.c_str(), &st) == 0) file = decoded;
-          try {
-            t = loadTextureFile(file, budget);
-          } catch (const Error& e) {
-            // The model itself is sound: render the material untextured and
-            // say so, as other renderers do with a missing texture file.
-            state.mesh.warnings.push_back(userText(state.path, 60) + ": material " + std::to_string(m) + ": " +
-                                          userText(e.what(), 190) + "; rendered without the texture");
-            state.mesh.facts.missingTextures.push_back(file);
+          const auto failed = failedFiles.find(file);
+          std::string warning = failed == failedFiles.end() ? "" : failed->second;
+          if (failed == failedFiles.end()) {
+            try {
+              t = loadTexture(state.root, file, name, budget);
+            } catch (const Error& e) {
+              // The model itself is sound: render the material untextured and
+              // say so once, as other renderers do with a missing texture file.
+              warning = userText(state.path, 60) + ": material " + std::to_string(m) + ": " + userText(e.what(), 190) +
+                        "; rendered without the texture";
+              failedFiles.emplace(file, warning);
+              state.mesh.warnings.push_back(warning);
+              state.mesh.facts.missingTextures.push_back(file);
+            }
+          }
+          if (!warning.empty()) {
             state.mesh.materials.push_back(out);
             continue;
           }
@@ -326,10 +352,10 @@ void preparePointClouds(const std::string& path, aiScene* scene)
 
 }  // namespace
 
-Mesh loadScene(const std::string& path)
+Mesh loadScene(const std::string& path, const std::string& assets)
 {
   checkSceneFile(path);
-  return importScene(path);
+  return importScene(path, assets);
 }
 
 void checkSceneFile(const std::string& path)
@@ -349,11 +375,12 @@ void checkSceneFile(const std::string& path)
   }
 }
 
-Mesh importScene(const std::string& path)
+Mesh importScene(const std::string& path, const std::string& assets)
 {
   // Step 1: import without reordering post-processing.
+  const AssetRoot root(path, assets);
   Assimp::Importer importer;
-  auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it
+  auto* io = new RuleIOSystem(path, assets);  // every file the import opens, under the file rules; the importer owns it
   importer.SetIOHandler(io);
   // Text formats: positions re-read correctly rounded (exact_positions.h).
   const ExactPositions exact = prepareExactPositions(path, importer);
@@ -380,7 +407,7 @@ Mesh importScene(const std::string& path)
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(userText(path) + ": no meshes in file");
   applyExactPositions(path, exact, importer, *scene);
   // Step 2: walk the nodes, concatenating meshes.
-  ImportState state{path, scene, {}};
+  ImportState state{path, root, scene, {}};
   for (const std::string& refused : io->refusals())
     state.mesh.warnings.push_back(userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
   if (io->refusals().empty())  // (a refused library is warned of above)
