@@ -415,6 +415,11 @@ Mesh importScene(const std::string& path, const std::string& assets)
       state.mesh.warnings.push_back(userText(path, 80) + ": material library '" + userText(library, 100) +
                                     "' not found; rendered with default materials");
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
+  // Some readers leave a mesh out of every node (assimp's AC reader, a point
+  // list without surfaces): where the nodes give nothing, the meshes are drawn as they are.
+  if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+      if (scene->mMeshes[m]) appendMesh(state, scene->mMeshes[m], aiMatrix4x4(), m);
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
     throw Error(userText(path) + ": no triangles, lines or points in file");
   if (!state.anyColors) state.mesh.colors.clear();
