@@ -3,6 +3,7 @@
 
 #include "base/error.h"
 #include "io/file_rule.h"
+#include "io/import_budget.h"
 
 #include <assimp/DefaultIOStream.h>
 #include <assimp/MemoryIOWrapper.h>
@@ -87,6 +88,27 @@ Assimp::IOStream* RuleIOSystem::Open(const char* file, const char* mode)
   try {
     std::unique_ptr<InputFile> input =
         ruled ? root_.open(file, reference(file), kModelInput) : std::make_unique<InputFile>(file, kModelInput);
+    if (!isModel(file)) {
+      // The import budget: every file named counts each time it is read.
+      referencedBytes_ += input->size();
+      if (referencedBytes_ > kReferencedBytes) {
+        overBudget_ = userText(modelPath_, 120) + ": the files it names take more than " +
+                      std::to_string(kReferencedBytes >> 20) +
+                      " MiB together, the limit for one import (docs/limits.md)";
+        return nullptr;
+      }
+      if (countMaterials_) {
+        kept_.push_back(input->read());
+        materials_ += countMaterials(kept_.back());
+        if (materials_ > kMaxMaterials) {
+          overBudget_ = userText(modelPath_, 120) + ": more than " + std::to_string(kMaxMaterials) +
+                        " materials in its material libraries, the limit for one OBJ (docs/limits.md)";
+          return nullptr;
+        }
+        lastOpenFailed_ = false;
+        return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(kept_.back().data()), kept_.back().size());
+      }
+    }
     const int fd = input->release();
     FILE* stream = fdopen(fd, "rb");
     if (!stream) {

@@ -11,6 +11,7 @@
 #include <assimp/DefaultIOSystem.h>
 
 #include <cstdint>
+#include <list>
 #include <set>
 #include <string>
 #include <utility>
@@ -29,6 +30,11 @@ class RuleIOSystem : public Assimp::DefaultIOSystem {
 
   // Serves `bytes` whenever `path` is opened (both must outlive the import).
   void serve(const std::string& path, const std::string* bytes);
+  // Counts the materials of every file the model names (an OBJ's libraries) against kMaxMaterials.
+  void countMaterialLibraries() { countMaterials_ = true; }
+  // The import budget's error (import_budget.h), "" while within it: the
+  // files named exceed kReferencedBytes together, or their materials the limit.
+  const std::string& overBudget() const { return overBudget_; }
   // "PATH: problem" for each file the rule refused, in order.
   const std::vector<std::string>& refusals() const { return refusals_; }
 
@@ -39,6 +45,10 @@ class RuleIOSystem : public Assimp::DefaultIOSystem {
   std::string modelPath_, modelFolder_;
   AssetRoot root_;
   bool lastOpenFailed_ = false;
+  bool countMaterials_ = false;
+  uint64_t referencedBytes_ = 0, materials_ = 0;
+  std::string overBudget_;
+  std::list<std::string> kept_;  // libraries read whole, served from memory
   std::set<std::string> refusedReferences_;
   std::string servedPath_;
   const std::string* served_ = nullptr;

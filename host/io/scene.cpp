@@ -8,6 +8,7 @@
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
 #include "io/file_rule.h"
+#include "io/import_budget.h"
 #include "io/model_checks.h"
 #include "io/normals.h"
 #include "io/model_io.h"
@@ -367,6 +368,7 @@ void checkSceneFile(const std::string& path)
   // whole path and may quote the file's text: a long one is shortened here.
   try {
     checkModelFile(path, fileSize);
+    checkGltfBudget(path);
   } catch (const Error& e) {
     const std::string message = e.what();
     if (message.size() <= 300) throw;
@@ -385,6 +387,10 @@ Mesh importScene(const std::string& path, const std::string& assets)
   // Text formats: positions re-read correctly rounded (exact_positions.h).
   const ExactPositions exact = prepareExactPositions(path, importer);
   if (exact.importer != -1) io->serve(path, &exact.text);
+  if (exact.format == "OBJ") {
+    checkObjBudget(path, exact.text);
+    io->countMaterialLibraries();
+  }
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
@@ -399,6 +405,7 @@ Mesh importScene(const std::string& path, const std::string& assets)
   } catch (const std::exception& e) {
     throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }
+  if (!io->overBudget().empty()) throw Error(io->overBudget());
   if (!importLog.log.firstIndexProblem.empty())
     throw Error(userText(path, 100) + ": " + userText(importLog.log.firstIndexProblem, 180));
   if (!scene && !io->refusals().empty())
