@@ -72,8 +72,8 @@ TEST_CASE("import budget: a sparse glTF accessor is counted from its declared si
   CHECK(small.status == 0);
   CHECK_THAT(small.out, Contains("points     1000"));
   expectRefused(write("budget-sparse.gltf", sparseGltf("100000000")),
-                "budget-sparse.gltf: accessors declaring 300000000 components, 1 primitives and 1 nodes need about "
-                "9156 MiB, over the import budget of 4096 MiB");
+                "budget-sparse.gltf: accessors declaring 300000000 components, 1 primitives and 1 node instances need "
+                "about 15259 MiB, over the import budget of 4096 MiB");
 }
 
 TEST_CASE("import budget: the files a glTF names count each time it names them", "[budget][cli]")
@@ -119,4 +119,24 @@ TEST_CASE("import budget: OBJ materials and groups are limited by name", "[budge
                 "budget-groups.obj: importing 3 vertices, 3 face corners and 1300000 groups needs about");
   CHECK_NOTHROW(clr::checkObjBudget("ok.obj", std::string(kTriangle) + "usemtl a\nusemtl b\ng x\n"));
   CHECK(clr::countMaterials("newmtl a\n  newmtl b\n# newmtl c\nxnewmtl d\n") == 2);
+}
+
+TEST_CASE("import budget: glTF nodes count as often as the scene reaches them", "[budget][cli]")
+{
+  // 24 levels of two nodes, each naming both nodes of the next level as
+  // children: 1.4 kB that assimp imports as 2^24 - 1 node instances.
+  std::string nodes;
+  for (int level = 0; level < 24; ++level)
+    for (int j = 0; j < 2; ++j) {
+      nodes += level || j ? ", " : "";
+      nodes += level + 1 < 24
+                   ? "{\"children\": [" + std::to_string(2 * level + 2) + ", " + std::to_string(2 * level + 3) + "]}"
+                   : std::string("{\"mesh\": 0}");
+    }
+  const std::string gltf = sparseGltf("3");
+  const std::string dag = gltf.substr(0, gltf.find("\"nodes\": [")) + "\"nodes\": [" + nodes +
+                          "], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0}";
+  expectRefused(write("budget-dag.gltf", dag),
+                "budget-dag.gltf: accessors declaring 9 components, 1 primitives and "
+                "16777215 node instances need about");
 }

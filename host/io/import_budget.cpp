@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <map>
+#include <set>
 #include <unordered_set>
 
 namespace clr {
@@ -21,6 +23,8 @@ constexpr uint64_t kObjVertexBytes = 40, kObjCornerBytes = 150, kObjGroupBytes =
 // A glTF accessor component (copied to floats, then into the loader's
 // arrays), a primitive (a mesh of its own), a node.
 constexpr uint64_t kGltfComponentBytes = 32, kGltfPrimitiveBytes = 3500, kGltfNodeBytes = 1000;
+// A vertex and an index of a node instance, in the loader's arrays (48 bytes of attributes a vertex).
+constexpr uint64_t kGltfVertexBytes = 64, kGltfIndexBytes = 8;
 constexpr int kMaxJsonDepth = 64;  // as model_checks.h's parser
 
 std::string mib(uint64_t bytes)
@@ -43,6 +47,74 @@ void forEach(const nlohmann::json& doc, const char* key, F&& f)
   if (found == doc.end() || !(found->is_array() || found->is_object())) return;
   for (const auto& item : *found) f(item);
 }
+
+// A glTF collection's member by reference: an index (glTF 2) or an id (glTF 1).
+const nlohmann::json* member(const nlohmann::json& doc, const char* key, const nlohmann::json& ref)
+{
+  const auto collection = doc.find(key);
+  if (collection == doc.end()) return nullptr;
+  if (collection->is_array() && ref.is_number_unsigned() && ref.get<uint64_t>() < collection->size())
+    return &(*collection)[ref.get<size_t>()];
+  if (collection->is_object() && ref.is_string()) {
+    const auto found = collection->find(ref.get<std::string>());
+    return found == collection->end() ? nullptr : &*found;
+  }
+  return nullptr;
+}
+
+// The count an accessor reference declares, 0 without one.
+long double accessorCount(const nlohmann::json& doc, const nlohmann::json* ref)
+{
+  const nlohmann::json* a = ref ? member(doc, "accessors", *ref) : nullptr;
+  if (!a || !a->is_object() || !a->contains("count") || !(*a)["count"].is_number()) return 0;
+  return std::max<long double>(0, (*a)["count"].get<long double>());
+}
+
+// The bytes the loader's copies of node instances take: each node as often
+// as the scenes reach it, with its meshes' vertices and indices.
+struct Instances {
+  const nlohmann::json& doc;
+  long double count = 0, bytes = 0;
+  std::map<const nlohmann::json*, std::pair<long double, long double>> memo;  // node: (instances, bytes) below it
+  std::set<const nlohmann::json*> open;                                       // on the path: a cycle ends there
+
+  void add(const nlohmann::json& node)
+  {
+    const auto [n, b] = visit(node);
+    count += n;
+    bytes += b;
+  }
+  std::pair<long double, long double> visit(const nlohmann::json& node)
+  {
+    if (!node.is_object() || open.count(&node)) return {0, 0};
+    const auto known = memo.find(&node);
+    if (known != memo.end()) return known->second;
+    open.insert(&node);
+    std::pair<long double, long double> sum{1, kGltfNodeBytes};
+    auto addMesh = [&](const nlohmann::json& ref) {
+      const nlohmann::json* mesh = member(doc, "meshes", ref);
+      if (!mesh) return;
+      forEach(*mesh, "primitives", [&](const nlohmann::json& p) {
+        if (!p.is_object()) return;
+        const auto attributes = p.find("attributes");
+        if (attributes != p.end() && attributes->is_object() && attributes->contains("POSITION"))
+          sum.second += accessorCount(doc, &(*attributes)["POSITION"]) * kGltfVertexBytes;
+        if (p.contains("indices")) sum.second += accessorCount(doc, &p["indices"]) * kGltfIndexBytes;
+      });
+    };
+    if (node.contains("mesh")) addMesh(node["mesh"]);                           // glTF 2
+    forEach(node, "meshes", [&](const nlohmann::json& ref) { addMesh(ref); });  // glTF 1
+    forEach(node, "children", [&](const nlohmann::json& ref) {
+      if (const nlohmann::json* child = member(doc, "nodes", ref)) {
+        const auto [n, b] = visit(*child);
+        sum.first += n;
+        sum.second += b;
+      }
+    });
+    open.erase(&node);
+    return memo[&node] = sum;
+  }
+};
 
 uint64_t components(const std::string& type)
 {
@@ -154,19 +226,29 @@ void checkGltfBudget(const std::string& path)
     if (count == a.end() || !count->is_number() || type == a.end() || !type->is_string()) return;
     elements += std::max<long double>(0, count->get<long double>()) * components(type->get<std::string>());
   });
-  uint64_t primitives = 0, nodes = 0;
-  forEach(doc, "meshes", [&](const nlohmann::json& m) {
-    if (m.is_object() && m.contains("primitives") && (m["primitives"].is_array() || m["primitives"].is_object()))
-      primitives += m["primitives"].size();
-  });
-  forEach(doc, "nodes", [&](const nlohmann::json&) { ++nodes; });
-  const long double estimate = elements * kGltfComponentBytes + (long double)(primitives)*kGltfPrimitiveBytes +
-                               (long double)(nodes)*kGltfNodeBytes;
+  uint64_t primitives = 0;
+  forEach(doc, "meshes",
+          [&](const nlohmann::json& m) { forEach(m, "primitives", [&](const auto&) { ++primitives; }); });
+  // Step 4: the node instances the loader copies meshes into (a node two
+  // parents name is imported twice: nodes shared level by level double).
+  Instances instances{doc};
+  const auto scenes = doc.find("scenes");
+  if (scenes != doc.end() && !scenes->empty()) {
+    forEach(doc, "scenes", [&](const nlohmann::json& scene) {
+      forEach(scene, "nodes", [&](const nlohmann::json& ref) {
+        if (const nlohmann::json* node = member(doc, "nodes", ref)) instances.add(*node);
+      });
+    });
+  } else {
+    forEach(doc, "nodes", [&](const nlohmann::json& node) { instances.add(node); });
+  }
+  const long double estimate =
+      elements * kGltfComponentBytes + (long double)(primitives)*kGltfPrimitiveBytes + instances.bytes;
+  auto text = [](long double v) { return std::to_string(uint64_t(std::min<long double>(v, 1e19L))); };
   if (estimate > (long double)kImportBudgetBytes)
     throw Error(overBudget(path,
-                           "accessors declaring " + std::to_string(uint64_t(std::min<long double>(elements, 1e19L))) +
-                               " components, " + std::to_string(primitives) + " primitives and " +
-                               std::to_string(nodes) + " nodes need about " +
+                           "accessors declaring " + text(elements) + " components, " + std::to_string(primitives) +
+                               " primitives and " + text(instances.count) + " node instances need about " +
                                mib(uint64_t(std::min<long double>(estimate, 1e19L))),
                            kImportBudgetBytes));
 }
