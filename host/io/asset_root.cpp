@@ -83,9 +83,9 @@ std::unique_ptr<InputFile> AssetRoot::open(const std::string& path, const std::s
   std::unique_ptr<InputFile> file;
   try {
     file = std::make_unique<InputFile>(real, kind);
-  } catch (const Error& e) {
-    // A size limit names itself: the file is inside the root, so saying so tells nothing new.
-    if (std::string(e.what()).find("exceeds the limit") != std::string::npos) throw;
+  } catch (const InputOverLimit&) {
+    throw;  // a limit names itself: the file is inside the root, so saying so tells nothing new
+  } catch (const Error&) {
     throw Error(refusal(reference));
   }
   // Step 3: what was opened is still inside (a link swapped in after step 1).

@@ -12,6 +12,8 @@
 // userText(). docs/limits.md, "Hostile files", lists the limits.
 #pragma once
 
+#include "base/error.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -27,6 +29,11 @@ inline constexpr InputKind kModelInput{"model file", uint64_t(1) << 30};        
 inline constexpr InputKind kTextureInput{"texture file", uint64_t(256) << 20};            // an image, compressed
 inline constexpr InputKind kViewsInput{"views file", uint64_t(16) << 20};                 // JSON, ~100 bytes a view
 inline constexpr InputKind kProgramCacheInput{"kernel cache file", uint64_t(256) << 20};  // program_cache.h
+
+// A file over its kind's size limit (the one failure that names a limit).
+struct InputOverLimit : Error {
+  using Error::Error;
+};
 
 // An open input file; closes it when destroyed.
 class InputFile {

@@ -153,8 +153,10 @@ Texture loadTexture(const AssetRoot& root, const std::string& file, const std::s
     return decodeTexture(file, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
   } catch (const TextureOverBudget&) {
     throw;
-  } catch (const Error& e) {
-    if (!root.confined() || std::string(e.what()).find("exceeds the limit") != std::string::npos) throw;
+  } catch (const InputOverLimit&) {
+    throw;
+  } catch (const Error&) {
+    if (!root.confined()) throw;
     throw Error(AssetRoot::refusal(reference));
   }
 }
@@ -169,8 +171,10 @@ void loadMaterials(ImportState& state)
   const std::string folder =
       state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
   std::map<std::string, int> byPath;
-  std::map<std::string, std::string> failedFiles;  // texture file -> its warning: each file is read once
-  TextureBudget budget;                            // all textures of the scene, mip chains counted
+  // Each texture file is read once: its warning, or its texture (copied for another wrap mode).
+  std::map<std::string, std::string> failedFiles;
+  std::map<std::string, int> loadedFiles;
+  TextureBudget budget;  // all textures of the scene, mip chains counted
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* mat = scene->mMaterials[m];
     // Step 1: the colour factor.
@@ -252,7 +256,14 @@ void loadMaterials(ImportState& state)
           std::string warning = failed == failedFiles.end() ? "" : failed->second;
           if (failed == failedFiles.end()) {
             try {
-              t = loadTexture(state.root, file, name, budget);
+              const auto loaded = loadedFiles.find(file);
+              if (loaded != loadedFiles.end()) {
+                t = state.mesh.textures[size_t(loaded->second)];
+                budget.claim(t.name, t.width, t.height);
+              } else {
+                t = loadTexture(state.root, file, name, budget);
+                loadedFiles.emplace(file, int(state.mesh.textures.size()));
+              }
             } catch (const Error& e) {
               // The model itself is sound: render the material untextured and
               // say so once, as other renderers do with a missing texture file.
