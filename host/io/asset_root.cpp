@@ -46,6 +46,7 @@ std::string openedPath(int fd)
 AssetRoot::AssetRoot(const std::string& modelPath, const std::string& assets)
 {
   if (assets == kAnyAssets) return;
+  confined_ = true;
   const size_t slash = modelPath.rfind('/');
   const std::string folder = canonical(slash == std::string::npos ? "." : modelPath.substr(0, slash + 1));
   if (!folder.empty()) roots_.push_back(asFolder(folder));
@@ -56,7 +57,6 @@ AssetRoot::AssetRoot(const std::string& modelPath, const std::string& assets)
       throw Error("--assets: '" + userText(assets) + "' is not a directory (or 'any')");
     roots_.push_back(asFolder(dir));
   }
-  if (roots_.empty()) roots_.push_back("/nonexistent-model-folder/");  // the folder vanished: nothing is inside
 }
 
 bool AssetRoot::inside(const std::string& path) const

@@ -30,7 +30,7 @@ class AssetRoot {
   // directory (an Error naming --assets unless it is one).
   AssetRoot(const std::string& modelPath, const std::string& assets);
 
-  bool confined() const { return !roots_.empty(); }
+  bool confined() const { return confined_; }
   // Opens `path`, the file `reference` names (both as the reader built and
   // the model wrote them), under this rule and the file rule; throws a
   // clr::Error: refusal(reference) when confined, the file rule's otherwise.
@@ -39,7 +39,8 @@ class AssetRoot {
   static std::string refusal(const std::string& reference);
 
  private:
-  std::vector<std::string> roots_;  // canonical folders, each ending in '/'; empty: any
+  bool confined_ = false;
+  std::vector<std::string> roots_;  // canonical folders, each ending in '/' (none: the model's folder vanished)
   bool inside(const std::string& canonical) const;
 };
 
