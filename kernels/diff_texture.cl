@@ -1,5 +1,5 @@
 /* diff_texture.cl — nvdiffrast's texture operation, forward and backward
- * (host/pipeline/diff_texture.cpp; python/clraster/torch.py).
+ * (host/pipeline/diff.cpp; python/clraster/torch.py).
  *
  * A texture is a mip pyramid in one buffer: level k of every texture image
  * (texImages of them) at levelOffset[k], sizes levelW[k] × levelH[k] ×

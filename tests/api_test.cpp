@@ -234,3 +234,34 @@ TEST_CASE("api calls past the memory limit are refused naming the size", "[api]"
   ctx.release();
   REQUIRE(clraster::rasterize(ctx, pos, 3, tri, 1, 16, 16).ids[16 * 8 + 8] == 1);
 }
+
+TEST_CASE("api scenes reach only their folder unless assets widens it", "[api][assets]")
+{
+  // A glTF in DIR/model whose buffer is DIR/secret.bin (issue: its bytes came out as vertex data).
+  char dirTemplate[] = "/tmp/clraster-api-assets-XXXXXX";
+  REQUIRE(mkdtemp(dirTemplate));
+  const std::string dir = dirTemplate;
+  REQUIRE(std::system(("mkdir '" + dir + "/model'").c_str()) == 0);
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  FILE* bin = std::fopen((dir + "/secret.bin").c_str(), "wb");
+  REQUIRE(bin);
+  std::fwrite(positions, sizeof positions, 1, bin);
+  std::fclose(bin);
+  const std::string model = dir + "/model/up.gltf";
+  FILE* gltf = std::fopen(model.c_str(), "w");
+  REQUIRE(gltf);
+  std::fputs(R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "../secret.bin", "byteLength": 36}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [{"bufferView": 0, "componentType": 5126,
+    "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}], "meshes": [{"primitives": [{"attributes":
+    {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})",
+             gltf);
+  std::fclose(gltf);
+  CHECK_THROWS_WITH(clraster::Scene::load(model), Catch::Contains("cannot use '../secret.bin'"));
+  const auto options = clraster::RenderOptions::parse({model, "--size", "8x8"});
+  CHECK_THROWS_WITH(clraster::render(context(), options), Catch::Contains("cannot use '../secret.bin'"));
+  CHECK(clraster::Scene::load(model, dir).numTriangles() == 1);
+  CHECK(clraster::Scene::load(model, "any").numTriangles() == 1);
+  const auto widened = clraster::RenderOptions::parse({model, "--size", "8x8", "--assets", dir});
+  CHECK(clraster::render(context(), widened).width == 8);
+  REQUIRE(std::system(("rm -rf '" + dir + "'").c_str()) == 0);
+}

@@ -32,7 +32,7 @@ POLICY = [
     ("no-geometry", r": no meshes in file$|: no triangles, lines or points in file$"),
     ("bad-position", r"non-finite position|beyond the supported 1e18|no vertex has finite coordinates"),
     ("index-out-of-range", r"(?i)invalid (vertex |face )?index|out.of.range"),
-    ("missing-file", r"could not open referenced file|names missing embedded texture|: cannot open \("),
+    ("missing-file", r"could not open referenced file|names missing embedded texture|: cannot open \(|cannot use '"),
     ("hostile-file-guard", r": (PLY|OFF|glTF|GLB)\b|nested deeper than"),
     ("inexact-number", r"is not a decimal number \(positions are read exactly"),
 ]

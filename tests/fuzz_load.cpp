@@ -5,13 +5,18 @@
 // An input is one selector byte and the file's bytes. The selector picks the
 // file name extension, which picks assimp's importer: 'o' .obj, 'p' .ply,
 // 'f' .off, 'g' .gltf, 'b' .glb, 's' .stl; any other byte picks by its value
-// modulo 6. The rest is written to a file with that extension in a scratch
-// folder (FUZZ_LOAD_TMPDIR, else a fresh one under /tmp), so a crash input
-// minus its first byte is a file the CLI reproduces it with.
+// modulo 6. The rest is written to a file with that extension in the folder
+// model/ of a scratch folder (FUZZ_LOAD_TMPDIR, else a fresh one under
+// /tmp), so a crash input minus its first byte is a file the CLI reproduces
+// it with. Beside the model lie files it may name (in.bin, in.mtl, in.png)
+// and links to files outside its folder (link.bin, link.mtl, link.png to
+// ../secret.*), whose contents are marked: a position of 4242, a colour of
+// (0.125, 0.25, 0.375), a 3×5 texture.
 //
 // Each input must either load, giving a mesh that keeps the loader's
-// contract, or fail with clr::Error whose message is one line starting with
-// the file's path. Anything else aborts, which libFuzzer reports as a crash.
+// contract and holds nothing of the secret files, or fail with clr::Error
+// whose message is one line starting with the file's path. Anything else
+// aborts, which libFuzzer reports as a crash.
 #include "render/camera.h"
 #include "pipeline/cl.h"
 #include "io/scene.h"
@@ -23,17 +28,60 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace {
 
-std::string gDir;
+std::string gDir;  // the model's folder, model/ of the scratch folder
+constexpr float kSecretPosition = 4242.0f;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what)
 {
   std::fprintf(stderr, "fuzz_load: %s: %s\n", path.c_str(), what.c_str());
   std::fflush(stderr);
   std::abort();
+}
+
+void writeFile(const std::string& path, const std::string& bytes)
+{
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out) fail(path, "cannot write the scratch file");
+}
+
+// An uncompressed w×h TGA of one grey.
+std::string tga(int w, int h)
+{
+  std::string t(18, '\0');
+  t[2] = 2;
+  t[12] = char(w), t[14] = char(h), t[16] = 24;
+  return t + std::string(size_t(3 * w * h), '\x80');
+}
+
+// The files beside the model and outside its folder (see the contract).
+void makeFolders(const std::string& scratch)
+{
+  gDir = scratch + "/model";
+  mkdir(gDir.c_str(), 0700);
+  std::string positions, secret;
+  for (float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 1.0f, 1.0f, 0.0f})
+    positions.append(reinterpret_cast<const char*>(&v), sizeof v);
+  for (int i = 0; i < 64; ++i) secret.append(reinterpret_cast<const char*>(&kSecretPosition), sizeof kSecretPosition);
+  writeFile(gDir + "/in.bin", positions);
+  writeFile(gDir + "/in.mtl", "newmtl m\nKd 1 0 0\nmap_Kd in.png\n");
+  writeFile(gDir + "/in.png", tga(1, 1));
+  writeFile(scratch + "/secret.bin", secret);
+  std::string library;
+  for (const char* name : {"m", "a", "b", "default", "DefaultMaterial"})
+    library += std::string("newmtl ") + name + "\nKd 0.125 0.25 0.375\n";
+  writeFile(scratch + "/secret.mtl", library);
+  writeFile(scratch + "/secret.png", tga(3, 5));
+  for (const char* ext : {"bin", "mtl", "png"}) {
+    const std::string link = gDir + "/link." + ext;
+    unlink(link.c_str());
+    if (symlink((std::string("../secret.") + ext).c_str(), link.c_str()) != 0) fail(link, "cannot make the link");
+  }
 }
 
 void checkMesh(const std::string& path, const clr::Mesh& mesh)
@@ -49,6 +97,14 @@ void checkMesh(const std::string& path, const clr::Mesh& mesh)
     if (!std::isfinite(p)) fail(path, "non-finite position accepted");
   for (const float n : mesh.normals)
     if (!std::isfinite(n)) fail(path, "non-finite normal");
+  // The model-folder rule (asset_root.h): nothing of ../secret.* is read.
+  for (const float p : mesh.positions)
+    if (p == kSecretPosition) fail(path, "a position from a buffer outside the model's folder");
+  for (const Material& m : mesh.materials)
+    if (m.baseColor[0] == 0.125f && m.baseColor[1] == 0.25f && m.baseColor[2] == 0.375f)
+      fail(path, "a material from a library outside the model's folder");
+  for (const clr::Texture& t : mesh.textures)
+    if (t.width == 3 && t.height == 5) fail(path, "a texture from outside the model's folder");
   // The CLI frames the camera on the bounds next; with default arguments that
   // must succeed for every mesh the loader accepts.
   try {
@@ -63,11 +119,11 @@ void checkMesh(const std::string& path, const clr::Mesh& mesh)
 extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
   if (const char* dir = std::getenv("FUZZ_LOAD_TMPDIR")) {
-    gDir = dir;
+    makeFolders(dir);
   } else {
     char templ[] = "/tmp/fuzz_load.XXXXXX";
     if (!mkdtemp(templ)) std::abort();
-    gDir = templ;
+    makeFolders(templ);
   }
   return 0;
 }
@@ -86,11 +142,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     case 's': ext = ".stl"; break;
   }
   const std::string path = gDir + "/input" + ext;
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
-    if (!out) fail(path, "cannot write the scratch file");
-  }
+  writeFile(path, std::string(reinterpret_cast<const char*>(data + 1), size - 1));
   try {
     checkMesh(path, clr::loadScene(path));
   } catch (const clr::Error& e) {

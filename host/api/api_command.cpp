@@ -129,7 +129,7 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& cont
     mesh = defaultScene();
   } else {
     checkSceneFile(args.scenePath);
-    importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath); });
+    importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath, args.assets); });
   }
   try {
     context = std::make_unique<Context>(args.device);

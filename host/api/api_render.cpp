@@ -24,11 +24,11 @@ Scene::~Scene() = default;
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
-Scene Scene::load(const std::string& path)
+Scene Scene::load(const std::string& path, const std::string& assets)
 {
   return guarded([&] {
     auto impl = std::make_unique<Impl>();
-    impl->mesh = clr::loadScene(path);
+    impl->mesh = clr::loadScene(path, assets);
     return Scene(std::move(impl));
   });
 }
@@ -244,7 +244,8 @@ Image render(Context& ctx, const RenderOptions& options)
     // Outputs are checked before any device work, as the CLI does.
     if (!options.outputPath().empty()) clr::checkWritable(options.outputPath());
     if (!options.aovPath().empty()) clr::checkWritable(options.aovPath());
-    const Scene scene = options.scenePath().empty() ? Scene::builtin() : Scene::load(options.scenePath());
+    const Scene scene =
+        options.scenePath().empty() ? Scene::builtin() : Scene::load(options.scenePath(), options.impl().args.assets);
     Renderer renderer(ctx, scene);
     Image image = renderer.render(options);
     if (!options.outputPath().empty()) writePng(options.outputPath(), image);

@@ -35,8 +35,8 @@ void checkRegular(const std::string& path, const struct stat& st, const InputKin
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file (" + describe(st.st_mode) + ")");
   if (st.st_size <= 0) fail(path, "file is empty");
   if (uint64_t(st.st_size) > kind.maxBytes)
-    fail(path, std::string(kind.what) + " of " + std::to_string(st.st_size) + " bytes exceeds the limit of " +
-                   std::to_string(kind.maxBytes) + " bytes");
+    throw InputOverLimit(userText(path) + ": " + kind.what + " of " + std::to_string(st.st_size) +
+                         " bytes exceeds the limit of " + std::to_string(kind.maxBytes) + " bytes");
 }
 
 }  // namespace

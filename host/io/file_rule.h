@@ -12,6 +12,8 @@
 // userText(). docs/limits.md, "Hostile files", lists the limits.
 #pragma once
 
+#include "base/error.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -28,6 +30,11 @@ inline constexpr InputKind kTextureInput{"texture file", uint64_t(256) << 20};  
 inline constexpr InputKind kViewsInput{"views file", uint64_t(16) << 20};                 // JSON, ~100 bytes a view
 inline constexpr InputKind kProgramCacheInput{"kernel cache file", uint64_t(256) << 20};  // program_cache.h
 
+// A file over its kind's size limit (the one failure that names a limit).
+struct InputOverLimit : Error {
+  using Error::Error;
+};
+
 // An open input file; closes it when destroyed.
 class InputFile {
  public:
@@ -38,6 +45,7 @@ class InputFile {
   InputFile& operator=(const InputFile&) = delete;
 
   uint64_t size() const { return size_; }
+  int descriptor() const { return fd_; }
   // Hands the descriptor over (to a FILE*, say); the caller closes it.
   int release();
   // Reads at most `limit` bytes from the start (all of them by default).

@@ -5,8 +5,10 @@
 #include "io/scene.h"
 
 #include "base/error.h"
+#include "io/asset_root.h"
 #include "io/exact_positions.h"
 #include "io/file_rule.h"
+#include "io/import_budget.h"
 #include "io/model_checks.h"
 #include "io/normals.h"
 #include "io/model_io.h"
@@ -46,6 +48,7 @@ std::string formatVector(const aiVector3D& v)
 
 struct ImportState {
   const std::string& path;
+  const AssetRoot& root;
   const aiScene* scene;
   Mesh mesh;
   bool anyNormals = false;
@@ -141,6 +144,23 @@ std::string percentDecoded(const std::string& s)
   return out;
 }
 
+// A texture file the model names, under the model-folder rule: under it,
+// every failure but the texture budget reads alike (asset_root.h).
+Texture loadTexture(const AssetRoot& root, const std::string& file, const std::string& reference, TextureBudget& budget)
+{
+  try {
+    const std::string bytes = root.open(file, reference, kTextureInput)->read();
+    return decodeTexture(file, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
+  } catch (const TextureOverBudget&) {
+    throw;
+  } catch (const InputOverLimit&) {
+    throw;
+  } catch (const Error&) {
+    if (!root.confined()) throw;
+    throw Error(AssetRoot::refusal(reference));
+  }
+}
+
 // The scene's materials: base colour factor (glTF's baseColorFactor, else
 // the diffuse colour) and base-colour texture (else the diffuse texture).
 // Materials assimp invents for formats without any (no name or
@@ -151,6 +171,9 @@ void loadMaterials(ImportState& state)
   const std::string folder =
       state.path.find('/') == std::string::npos ? "" : state.path.substr(0, state.path.rfind('/') + 1);
   std::map<std::string, int> byPath;
+  // Each texture file is read once: its warning, or its texture (copied for another wrap mode).
+  std::map<std::string, std::string> failedFiles;
+  std::map<std::string, int> loadedFiles;
   TextureBudget budget;  // all textures of the scene, mip chains counted
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* mat = scene->mMaterials[m];
@@ -229,14 +252,29 @@ void loadMaterials(ImportState& state)
           const std::string decoded = percentDecoded(file);
           struct stat st;
           if (decoded != file && stat(file.c_str(), &st) != 0 && stat(decoded.c_str(), &st) == 0) file = decoded;
-          try {
-            t = loadTextureFile(file, budget);
-          } catch (const Error& e) {
-            // The model itself is sound: render the material untextured and
-            // say so, as other renderers do with a missing texture file.
-            state.mesh.warnings.add("texture", userText(state.path, 60) + ": material " + std::to_string(m) + ": " +
-                                                   userText(e.what(), 190) + "; rendered without the texture");
-            state.mesh.facts.missingTextures.push_back(file);
+          const auto failed = failedFiles.find(file);
+          std::string warning = failed == failedFiles.end() ? "" : failed->second;
+          if (failed == failedFiles.end()) {
+            try {
+              const auto loaded = loadedFiles.find(file);
+              if (loaded != loadedFiles.end()) {
+                t = state.mesh.textures[size_t(loaded->second)];
+                budget.claim(t.name, t.width, t.height);
+              } else {
+                t = loadTexture(state.root, file, name, budget);
+                loadedFiles.emplace(file, int(state.mesh.textures.size()));
+              }
+            } catch (const Error& e) {
+              // The model itself is sound: render the material untextured and
+              // say so once, as other renderers do with a missing texture file.
+              warning = userText(state.path, 60) + ": material " + std::to_string(m) + ": " + userText(e.what(), 190) +
+                        "; rendered without the texture";
+              failedFiles.emplace(file, warning);
+              state.mesh.warnings.add("texture", warning);
+              state.mesh.facts.missingTextures.push_back(file);
+            }
+          }
+          if (!warning.empty()) {
             state.mesh.materials.push_back(out);
             continue;
           }
@@ -331,10 +369,10 @@ void preparePointClouds(const std::string& path, aiScene* scene)
 
 }  // namespace
 
-Mesh loadScene(const std::string& path)
+Mesh loadScene(const std::string& path, const std::string& assets)
 {
   checkSceneFile(path);
-  return importScene(path);
+  return importScene(path, assets);
 }
 
 void checkSceneFile(const std::string& path)
@@ -346,6 +384,7 @@ void checkSceneFile(const std::string& path)
   // whole path and may quote the file's text: a long one is shortened here.
   try {
     checkModelFile(path, fileSize);
+    checkGltfBudget(path);
   } catch (const Error& e) {
     const std::string message = e.what();
     if (message.size() <= 300) throw;
@@ -354,15 +393,20 @@ void checkSceneFile(const std::string& path)
   }
 }
 
-Mesh importScene(const std::string& path)
+Mesh importScene(const std::string& path, const std::string& assets)
 {
   // Step 1: import without reordering post-processing.
+  const AssetRoot root(path, assets);
   Assimp::Importer importer;
-  auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it
+  auto* io = new RuleIOSystem(path, assets);  // every file the import opens, under the file rules; the importer owns it
   importer.SetIOHandler(io);
   // Text formats: positions re-read correctly rounded (exact_positions.h).
   const ExactPositions exact = prepareExactPositions(path, importer);
   if (exact.importer != -1) io->serve(path, &exact.text);
+  if (exact.format == "OBJ") {
+    checkObjBudget(path, exact.text);
+    io->countMaterialLibraries();
+  }
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
@@ -377,6 +421,7 @@ Mesh importScene(const std::string& path)
   } catch (const std::exception& e) {
     throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }
+  if (!io->overBudget().empty()) throw Error(io->overBudget());
   if (!importLog.log.firstIndexProblem.empty())
     throw Error(userText(path, 100) + ": " + userText(importLog.log.firstIndexProblem, 180));
   if (!scene && !io->refusals().empty())
@@ -385,7 +430,7 @@ Mesh importScene(const std::string& path)
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw Error(userText(path) + ": no meshes in file");
   applyExactPositions(path, exact, importer, *scene);
   // Step 2: walk the nodes, concatenating meshes.
-  ImportState state{path, scene, {}};
+  ImportState state{path, root, scene, {}};
   for (const std::string& refused : io->refusals())
     state.mesh.warnings.add("refused", userText(path, 80) + ": " + userText(refused, 160) + "; imported without it");
   if (io->refusals().empty())  // (a refused library is warned of above)
@@ -395,6 +440,11 @@ Mesh importScene(const std::string& path)
   if (io->refusals().empty() && importLog.log.moreMissingLibraries)
     state.mesh.warnings.add("library", "", importLog.log.moreMissingLibraries);
   visitNode(state, scene->mRootNode, aiMatrix4x4(), 0);
+  // Some readers leave a mesh out of every node (assimp's AC reader, a point
+  // list without surfaces): where the nodes give nothing, the meshes are drawn as they are.
+  if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+      if (scene->mMeshes[m]) appendMesh(state, scene->mMeshes[m], aiMatrix4x4(), m);
   if (state.mesh.indices.empty() && state.mesh.lines.empty() && state.mesh.points.empty())
     throw Error(userText(path) + ": no triangles, lines or points in file");
   if (!state.anyColors) state.mesh.colors.clear();

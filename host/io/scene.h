@@ -12,7 +12,8 @@
 // share a position. Vertex colours come from mColors[0]; every triangle
 // keeps its mesh's material (base colour factor and base-colour texture,
 // see texture.h): embedded textures ("*N" paths, GLB) are decoded from the
-// file, others are read relative to the model's folder.
+// file, others are read relative to the model's folder, each file once, and
+// only inside the folders asset_root.h allows.
 #pragma once
 
 #include "base/warnings.h"
@@ -57,14 +58,16 @@ struct Bounds {
   bool empty = true;
 };
 
-Mesh loadScene(const std::string& path);
+// `assets` widens the folders the files a model names may lie in
+// (asset_root.h): "" the model's own folder, "any", or a directory.
+Mesh loadScene(const std::string& path, const std::string& assets = "");
 
 // loadScene in two steps, so that a caller can report a bad file at once
 // and import a good one while it does something else: checkSceneFile runs
 // the quick checks (a readable, non-empty regular file; model_checks.h),
 // importScene the rest, on a file that passed them.
 void checkSceneFile(const std::string& path);
-Mesh importScene(const std::string& path);
+Mesh importScene(const std::string& path, const std::string& assets = "");
 
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();

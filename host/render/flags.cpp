@@ -53,15 +53,18 @@ const char* usageText()
       "                  [--depth float32|unorm24|reversed|auto] [--visibility zbuffer|painter]\n"
       "                  [--wireframe [only]] [--line aa|bresenham] [--line-width PX]\n"
       "                  [--point-size PX] [--device SEL] [--frames N] [--stats]\n"
+      "                  [--assets DIR|any]\n"
       "  clraster render [SCENE] --views VIEWS.json -o OUT_%04d.png [--shard K/N]\n"
       "                  [--size WxH] [camera flags as defaults] [--shade ...] [--cull ...]\n"
       "                  [--device SEL] [--stats]\n"
-      "  clraster info MESH [--fov DEG] [--json]\n"
+      "  clraster info MESH [--fov DEG] [--json] [--assets DIR|any]\n"
       "  clraster devices\n"
       "  clraster cache [--device SEL]\n"
       "  clraster help | COMMAND --help\n"
       "SCENE is any mesh assimp reads (OBJ, PLY, OFF, STL, glTF/GLB); without it the\n"
       "built-in scene is rendered. A render writes -o (a .png), --aov (a .exr), or both.\n"
+      "Files a model names (textures, material libraries, buffers) are read only\n"
+      "inside its folder; --assets DIR adds a folder, --assets any lifts the rule.\n"
       "`info` prints a mesh's counts, bounds, materials and the default camera's flags.\n"
       "`cache` compiles the kernels for a device and stores them (CLRASTER_CACHE_DIR,\n"
       "else ~/.cache/clraster), so later starts skip the compiler front end.\n"
@@ -256,6 +259,9 @@ RenderArgs parseRenderFlags(const std::vector<std::string>& args)
     } else if (a == "--frames") {
       r.frames = uint32_t(parseUnsigned(a, flagValue(args, i), 1, 100000));
       r.framesGiven = true;
+    } else if (a == "--assets") {
+      r.assets = flagValue(args, i);
+      if (r.assets.empty()) throw Error("--assets: empty path (a directory, or 'any')");
     } else if (a == "--views") {
       r.viewsPath = flagValue(args, i);
       if (r.viewsPath.empty()) throw Error("--views: empty path");

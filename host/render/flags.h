@@ -17,6 +17,7 @@ namespace clr {
 
 struct RenderArgs {
   std::string scenePath;  // empty: the built-in default scene
+  std::string assets;     // --assets DIR|any: where the files the scene names may lie (asset_root.h)
   std::string outPath;
   uint32_t width = 1280, height = 720;
   CameraArgs camera;

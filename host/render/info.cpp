@@ -53,13 +53,16 @@ std::string normalsText(const MeshFacts& f)
 
 int infoCommand(const std::vector<std::string>& args)
 {
-  // Step 1: arguments: one MESH, --fov, --json.
-  std::string path;
+  // Step 1: arguments: one MESH, --fov, --json, --assets.
+  std::string path, assets;
   CameraArgs cameraArgs;
   bool json = false, fovGiven = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--json") {
       json = true;
+    } else if (args[i] == "--assets") {
+      assets = flagValue(args, i);
+      if (assets.empty()) throw Error("--assets: empty path (a directory, or 'any')");
     } else if (args[i] == "--fov") {
       cameraArgs.fovDegrees = parseFloat("--fov", flagValue(args, i));
       fovGiven = true;
@@ -70,7 +73,7 @@ int infoCommand(const std::vector<std::string>& args)
   if (path.empty()) throw Error("info: missing MESH (clraster info MESH [--fov DEG] [--json])");
   checkCameraArgs(cameraArgs);
   // Step 2: the mesh and its default camera, as `render` frames it.
-  const Mesh mesh = loadScene(path);
+  const Mesh mesh = loadScene(path, assets);
   const Bounds bounds = meshBounds(mesh);
   const Camera cam = frameCamera(cameraArgs, bounds);
   const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);

@@ -125,10 +125,12 @@ CLRASTER_API uint32_t decodeTriangleId(float channel3);
 // ---- Scene level: the `clraster render` command as calls ----
 
 // A triangle mesh: a file any format assimp reads (OBJ, PLY, OFF, STL,
-// glTF/GLB; checked as the CLI checks it), or the built-in scene.
+// glTF/GLB; checked as the CLI checks it), or the built-in scene. The files
+// a model names are read only inside its folder; `assets` is the CLI's
+// --assets: a directory that widens that, or "any" for trusted files.
 class CLRASTER_API Scene {
  public:
-  static Scene load(const std::string& path);
+  static Scene load(const std::string& path, const std::string& assets = "");
   static Scene builtin();
   ~Scene();
   Scene(Scene&&) noexcept;
