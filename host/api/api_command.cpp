@@ -105,8 +105,8 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& cont
   if (args.scenePath.empty()) {
     mesh = defaultScene();
   } else {
-    checkSceneFile(args.scenePath);
-    importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath); });
+    ModelFile file = checkSceneFile(args.scenePath);
+    importing = std::async(std::launch::async, [file = std::move(file)] { return importScene(file); });
   }
   try {
     context = std::make_unique<Context>(args.device);

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace clr {
@@ -51,5 +52,15 @@ class InputFile {
 
 // The whole file, or its first `limit` bytes, under the rule.
 std::string readInputFile(const std::string& path, const InputKind& kind, size_t limit = SIZE_MAX);
+
+// The one way to read a file that the model at `modelPath` names (an OBJ's
+// material library, a glTF buffer, a texture): `reference` is the path as
+// the importer or the material resolved it. Read whole, under the rule.
+std::string readModelReference(const std::string& modelPath, const std::string& reference, const InputKind& kind);
+
+// Called with the path, device and inode of every file the rule opens; for
+// tests that count opens or change a file between opens. Empty: none.
+using OpenObserver = std::function<void(const std::string& path, uint64_t device, uint64_t inode)>;
+void setOpenObserver(OpenObserver observer);
 
 }  // namespace clr

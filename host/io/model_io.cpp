@@ -4,23 +4,27 @@
 #include "base/error.h"
 #include "io/file_rule.h"
 
-#include <assimp/DefaultIOStream.h>
 #include <assimp/MemoryIOWrapper.h>
 
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include <sys/stat.h>
-#include <unistd.h>
 
 namespace clr {
 
 namespace {
 
-// DefaultIOStream's constructor from a FILE* is protected.
-struct RuleStream : Assimp::DefaultIOStream {
-  RuleStream(FILE* file, const std::string& name) : Assimp::DefaultIOStream(file, name) {}
+// A file the model names, read whole; the stream owns its bytes.
+struct OwnedBytes {
+  std::string bytes;
+};
+struct OwnedStream : private OwnedBytes, public Assimp::MemoryIOStream {
+  explicit OwnedStream(std::string read)
+      : OwnedBytes{std::move(read)},
+        Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())
+  {
+  }
 };
 
 }  // namespace
@@ -54,15 +58,7 @@ Assimp::IOStream* RuleIOSystem::Open(const char* file, const char* mode)
   struct stat st;
   if (stat(file, &st) != 0) return nullptr;  // missing: the importer reports or skips it
   try {
-    InputFile input(file, kModelInput);
-    const int fd = input.release();
-    FILE* stream = fdopen(fd, "rb");
-    if (!stream) {
-      const int err = errno;
-      close(fd);
-      throw Error(userText(file) + ": cannot open (" + std::strerror(err) + ")");
-    }
-    return new RuleStream(stream, file);
+    return new OwnedStream(readModelReference(servedPath_, file, kModelInput));
   } catch (const Error& e) {
     refuse(st, e.what());
     return nullptr;

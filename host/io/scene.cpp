@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <sys/stat.h>
 #include <unordered_map>
@@ -230,7 +231,7 @@ void loadMaterials(ImportState& state)
           struct stat st;
           if (decoded != file && stat(file.c_str(), &st) != 0 && stat(decoded.c_str(), &st) == 0) file = decoded;
           try {
-            t = loadTextureFile(file, budget);
+            t = loadTextureFile(state.path, file, budget);
           } catch (const Error& e) {
             // The model itself is sound: render the material untextured and
             // say so, as other renderers do with a missing texture file.
@@ -302,15 +303,12 @@ struct ScopedImportLog {
 // face first. PLY has no lines or points of its own (assimp does not read
 // edge elements), so a PLY face of one or two vertices is the reader's
 // reading of a truncated face list: refused.
-void preparePointClouds(const std::string& path, aiScene* scene)
+void preparePointClouds(const std::string& path, bool ply, aiScene* scene)
 {
-  std::string extension = path.substr(std::min(path.size(), path.find_last_of("./")));
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
   for (unsigned m = 0; scene->mMeshes && m < scene->mNumMeshes; ++m) {
     aiMesh* mesh = scene->mMeshes[m];
     if (!mesh) continue;
-    for (unsigned f = 0; extension == ".ply" && mesh->mFaces && f < mesh->mNumFaces; ++f)
+    for (unsigned f = 0; ply && mesh->mFaces && f < mesh->mNumFaces; ++f)
       if (mesh->mFaces[f].mNumIndices < 3)
         throw Error(userText(path) + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
     if (mesh->mNumFaces != 0 || mesh->mFaces || mesh->mNumVertices == 0 || !mesh->mVertices) continue;
@@ -328,47 +326,61 @@ void preparePointClouds(const std::string& path, aiScene* scene)
 
 Mesh loadScene(const std::string& path)
 {
-  checkSceneFile(path);
-  return importScene(path);
+  return importScene(checkSceneFile(path));
 }
 
-void checkSceneFile(const std::string& path)
+ModelFile checkSceneFile(const std::string& path)
 {
-  // Step 1: the file rule (file_rule.h): a non-empty regular file within
-  // the model size limit, checked without blocking.
-  const uint64_t fileSize = InputFile(path, kModelInput).size();
-  // Step 2: the guards against hostile files. Their messages start with the
-  // whole path and may quote the file's text: a long one is shortened here.
+  // Step 1: the file rule (file_rule.h), and the file's one read: a
+  // non-empty regular file within the model size limit, checked without
+  // blocking. The checks and the import see these bytes, never the file again.
+  ModelFile file;
+  file.path = path;
+  file.bytes = std::make_shared<const std::string>(readInputFile(path, kModelInput));
+  // Step 2: the guards against hostile files, on the reader assimp will
+  // choose. Their messages start with the whole path and may quote the
+  // file's text: a long one is shortened here.
+  Assimp::Importer importer;
+  auto* io = new RuleIOSystem;  // the importer owns it
+  importer.SetIOHandler(io);
+  io->serve(path, file.bytes.get());
   try {
-    checkModelFile(path, fileSize);
+    const ModelReader reader = checkModelFile(path, *file.bytes, importer, *io);
+    file.importer = reader.importer;
+    file.byExtension = reader.byExtension;
+    file.format = reader.format;
   } catch (const Error& e) {
     const std::string message = e.what();
     if (message.size() <= 300) throw;
     const size_t rest = message.rfind(path, 0) == 0 ? path.size() : 0;
     throw Error(userText(message.substr(0, rest), 120) + userText(message.substr(rest), 170));
   }
+  return file;
 }
 
-Mesh importScene(const std::string& path)
+Mesh importScene(const ModelFile& file)
 {
-  // Step 1: import without reordering post-processing.
+  const std::string& path = file.path;
+  // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
   auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it
   importer.SetIOHandler(io);
   // Text formats: positions re-read correctly rounded (exact_positions.h).
-  const ExactPositions exact = prepareExactPositions(path, importer);
-  if (exact.importer != -1) io->serve(path, &exact.text);
+  const ExactPositions exact = prepareExactPositions(path, *file.bytes, file.format, file.byExtension, importer);
+  io->serve(path, exact.importer != -1 ? &exact.text : file.bytes.get());
   ScopedImportLog importLog;
   const aiScene* scene = nullptr;
   try {
     // Validated once point clouds have faces (preparePointClouds).
     scene = importer.ReadFile(path, 0);
     if (scene) {
-      preparePointClouds(path, const_cast<aiScene*>(scene));
+      if (importer.GetPropertyInteger("importerIndex", -1) != file.importer)
+        throw Error(userText(path, 100) + ": assimp chose another reader than the one checked");
+      preparePointClouds(path, file.format == "ply", const_cast<aiScene*>(scene));
       scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
     }
   } catch (const Error&) {
-    throw;  // preparePointClouds's, already one line naming the file
+    throw;  // ours, already one line naming the file
   } catch (const std::exception& e) {
     throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }

@@ -18,6 +18,7 @@
 #include "io/texture.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,12 +59,22 @@ struct Bounds {
 
 Mesh loadScene(const std::string& path);
 
+// A model file read once, checked, and waiting for its import: the import
+// reads these bytes, not the file again.
+struct ModelFile {
+  std::string path;
+  std::shared_ptr<const std::string> bytes;  // the file's one read
+  int importer = -1;                         // the assimp importer the checks were run for
+  bool byExtension = false;                  // that importer was chosen by the extension
+  std::string format;                        // its format, as model_checks.h names it
+};
+
 // loadScene in two steps, so that a caller can report a bad file at once
-// and import a good one while it does something else: checkSceneFile runs
-// the quick checks (a readable, non-empty regular file; model_checks.h),
-// importScene the rest, on a file that passed them.
-void checkSceneFile(const std::string& path);
-Mesh importScene(const std::string& path);
+// and import a good one while it does something else: checkSceneFile reads
+// the file and runs the quick checks (a readable, non-empty regular file;
+// model_checks.h), importScene the rest, on those bytes.
+ModelFile checkSceneFile(const std::string& path);
+Mesh importScene(const ModelFile& file);
 
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();

@@ -82,9 +82,9 @@ Texture decodeTexture(const std::string& name, const unsigned char* data, size_t
   return t;
 }
 
-Texture loadTextureFile(const std::string& path, TextureBudget& budget)
+Texture loadTextureFile(const std::string& modelPath, const std::string& path, TextureBudget& budget)
 {
-  const std::string bytes = readInputFile(path, kTextureInput);
+  const std::string bytes = readModelReference(modelPath, path, kTextureInput);
   return decodeTexture(path, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
 }
 

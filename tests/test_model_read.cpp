@@ -1,0 +1,141 @@
+// test_model_read.cpp — a model file is read once: the checks and the import
+// see the same bytes (io/scene.h, io/file_rule.h), and the checks are those
+// of the reader assimp chooses by content, whatever the file's extension
+// (io/model_checks.h).
+#include "cli_support.h"
+#include "io/file_rule.h"
+#include "io/scene.h"
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <sys/stat.h>
+
+namespace {
+
+// One triangle's positions, (0,0,0) (1,0,0) (0,1,0), as a glTF data URI.
+const std::string kTrianglePositions =
+    "data:application/octet-stream;base64,"
+    "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+
+// A glTF of one triangle whose POSITION accessor has element type `type`.
+std::string gltfTriangle(const std::string& type)
+{
+  const std::string count = type == "SCALAR" ? "9" : "3";
+  return R"({"asset":{"version":"2.0"},"buffers":[{"uri":")" + kTrianglePositions +
+         R"(","byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,)"
+         R"("componentType":5126,"count":)" +
+         count + R"(,"type":")" + type +
+         R"(","min":[0,0,0],"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+}
+
+// A JSON document nested `depth` arrays deep.
+std::string deepJson(size_t depth)
+{
+  return std::string(depth, '[') + std::string(depth, ']');
+}
+
+struct Format {
+  std::string name, one, two;  // a file of one triangle, and one of two
+};
+
+std::vector<Format> formats()
+{
+  return {
+      {"obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n"},
+      {"off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n"},
+      {"ply",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n"
+       "3 0 1 2\n3 1 3 2\n"},
+      {"stl",
+       "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+       "endsolid a\n",
+       "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+       "facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n"},
+      // The race of issue 50: a deep glTF put in place of a good one after the checks.
+      {"gltf", gltfTriangle("VEC3"), deepJson(200000)},
+  };
+}
+
+// Counts the file rule's opens of each (device, inode) while alive.
+struct OpenCounter {
+  std::map<std::pair<uint64_t, uint64_t>, int> opens;
+  std::function<void(const std::string&)> onOpen;  // called after each open
+  OpenCounter()
+  {
+    clr::setOpenObserver([this](const std::string& path, uint64_t device, uint64_t inode) {
+      ++opens[{device, inode}];
+      if (onOpen) onOpen(path);
+    });
+  }
+  ~OpenCounter() { clr::setOpenObserver(nullptr); }
+  int of(const std::string& path) const
+  {
+    struct stat st {};
+    if (stat(path.c_str(), &st) != 0) return -1;
+    const auto found = opens.find({uint64_t(st.st_dev), uint64_t(st.st_ino)});
+    return found == opens.end() ? 0 : found->second;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("model read: the model file is opened once and the bytes checked are imported", "[io][hostile]")
+{
+  for (const Format& f : formats()) {
+    INFO("format " << f.name);
+    const std::string path = test::writeFile("once." + f.name, f.one);
+    const std::string other = test::writeFile("once-other." + f.name, f.two);
+    struct stat original {};
+    REQUIRE(stat(path.c_str(), &original) == 0);
+    int originalOpens = 0;
+    clr::Mesh mesh;
+    {
+      OpenCounter counter;
+      // Right after the model's first open, another file takes its name: a
+      // second read of the path would see two triangles (or, for glTF, a
+      // document nested too deep for assimp's parser).
+      counter.onOpen = [&](const std::string& opened) {
+        if (opened == path) std::rename(other.c_str(), path.c_str());
+      };
+      mesh = clr::loadScene(path);
+      originalOpens = counter.opens[{uint64_t(original.st_dev), uint64_t(original.st_ino)}];
+      CHECK(counter.of(path) == 0);  // the file swapped in is never opened
+    }
+    CHECK(originalOpens == 1);
+    CHECK(mesh.numTris() == 1);
+  }
+}
+
+TEST_CASE("model read: guards run for the reader assimp chooses by content", "[io][hostile][cli]")
+{
+  // An OFF of a billion vertices named .txt: refused from its header, not
+  // allocated (the memory limit turns an allocation into a failure).
+  const std::string off = test::writeFile("content-off.txt", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const test::Run big = test::runShell(
+      std::string("ulimit -v 4000000; timeout 60 '") + CLRASTER_BIN + "' info '" + off + "' 2>'" + off + ".err'",
+      off + ".err");
+  CHECK(big.status == 1);
+  CHECK_THAT(big.err, Catch::Matchers::Contains("OFF header vertex count 1000000000 exceeds"));
+  // A JSON nested 200,000 deep under names assimp reads by content.
+  for (const char* name : {"deep.vrm", "deep.txt", "deep"}) {
+    const std::string path = test::writeFile(name, deepJson(200000));
+    test::expectError("info '" + path + "'", "nested deeper than 64 levels");
+  }
+  // A SCALAR POSITION is refused whatever the file is called.
+  for (const char* name : {"scalar.gltf", "scalar.vrm", "scalar.bin"}) {
+    const std::string path = test::writeFile(name, gltfTriangle("SCALAR"));
+    test::expectError("info '" + path + "'", "attribute POSITION uses an accessor of type SCALAR");
+  }
+}
