@@ -139,3 +139,22 @@ TEST_CASE("model read: guards run for the reader assimp chooses by content", "[i
     test::expectError("info '" + path + "'", "attribute POSITION uses an accessor of type SCALAR");
   }
 }
+
+TEST_CASE("smooth normals: vertices at the same position weld and -0 equals +0", "[io]")
+{
+  // Two triangles at right angles, sharing the origin (once written -0) and
+  // (0,1,0) through separate vertices: each shared corner gets the sum of
+  // both face normals, (1, 0, 1) normalised; unwelded it would be a face's.
+  clr::Mesh mesh;
+  mesh.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, -0.0f, 0, 0, 0, 1, 0, 0, 0, 1};
+  mesh.indices = {0, 1, 2, 3, 4, 5};
+  clr::computeSmoothNormals(mesh);
+  REQUIRE(mesh.normals.size() == 18);
+  const float r = 0.70710678f;  // 1/sqrt(2); tolerance: float rounding of a double normalisation
+  for (int v : {0, 3}) {
+    CHECK(mesh.normals[3 * v] == Approx(r).margin(1e-6));
+    CHECK(mesh.normals[3 * v + 1] == Approx(0.0f).margin(1e-6));
+    CHECK(mesh.normals[3 * v + 2] == Approx(r).margin(1e-6));
+  }
+  for (int k = 0; k < 3; ++k) CHECK(mesh.normals[3 * 2 + k] == mesh.normals[3 * 4 + k]);
+}

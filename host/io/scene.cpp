@@ -16,6 +16,7 @@
 #include <assimp/LogStream.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <cctype>
@@ -27,7 +28,6 @@
 #include <memory>
 #include <sstream>
 #include <sys/stat.h>
-#include <unordered_map>
 
 namespace clr {
 
@@ -415,28 +415,18 @@ Mesh importScene(const ModelFile& file)
 
 void computeSmoothNormals(Mesh& mesh)
 {
-  // Step 1: weld vertices by exact position.
-  struct Key {
-    float x, y, z;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct Hash {
-    size_t operator()(const Key& k) const
-    {
-      uint32_t b[3];
-      std::memcpy(b, &k, sizeof b);
-      return (size_t(b[0]) * 73856093u) ^ (size_t(b[1]) * 19349663u) ^ (size_t(b[2]) * 83492791u);
-    }
-  };
+  // Step 1: weld vertices by equal position (meshoptimizer compares bytes:
+  // -0 becomes +0 first, as the two compare equal). Welded ids follow first
+  // occurrence.
   const size_t n = mesh.numVerts();
-  std::unordered_map<Key, uint32_t, Hash> weldIndex;
+  std::vector<float> keys(mesh.positions.size());
+  for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
   std::vector<uint32_t> weld(n);
-  for (size_t v = 0; v < n; ++v) {
-    const Key key{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
-    weld[v] = weldIndex.emplace(key, uint32_t(weldIndex.size())).first->second;
-  }
+  const size_t welded =
+      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, keys.data(), n, 3 * sizeof(float));
+  keys = {};
   // Step 2: accumulate area-weighted face normals per welded vertex.
-  std::vector<glm::dvec3> sum(weldIndex.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
   };
