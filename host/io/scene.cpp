@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -334,9 +335,13 @@ ModelFile checkSceneFile(const std::string& path)
   // Step 1: the file rule (file_rule.h), and the file's one read: a
   // non-empty regular file within the model size limit, checked without
   // blocking. The checks and the import see these bytes, never the file again.
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   ModelFile file;
   file.path = path;
   file.bytes = std::make_shared<const std::string>(readInputFile(path, kModelInput));
+  const auto read = Clock::now();
+  file.readMs = std::chrono::duration<double, std::milli>(read - start).count();
   // Step 2: the guards against hostile files, on the reader assimp will
   // choose. Their messages start with the whole path and may quote the
   // file's text: a long one is shortened here.
@@ -355,6 +360,7 @@ ModelFile checkSceneFile(const std::string& path)
     const size_t rest = message.rfind(path, 0) == 0 ? path.size() : 0;
     throw Error(userText(message.substr(0, rest), 120) + userText(message.substr(rest), 170));
   }
+  file.checkMs = std::chrono::duration<double, std::milli>(Clock::now() - read).count();
   return file;
 }
 

@@ -67,6 +67,7 @@ struct ModelFile {
   int importer = -1;                         // the assimp importer the checks were run for
   bool byExtension = false;                  // that importer was chosen by the extension
   std::string format;                        // its format, as model_checks.h names it
+  double readMs = 0.0, checkMs = 0.0;        // wall time of the read, and of the checks after it
 };
 
 // loadScene in two steps, so that a caller can report a bad file at once
