@@ -3,9 +3,11 @@
 // command line runs next.
 //
 // An input is one selector byte and the file's bytes. The selector picks the
-// file name extension, which picks assimp's importer: 'o' .obj, 'p' .ply,
-// 'f' .off, 'g' .gltf, 'b' .glb, 's' .stl; any other byte picks by its value
-// modulo 6. The rest is written to a file with that extension in a scratch
+// file name extension: 'o' .obj, 'p' .ply, 'f' .off, 'g' .gltf, 'b' .glb,
+// 's' .stl; any other byte picks by its value modulo 10 among those and
+// names that assimp reads by content (.txt, .vrm, .dat, none), so the
+// checks must follow the reader assimp chooses, not the extension. The
+// rest is written to a file with that extension in a scratch
 // folder (FUZZ_LOAD_TMPDIR, else a fresh one under /tmp), so a crash input
 // minus its first byte is a file the CLI reproduces it with.
 //
@@ -75,8 +77,9 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   if (size == 0) return 0;
-  static const char* const kExtensions[] = {".obj", ".ply", ".off", ".gltf", ".glb", ".stl"};
-  const char* ext = kExtensions[data[0] % 6];
+  static const char* const kExtensions[] = {".obj", ".ply", ".off", ".gltf", ".glb",
+                                            ".stl", ".txt", ".vrm", ".dat",  ""};
+  const char* ext = kExtensions[data[0] % 10];
   switch (data[0]) {
     case 'o': ext = ".obj"; break;
     case 'p': ext = ".ply"; break;
