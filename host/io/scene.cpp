@@ -54,9 +54,26 @@ struct ImportState {
   bool anyColors = false;
 };
 
+// Room for `more` elements, growing geometrically: one large mesh is
+// appended without reallocating, many small ones without quadratic copies.
+template <typename T>
+void reserveMore(std::vector<T>& v, size_t more)
+{
+  if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+}
+
 void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transform, unsigned meshIndex)
 {
   Mesh& dst = state.mesh;
+  reserveMore(dst.positions, 3 * size_t(src->mNumVertices));
+  reserveMore(dst.normals, 3 * size_t(src->mNumVertices));
+  reserveMore(dst.uvs, 2 * size_t(src->mNumVertices));
+  reserveMore(dst.colors, 4 * size_t(src->mNumVertices));
+  size_t triangles = 0;
+  for (unsigned f = 0; f < src->mNumFaces; ++f)
+    triangles += src->mFaces[f].mNumIndices > 2 ? src->mFaces[f].mNumIndices - 2 : 0;
+  reserveMore(dst.indices, 3 * triangles);
+  reserveMore(dst.triMaterial, triangles);
   const uint64_t base = dst.numVerts();
   if (base + src->mNumVertices > UINT32_MAX) throw Error(userText(state.path) + ": more than 2^32 vertices");
   // Step 1: vertices, with the node transform applied.
