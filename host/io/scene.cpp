@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "io/exact_positions.h"
+#include "io/fast_ply.h"
 #include "io/file_rule.h"
 #include "io/model_checks.h"
 #include "io/normals.h"
@@ -384,6 +385,12 @@ ModelFile checkSceneFile(const std::string& path)
 Mesh importScene(const ModelFile& file)
 {
   const std::string& path = file.path;
+  // The plainest binary PLY, read directly (fast_ply.h): the same mesh.
+  Mesh direct;
+  if (file.direct && file.format == "ply" && file.byExtension && readPlainBinaryPly(*file.bytes, direct)) {
+    repairNormals(direct, path, false);
+    return direct;
+  }
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
   auto* io = new RuleIOSystem;  // every file the import opens, under the file rule; the importer owns it

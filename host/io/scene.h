@@ -68,6 +68,7 @@ struct ModelFile {
   bool byExtension = false;                  // that importer was chosen by the extension
   std::string format;                        // its format, as model_checks.h names it
   double readMs = 0.0, checkMs = 0.0;        // wall time of the read, and of the checks after it
+  bool direct = true;                        // a direct reader (fast_ply.h) may read it instead of assimp
 };
 
 // loadScene in two steps, so that a caller can report a bad file at once
