@@ -3,15 +3,17 @@
 // command line runs next.
 //
 // An input is one selector byte and the file's bytes. The selector picks the
-// file name extension, which picks assimp's importer: 'o' .obj, 'p' .ply,
-// 'f' .off, 'g' .gltf, 'b' .glb, 's' .stl; any other byte picks by its value
-// modulo 6. The rest is written to a file with that extension in the folder
-// model/ of a scratch folder (FUZZ_LOAD_TMPDIR, else a fresh one under
-// /tmp), so a crash input minus its first byte is a file the CLI reproduces
-// it with. Beside the model lie files it may name (in.bin, in.mtl, in.png)
-// and links to files outside its folder (link.bin, link.mtl, link.png to
-// ../secret.*), whose contents are marked: a position of 4242, a colour of
-// (0.125, 0.25, 0.375), a 3×5 texture.
+// file name extension: 'o' .obj, 'p' .ply, 'f' .off, 'g' .gltf, 'b' .glb,
+// 's' .stl; any other byte picks by its value modulo 10 among those and
+// names that assimp reads by content (.txt, .vrm, .dat, none), so the
+// checks must follow the reader assimp chooses, not the extension. The rest
+// is written to a file with that extension in the folder model/ of a scratch
+// folder (FUZZ_LOAD_TMPDIR, else a fresh one under /tmp), so a crash input
+// minus its first byte is a file the CLI reproduces it with. Beside the model
+// lie files it may name (in.bin, in.mtl, in.png) and links to files outside
+// its folder (link.bin, link.mtl, link.png to ../secret.*), whose contents
+// are marked: a position of 4242, a colour of (0.125, 0.25, 0.375), a 3×5
+// texture.
 //
 // Each input must either load, giving a mesh that keeps the loader's
 // contract and holds nothing of the secret files, or fail with clr::Error
@@ -131,8 +133,9 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   if (size == 0) return 0;
-  static const char* const kExtensions[] = {".obj", ".ply", ".off", ".gltf", ".glb", ".stl"};
-  const char* ext = kExtensions[data[0] % 6];
+  static const char* const kExtensions[] = {".obj", ".ply", ".off", ".gltf", ".glb",
+                                            ".stl", ".txt", ".vrm", ".dat",  ""};
+  const char* ext = kExtensions[data[0] % 10];
   switch (data[0]) {
     case 'o': ext = ".obj"; break;
     case 'p': ext = ".ply"; break;

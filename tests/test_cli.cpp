@@ -306,6 +306,8 @@ TEST_CASE("cli: renders a file and reports stats", "[cli]")
   CHECK(r.out.find("\"stage_ms\":{") != std::string::npos);
   CHECK(r.out.find("\"device_idle_ms\":") != std::string::npos);
   CHECK(r.out.find("\"device_bytes\":") != std::string::npos);
+  for (const char* key : {"read_ms", "parse_ms", "prepare_ms", "build_ms", "encode_ms", "total_ms"})
+    CHECK(r.out.find(std::string("\"") + key + "\":") != std::string::npos);
   CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
   CHECK(leftoverTemps(png) == 0);
 }

@@ -50,7 +50,13 @@ std::string format(const char* fmt, Args... args)
   return out;
 }
 
-std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline,
+// Where a run's time went before and after its frames (--stats).
+struct RunTimes {
+  double readMs = 0.0, parseMs = 0.0, buildMs = 0.0, encodeMs = 0.0;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+};
+
+std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipeline& pipeline, const RunTimes& times,
                       const FrameSettings& settings, const DepthChoice& depth, const std::string& autoJson,
                       double firstFrameMs, const std::vector<double>& frameMs,
                       const std::vector<clr::FrameStats>& frames)
@@ -75,15 +81,16 @@ std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipelin
       "},\"device_idle_ms\":%.3f,\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
       "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu,\"prepare_ms\":%.3f,"
       "\"aa\":\"%s\",\"samples\":%u,\"bytes_per_pixel\":%.1f,\"edges\":\"%s\",\"interp\":\"%s\","
-      "\"traversal\":\"%s\",\"depth\":\"%s\",\"depth_reason\":\"%s\",\"visibility\":\"%s\"%s%s}\n",
+      "\"traversal\":\"%s\",\"depth\":\"%s\",\"depth_reason\":\"%s\",\"visibility\":\"%s\",\"read_ms\":%.3f,"
+      "\"parse_ms\":%.3f,\"build_ms\":%.3f,\"encode_ms\":%.3f,\"total_ms\":%.3f%s%s}\n",
       median(idleMs), (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped,
       (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries,
       pipeline.deviceBytes(), pipeline.prepareMs(), aaModeName(settings.samples, settings.shadeEverySample).c_str(),
       settings.samples, pipeline.bytesPerPixel(), settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
       settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective", traversalName(settings.traversal),
       depthModeName(depth.mode), jsonEscape(depth.reason).c_str(),
-      settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer",
-      autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
+      settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer", times.readMs, times.parseMs, times.buildMs,
+      times.encodeMs, msSince(times.start), autoJson.empty() ? "" : ",\"auto\":", autoJson.c_str());
   return out;
 }
 
@@ -121,24 +128,42 @@ void warnAbout(const RenderArgs& args, const Mesh& mesh, StderrWarnings& warning
 
 // The scene, and the device context with its frame program, at once (see
 // the file's contract); the context goes to `context`.
-Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context, StderrWarnings& warnings)
+Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context, StderrWarnings& warnings,
+                          RunTimes* times = nullptr)
 {
+  RunTimes ignored;
+  if (!times) times = &ignored;
   Mesh mesh;
   std::future<Mesh> importing;  // a file's import, when valid()
+  double importMs = 0.0;        // written by the import's thread, read after get()
   if (args.scenePath.empty()) {
+    const auto start = std::chrono::steady_clock::now();
     mesh = defaultScene();
+    times->parseMs = msSince(start);
   } else {
-    checkSceneFile(args.scenePath);
-    importing = std::async(std::launch::async, [&args] { return importScene(args.scenePath, args.assets); });
+    ModelFile file = checkSceneFile(args.scenePath);
+    times->readMs = file.readMs;
+    times->parseMs = file.checkMs;
+    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs] {
+      const auto start = std::chrono::steady_clock::now();
+      Mesh imported = importScene(file, args.assets);
+      importMs = msSince(start);
+      return imported;
+    });
   }
   try {
+    const auto start = std::chrono::steady_clock::now();
     context = std::make_unique<Context>(args.device);
     context->impl().frameContext();
+    times->buildMs = msSince(start);
   } catch (...) {
     if (importing.valid()) importing.get();  // the scene's error first (this waits for the import either way)
     throw;
   }
-  if (importing.valid()) mesh = importing.get();
+  if (importing.valid()) {
+    mesh = importing.get();
+    times->parseMs += importMs;
+  }
   warnAbout(args, mesh, warnings);
   return mesh;
 }
@@ -235,11 +260,12 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
 {
   // Step 1: output paths, before any device work; then the scene, loaded
   // while the program builds, and the camera.
+  RunTimes times;
   checkCameraArgs(args.camera);
   if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   StderrWarnings warnings;
-  const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
+  const Mesh mesh = loadSceneDuringBuild(args, context, warnings, &times);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);
   const Camera camera = frameCamera(args.camera, bounds);
@@ -277,6 +303,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   }
 
   // Step 4: output, both files or neither.
+  const auto encodeStart = std::chrono::steady_clock::now();
   std::vector<OutputFile> outputs;
   if (!args.outPath.empty())
     outputs.push_back({args.outPath, encodePng(args.outPath, image.width, image.height, image.pixels)});
@@ -292,7 +319,9 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   }
   writeFilesAtomic(outputs);
   warnings.finish();
-  return args.stats ? statsLine(args, cl, pipeline, settings, depth, autoJson, firstFrameMs, frameMs, frames) : "";
+  times.encodeMs = msSince(encodeStart);
+  return args.stats ? statsLine(args, cl, pipeline, times, settings, depth, autoJson, firstFrameMs, frameMs, frames)
+                    : "";
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include "io/exact_positions.h"
 
 #include "base/error.h"
-#include "io/file_rule.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
@@ -490,12 +489,6 @@ void scanStl(Rewriter& r, size_t start)
   }
 }
 
-bool hasExtension(const std::string& path, const char* ext)
-{
-  const size_t n = std::strlen(ext);
-  return path.size() >= n && strcasecmp(path.c_str() + path.size() - n, ext) == 0;
-}
-
 int importerFor(const Assimp::Importer& importer, const char* ext)
 {
   const size_t index = importer.GetImporterIndex(ext);
@@ -504,14 +497,16 @@ int importerFor(const Assimp::Importer& importer, const char* ext)
 
 }  // namespace
 
-ExactPositions prepareExactPositions(const std::string& path, const Assimp::Importer& importer)
+ExactPositions prepareExactPositions(const std::string& path, const std::string& bytes, const std::string& format,
+                                     bool byExtension, const Assimp::Importer& importer)
 {
-  const bool obj = hasExtension(path, ".obj"), off = hasExtension(path, ".off"), ply = hasExtension(path, ".ply"),
-             stl = hasExtension(path, ".stl");
+  const bool obj = format == "obj", off = format == "off", ply = format == "ply", stl = format == "stl";
   if (!obj && !off && !ply && !stl) return {};
+  if (!byExtension)
+    throw Error(userText(path) + ": assimp reads it as ." + format + " by its content; name it so, and its positions" +
+                " are read exactly");
   ExactPositions binary;
   binary.checked = true;  // binary PLY or STL: float positions, exact already
-  const std::string bytes = readInputFile(path, kModelInput);
   // OFF and STL text goes through assimp's TextFileToBuffer, which drops a
   // UTF-8 byte order mark and converts UTF-16 and UTF-32.
   const bool utf8Mark = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0;

@@ -36,10 +36,13 @@ struct ExactPositions {
   std::vector<float> positions;  // 3 per file vertex, correctly rounded
 };
 
-// Prepares a model whose extension names one of the four text formats (for
-// PLY and STL, when the file is ASCII); otherwise returns an empty one.
-// The file is read under the file rule.
-ExactPositions prepareExactPositions(const std::string& path, const Assimp::Importer& importer);
+// Prepares `bytes`, the model at `path`, when assimp reads it with one of
+// the four text formats' importers (`format`, model_checks.h; for PLY and
+// STL, when the file is ASCII); otherwise returns an empty one. A file that
+// assimp reads with one of them by its content, not its extension, is
+// refused before the import.
+ExactPositions prepareExactPositions(const std::string& path, const std::string& bytes, const std::string& format,
+                                     bool byExtension, const Assimp::Importer& importer);
 
 // After the import: puts the positions in place of the encoded numbers.
 // Also refuses a file that assimp read with one of the four text importers

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,6 +15,12 @@
 namespace clr {
 
 namespace {
+
+OpenObserver& openObserver()
+{
+  static OpenObserver observer;
+  return observer;
+}
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem)
 {
@@ -68,6 +75,7 @@ InputFile::InputFile(const std::string& path, const InputKind& kind) : path_(pat
     throw;
   }
   size_ = uint64_t(opened.st_size);
+  if (openObserver()) openObserver()(path, uint64_t(opened.st_dev), uint64_t(opened.st_ino));
 }
 
 InputFile::~InputFile()
@@ -100,6 +108,11 @@ std::string InputFile::read(size_t limit) const
 std::string readInputFile(const std::string& path, const InputKind& kind, size_t limit)
 {
   return InputFile(path, kind).read(limit);
+}
+
+void setOpenObserver(OpenObserver observer)
+{
+  openObserver() = std::move(observer);
 }
 
 }  // namespace clr

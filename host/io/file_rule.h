@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace clr {
@@ -59,5 +60,10 @@ class InputFile {
 
 // The whole file, or its first `limit` bytes, under the rule.
 std::string readInputFile(const std::string& path, const InputKind& kind, size_t limit = SIZE_MAX);
+
+// Called with the path, device and inode of every file the rule opens; for
+// tests that count opens or change a file between opens. Empty: none.
+using OpenObserver = std::function<void(const std::string& path, uint64_t device, uint64_t inode)>;
+void setOpenObserver(OpenObserver observer);
 
 }  // namespace clr

@@ -189,20 +189,19 @@ uint64_t countMaterials(const std::string& text)
   return n;
 }
 
-void checkGltfBudget(const std::string& path)
+void checkGltfBudget(const std::string& path, const std::string& bytes)
 {
   // Step 1: the JSON text: the whole file, or a GLB's JSON chunk.
-  InputFile file(path, kModelInput);
-  const std::string head = file.read(20);
+  const std::string head = bytes.substr(0, 20);
   size_t first = head.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   while (first < head.size() && std::strchr(" \t\r\n", head[first])) ++first;
   std::string json;
   if (head.size() >= 20 && head.compare(0, 4, "glTF") == 0) {
     const uint64_t length = readU32(head, 12);
-    if (length > file.size() - 20) return;  // model_checks.h reports a truncated chunk
-    json = file.read(size_t(20 + length)).substr(20);
+    if (length > bytes.size() - 20) return;  // model_checks.h reports a truncated chunk
+    json = bytes.substr(20, size_t(length));
   } else if (first < head.size() && head[first] == '{') {
-    json = file.read();
+    json = bytes;
   } else {
     return;  // not glTF
   }

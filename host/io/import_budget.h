@@ -26,9 +26,10 @@ inline constexpr uint64_t kMaxMaterials = 4096;                    // assimp's O
 void checkObjBudget(const std::string& path, const std::string& text);
 // The number of materials (newmtl lines) in an OBJ material library's text.
 uint64_t countMaterials(const std::string& text);
-// A glTF or GLB file (by content; anything else passes): every accessor's
-// declared elements, sparse or not, and the meshes, primitives and nodes.
-void checkGltfBudget(const std::string& path);
+// A glTF or GLB file's bytes (by content; anything else passes): every
+// accessor's declared elements, sparse or not, and the meshes, primitives
+// and nodes. `path` names the file in the error.
+void checkGltfBudget(const std::string& path, const std::string& bytes);
 
 // "PATH: WHAT, over the import budget of N MiB (docs/limits.md)".
 std::string overBudget(const std::string& path, const std::string& what, uint64_t limitBytes);

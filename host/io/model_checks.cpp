@@ -2,11 +2,15 @@
 #include "io/model_checks.h"
 
 #include "base/error.h"
-#include "io/file_rule.h"
+
+#include <assimp/BaseImporter.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <set>
+#include <strings.h>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -34,9 +38,10 @@ constexpr size_t kHeaderBytes = size_t(1) << 20;
 // element count asks for before reading any data. PLY headers are short and
 // fully specified, so they are checked here before assimp sees the file: an
 // element of N items needs at least N bytes.
-void checkPlyHeader(const std::string& path, uint64_t fileSize)
+void checkPlyHeader(const std::string& path, const std::string& bytes)
 {
-  std::istringstream in(readInputFile(path, kModelInput, kHeaderBytes));
+  const uint64_t fileSize = bytes.size();
+  std::istringstream in(bytes.substr(0, kHeaderBytes));
   std::string line;
   // Step 1: the magic. Assimp skips blank lines before it and takes any case
   // ("pLy" too), and it hung (the fuzzer found it) on a magic followed by
@@ -65,7 +70,7 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
   auto known = [](const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
   };
-  auto bytes = [](const std::string& t) {  // of a known type: the table's rows are 1, 1, 2, 2, 4, 4, 4, 8
+  auto typeBytes = [](const std::string& t) {  // of a known type: the table's rows are 1, 1, 2, 2, 4, 4, 4, 8
     static const uint64_t kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
     return kSizes[size_t(std::find(std::begin(kTypes), std::end(kTypes), t) - std::begin(kTypes)) % 8];
   };
@@ -124,11 +129,11 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
         words >> b >> c;
         if (!known(b) || !known(c))
           throw Error(oneLine(where + "unknown list property type in '" + userText(line, 60) + "'"));
-        itemBytes += bytes(b);
+        itemBytes += typeBytes(b);
       } else if (!known(a)) {
         throw Error(oneLine(where + "unknown property type '" + userText(a, 60) + "'"));
       } else {
-        itemBytes += bytes(a);
+        itemBytes += typeBytes(a);
       }
     } else {
       // Assimp skips a line it does not know (exporters write such lines:
@@ -150,11 +155,11 @@ void checkPlyHeader(const std::string& path, uint64_t fileSize)
 // optional [ST][C][N][4][n] prefix, "OFF" (its last letter may run into the
 // first count: "OFF12"), a dimension after 'n', then the counts, each read
 // as its leading digits; '#' starts a comment where a token may start.
-void checkOffHeader(const std::string& path, uint64_t fileSize)
+void checkOffHeader(const std::string& path, const std::string& bytes)
 {
-  const std::string text = readInputFile(path, kModelInput, 4096);
-  const char* car = text.data();
-  const char* const end = car + text.size();
+  const uint64_t fileSize = bytes.size();
+  const char* car = bytes.data();
+  const char* const end = car + std::min<size_t>(bytes.size(), 4096);
   auto lineEnd = [](char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; };
   auto nextToken = [&] {
     while (car < end && (*car == ' ' || *car == '\t' || lineEnd(*car))) ++car;
@@ -189,13 +194,6 @@ void checkOffHeader(const std::string& path, uint64_t fileSize)
       throw Error(userText(path) + ": OFF header " + name + " count " + count.substr(0, 20) +
                   " exceeds what the file's " + std::to_string(fileSize) + " bytes hold");
   }
-}
-
-bool hasExtension(const std::string& path, const std::string& ext)
-{
-  if (path.size() < ext.size()) return false;
-  return std::equal(ext.rbegin(), ext.rend(), path.rbegin(),
-                    [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
 }
 
 // A JSON value, as much of one as the glTF checks need.
@@ -536,10 +534,10 @@ uint32_t readU32(const std::string& bytes, size_t at)
   return v;
 }
 
-// A .gltf (JSON) or .glb (binary container, versions 1 and 2) file.
-void checkGltf(const std::string& path)
+// A .gltf (JSON) or .glb (binary container, versions 1 and 2) file; with
+// `full` false, only its container and JSON syntax (depth included).
+void checkGltf(const std::string& path, const std::string& bytes, bool full = true)
 {
-  const std::string bytes = readInputFile(path, kModelInput);
   const size_t bom = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   const char* json = bytes.data() + bom;
   size_t jsonSize = bytes.size() - bom;
@@ -559,16 +557,69 @@ void checkGltf(const std::string& path)
     jsonSize = chunkLength;
   }
   const Json doc = JsonParser(userText(path) + ": ", json, json + jsonSize).document();
-  GltfCheck(path, doc).run();
+  if (full) GltfCheck(path, doc).run();
+}
+
+// Whether assimp's signature checks may parse the bytes as glTF JSON or GLB.
+bool looksLikeGltf(const std::string& bytes)
+{
+  size_t at = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  if (bytes.compare(0, 4, "glTF") == 0) return true;
+  while (at < bytes.size() && std::strchr(" \t\r\n", bytes[at]) && bytes[at] != '\0') ++at;
+  return at < bytes.size() && (bytes[at] == '{' || bytes[at] == '[');
+}
+
+// Whether importer `index` lists extension `ext`.
+bool lists(const Assimp::Importer& importer, size_t index, const char* ext)
+{
+  std::set<std::string> extensions;
+  importer.GetImporter(index)->GetExtensionList(extensions);
+  return extensions.count(ext) != 0;
 }
 
 }  // namespace
 
-void checkModelFile(const std::string& path, uint64_t fileSize)
+ModelReader checkModelFile(const std::string& path, const std::string& bytes, const Assimp::Importer& importer,
+                           Assimp::IOSystem& io)
 {
-  checkPlyHeader(path, fileSize);  // by content: a first line "ply"
-  if (hasExtension(path, ".off")) checkOffHeader(path, fileSize);
-  if (hasExtension(path, ".gltf") || hasExtension(path, ".glb")) checkGltf(path);
+  checkPlyHeader(path, bytes);  // by content: a first line "ply"
+  // Step 1: assimp's choice, as Importer::ReadFile makes it: the one
+  // importer that lists the file's extension; else, among those that list
+  // it (or all), the first whose signature check accepts the file.
+  std::vector<size_t> candidates;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    std::set<std::string> extensions;
+    importer.GetImporter(i)->GetExtensionList(extensions);
+    for (const std::string& ext : extensions)
+      if (ext.size() < path.size() && strcasecmp(path.c_str() + path.size() - ext.size(), ext.c_str()) == 0 &&
+          path[path.size() - ext.size() - 1] == '.') {
+        candidates.push_back(i);
+        break;
+      }
+  }
+  ModelReader reader;
+  reader.byExtension = candidates.size() == 1;
+  if (reader.byExtension) {
+    reader.importer = int(candidates.front());
+  } else {
+    // The glTF readers' signature checks parse the JSON recursively.
+    if (looksLikeGltf(bytes)) checkGltf(path, bytes, false);
+    for (size_t pass = 0; pass < 2 && reader.importer < 0; ++pass) {
+      const size_t count = pass == 0 ? candidates.size() : importer.GetImporterCount();
+      for (size_t k = 0; k < count && reader.importer < 0; ++k) {
+        const size_t i = pass == 0 ? candidates[k] : k;
+        if (importer.GetImporter(i)->CanRead(path, &io, true)) reader.importer = int(i);
+      }
+    }
+  }
+  if (reader.importer < 0) return reader;  // assimp reports no suitable reader
+  // Step 2: the checks of that reader.
+  const size_t chosen = size_t(reader.importer);
+  for (const char* ext : {"ply", "off", "obj", "stl", "gltf"})
+    if (lists(importer, chosen, ext)) reader.format = ext;
+  if (reader.format == "off") checkOffHeader(path, bytes);
+  if (reader.format == "gltf") checkGltf(path, bytes);
+  return reader;
 }
 
 }  // namespace clr

@@ -5,24 +5,28 @@
 #include "io/file_rule.h"
 #include "io/import_budget.h"
 
-#include <assimp/DefaultIOStream.h>
 #include <assimp/MemoryIOWrapper.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include <sys/stat.h>
-#include <unistd.h>
 
 namespace clr {
 
 namespace {
 
-// DefaultIOStream's constructor from a FILE* is protected.
-struct RuleStream : Assimp::DefaultIOStream {
-  RuleStream(FILE* file, const std::string& name) : Assimp::DefaultIOStream(file, name) {}
+// A file the model names, read whole; the stream owns its bytes.
+struct OwnedBytes {
+  std::string bytes;
+};
+struct OwnedStream : private OwnedBytes, public Assimp::MemoryIOStream {
+  explicit OwnedStream(std::string read)
+      : OwnedBytes{std::move(read)},
+        Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())
+  {
+  }
 };
 
 }  // namespace
@@ -109,15 +113,8 @@ Assimp::IOStream* RuleIOSystem::Open(const char* file, const char* mode)
         return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(kept_.back().data()), kept_.back().size());
       }
     }
-    const int fd = input->release();
-    FILE* stream = fdopen(fd, "rb");
-    if (!stream) {
-      const int err = errno;
-      close(fd);
-      throw Error(userText(file) + ": cannot open (" + std::strerror(err) + ")");
-    }
     lastOpenFailed_ = false;
-    return new RuleStream(stream, file);
+    return new OwnedStream(input->read());
   } catch (const Error& e) {
     if (ruled)
       refuseReference(file, e.what());

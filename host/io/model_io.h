@@ -1,9 +1,10 @@
 // model_io.h — the files assimp opens while importing a model, under the
-// file rule (file_rule.h): the model itself and every file it names (an
-// OBJ's material library, a glTF buffer), the latter under the model-folder
-// rule too (asset_root.h). A file the rules refuse is not opened; the
-// refusal is kept, so that the import's error or warning can say why. The model's own path may be served from memory
-// instead (its text with positions rewritten, exact_positions.h).
+// file rule (file_rule.h). The model itself is served from memory, the
+// one read of it that the checks saw (or its text with positions rewritten,
+// exact_positions.h); every file it names (an OBJ's material library, a glTF
+// buffer) is read whole under the model-folder rule too (asset_root.h). A
+// file the rules refuse is not opened; the refusal is kept, so that the
+// import's error or warning can say why.
 #pragma once
 
 #include "io/asset_root.h"
@@ -28,7 +29,8 @@ class RuleIOSystem : public Assimp::DefaultIOSystem {
   bool Exists(const char* file) const override;
   Assimp::IOStream* Open(const char* file, const char* mode) override;
 
-  // Serves `bytes` whenever `path` is opened (both must outlive the import).
+  // Serves `bytes` whenever `path`, the model, is opened (both must outlive
+  // the import); other files are read as references of that model.
   void serve(const std::string& path, const std::string* bytes);
   // Counts the materials of every file the model names (an OBJ's libraries) against kMaxMaterials.
   void countMaterialLibraries() { countMaterials_ = true; }

@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
+#include "io/fast_ply.h"
 #include "io/file_rule.h"
 #include "io/import_budget.h"
 #include "io/model_checks.h"
@@ -18,17 +19,19 @@
 #include <assimp/LogStream.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <sys/stat.h>
-#include <unordered_map>
 
 namespace clr {
 
@@ -55,9 +58,26 @@ struct ImportState {
   bool anyColors = false;
 };
 
+// Room for `more` elements, growing geometrically: one large mesh is
+// appended without reallocating, many small ones without quadratic copies.
+template <typename T>
+void reserveMore(std::vector<T>& v, size_t more)
+{
+  if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+}
+
 void appendMesh(ImportState& state, const aiMesh* src, const aiMatrix4x4& transform, unsigned meshIndex)
 {
   Mesh& dst = state.mesh;
+  reserveMore(dst.positions, 3 * size_t(src->mNumVertices));
+  reserveMore(dst.normals, 3 * size_t(src->mNumVertices));
+  reserveMore(dst.uvs, 2 * size_t(src->mNumVertices));
+  reserveMore(dst.colors, 4 * size_t(src->mNumVertices));
+  size_t triangles = 0;
+  for (unsigned f = 0; f < src->mNumFaces; ++f)
+    triangles += src->mFaces[f].mNumIndices > 2 ? src->mFaces[f].mNumIndices - 2 : 0;
+  reserveMore(dst.indices, 3 * triangles);
+  reserveMore(dst.triMaterial, triangles);
   const uint64_t base = dst.numVerts();
   if (base + src->mNumVertices > UINT32_MAX) throw Error(userText(state.path) + ": more than 2^32 vertices");
   // Step 1: vertices, with the node transform applied.
@@ -345,15 +365,12 @@ struct ScopedImportLog {
 // face first. PLY has no lines or points of its own (assimp does not read
 // edge elements), so a PLY face of one or two vertices is the reader's
 // reading of a truncated face list: refused.
-void preparePointClouds(const std::string& path, aiScene* scene)
+void preparePointClouds(const std::string& path, bool ply, aiScene* scene)
 {
-  std::string extension = path.substr(std::min(path.size(), path.find_last_of("./")));
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
   for (unsigned m = 0; scene->mMeshes && m < scene->mNumMeshes; ++m) {
     aiMesh* mesh = scene->mMeshes[m];
     if (!mesh) continue;
-    for (unsigned f = 0; extension == ".ply" && mesh->mFaces && f < mesh->mNumFaces; ++f)
+    for (unsigned f = 0; ply && mesh->mFaces && f < mesh->mNumFaces; ++f)
       if (mesh->mFaces[f].mNumIndices < 3)
         throw Error(userText(path) + ": PLY faces of fewer than 3 vertices (a truncated or malformed file)");
     if (mesh->mNumFaces != 0 || mesh->mFaces || mesh->mNumVertices == 0 || !mesh->mVertices) continue;
@@ -371,38 +388,61 @@ void preparePointClouds(const std::string& path, aiScene* scene)
 
 Mesh loadScene(const std::string& path, const std::string& assets)
 {
-  checkSceneFile(path);
-  return importScene(path, assets);
+  return importScene(checkSceneFile(path), assets);
 }
 
-void checkSceneFile(const std::string& path)
+ModelFile checkSceneFile(const std::string& path)
 {
-  // Step 1: the file rule (file_rule.h): a non-empty regular file within
-  // the model size limit, checked without blocking.
-  const uint64_t fileSize = InputFile(path, kModelInput).size();
-  // Step 2: the guards against hostile files. Their messages start with the
-  // whole path and may quote the file's text: a long one is shortened here.
+  // Step 1: the file rule (file_rule.h), and the file's one read: a
+  // non-empty regular file within the model size limit, checked without
+  // blocking. The checks and the import see these bytes, never the file again.
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  ModelFile file;
+  file.path = path;
+  file.bytes = std::make_shared<const std::string>(readInputFile(path, kModelInput));
+  const auto read = Clock::now();
+  file.readMs = std::chrono::duration<double, std::milli>(read - start).count();
+  // Step 2: the guards against hostile files, on the reader assimp will
+  // choose. Their messages start with the whole path and may quote the
+  // file's text: a long one is shortened here.
+  Assimp::Importer importer;
+  auto* io = new RuleIOSystem(path, "");  // the importer owns it
+  importer.SetIOHandler(io);
+  io->serve(path, file.bytes.get());
   try {
-    checkModelFile(path, fileSize);
-    checkGltfBudget(path);
+    const ModelReader reader = checkModelFile(path, *file.bytes, importer, *io);
+    file.importer = reader.importer;
+    file.byExtension = reader.byExtension;
+    file.format = reader.format;
+    checkGltfBudget(path, *file.bytes);
   } catch (const Error& e) {
     const std::string message = e.what();
     if (message.size() <= 300) throw;
     const size_t rest = message.rfind(path, 0) == 0 ? path.size() : 0;
     throw Error(userText(message.substr(0, rest), 120) + userText(message.substr(rest), 170));
   }
+  file.checkMs = std::chrono::duration<double, std::milli>(Clock::now() - read).count();
+  return file;
 }
 
-Mesh importScene(const std::string& path, const std::string& assets)
+Mesh importScene(const ModelFile& file, const std::string& assets)
 {
-  // Step 1: import without reordering post-processing.
+  const std::string& path = file.path;
   const AssetRoot root(path, assets);
+  // The plainest binary PLY, read directly (fast_ply.h): the same mesh.
+  Mesh direct;
+  if (file.direct && file.format == "ply" && file.byExtension && readPlainBinaryPly(*file.bytes, direct)) {
+    repairNormals(direct, path, false);
+    return direct;
+  }
+  // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
   auto* io = new RuleIOSystem(path, assets);  // every file the import opens, under the file rules; the importer owns it
   importer.SetIOHandler(io);
   // Text formats: positions re-read correctly rounded (exact_positions.h).
-  const ExactPositions exact = prepareExactPositions(path, importer);
-  if (exact.importer != -1) io->serve(path, &exact.text);
+  const ExactPositions exact = prepareExactPositions(path, *file.bytes, file.format, file.byExtension, importer);
+  io->serve(path, exact.importer != -1 ? &exact.text : file.bytes.get());
   if (exact.format == "OBJ") {
     checkObjBudget(path, exact.text);
     io->countMaterialLibraries();
@@ -413,11 +453,13 @@ Mesh importScene(const std::string& path, const std::string& assets)
     // Validated once point clouds have faces (preparePointClouds).
     scene = importer.ReadFile(path, 0);
     if (scene) {
-      preparePointClouds(path, const_cast<aiScene*>(scene));
+      if (importer.GetPropertyInteger("importerIndex", -1) != file.importer)
+        throw Error(userText(path, 100) + ": assimp chose another reader than the one checked");
+      preparePointClouds(path, file.format == "ply", const_cast<aiScene*>(scene));
       scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
     }
   } catch (const Error&) {
-    throw;  // preparePointClouds's, already one line naming the file
+    throw;  // ours, already one line naming the file
   } catch (const std::exception& e) {
     throw Error(userText(path, 100) + ": cannot import (" + userText(e.what(), 160) + ")");
   }
@@ -460,28 +502,18 @@ Mesh importScene(const std::string& path, const std::string& assets)
 
 void computeSmoothNormals(Mesh& mesh)
 {
-  // Step 1: weld vertices by exact position.
-  struct Key {
-    float x, y, z;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct Hash {
-    size_t operator()(const Key& k) const
-    {
-      uint32_t b[3];
-      std::memcpy(b, &k, sizeof b);
-      return (size_t(b[0]) * 73856093u) ^ (size_t(b[1]) * 19349663u) ^ (size_t(b[2]) * 83492791u);
-    }
-  };
+  // Step 1: weld vertices by equal position (meshoptimizer compares bytes:
+  // -0 becomes +0 first, as the two compare equal). Welded ids follow first
+  // occurrence.
   const size_t n = mesh.numVerts();
-  std::unordered_map<Key, uint32_t, Hash> weldIndex;
+  std::vector<float> keys(mesh.positions.size());
+  for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
   std::vector<uint32_t> weld(n);
-  for (size_t v = 0; v < n; ++v) {
-    const Key key{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
-    weld[v] = weldIndex.emplace(key, uint32_t(weldIndex.size())).first->second;
-  }
+  const size_t welded =
+      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, keys.data(), n, 3 * sizeof(float));
+  keys = {};
   // Step 2: accumulate area-weighted face normals per welded vertex.
-  std::vector<glm::dvec3> sum(weldIndex.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
   };

@@ -20,6 +20,7 @@
 #include "io/texture.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -62,12 +63,25 @@ struct Bounds {
 // (asset_root.h): "" the model's own folder, "any", or a directory.
 Mesh loadScene(const std::string& path, const std::string& assets = "");
 
+// A model file read once, checked, and waiting for its import: the import
+// reads these bytes, not the file again.
+struct ModelFile {
+  std::string path;
+  std::shared_ptr<const std::string> bytes;  // the file's one read
+  int importer = -1;                         // the assimp importer the checks were run for
+  bool byExtension = false;                  // that importer was chosen by the extension
+  std::string format;                        // its format, as model_checks.h names it
+  double readMs = 0.0, checkMs = 0.0;        // wall time of the read, and of the checks after it
+  bool direct = true;                        // a direct reader (fast_ply.h) may read it instead of assimp
+};
+
 // loadScene in two steps, so that a caller can report a bad file at once
-// and import a good one while it does something else: checkSceneFile runs
-// the quick checks (a readable, non-empty regular file; model_checks.h),
-// importScene the rest, on a file that passed them.
-void checkSceneFile(const std::string& path);
-Mesh importScene(const std::string& path, const std::string& assets = "");
+// and import a good one while it does something else: checkSceneFile reads
+// the file and runs the quick checks (a readable, non-empty regular file;
+// model_checks.h), importScene the rest, on those bytes.
+ModelFile checkSceneFile(const std::string& path);
+// `assets` as loadScene takes it.
+Mesh importScene(const ModelFile& file, const std::string& assets = "");
 
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();

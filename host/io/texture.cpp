@@ -82,12 +82,6 @@ Texture decodeTexture(const std::string& name, const unsigned char* data, size_t
   return t;
 }
 
-Texture loadTextureFile(const std::string& path, TextureBudget& budget)
-{
-  const std::string bytes = readInputFile(path, kTextureInput);
-  return decodeTexture(path, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), budget);
-}
-
 std::vector<uint32_t> downsample(const std::vector<uint32_t>& rgba, uint32_t width, uint32_t height)
 {
   const uint32_t w = std::max(1u, width / 2), h = std::max(1u, height / 2);

@@ -51,12 +51,11 @@ struct TextureOverBudget : Error {
   using Error::Error;
 };
 
-// Decodes an image file (PNG, JPEG, BMP, TGA, ... as stb_image reads them),
-// read under the file rule (file_rule.h). Its size and channels come from
-// the header first (stbi_info): a size outside 1..16384 is an error, one the
-// budget cannot hold a TextureOverBudget, both before any pixel is decoded.
-Texture loadTextureFile(const std::string& path, TextureBudget& budget);
-// Decodes an image held in memory; `name` is what errors call it.
+// Decodes an image held in memory (PNG, JPEG, BMP, TGA, ... as stb_image
+// reads them; a model's texture files are read under the model-folder rule,
+// asset_root.h); `name` is what errors call it. Its size and channels come
+// from the header first (stbi_info): a size outside 1..16384 is an error, one
+// the budget cannot hold a TextureOverBudget, both before any pixel is decoded.
 Texture decodeTexture(const std::string& name, const unsigned char* data, size_t size, TextureBudget& budget);
 
 struct TexturePack {
