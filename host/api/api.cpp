@@ -116,7 +116,7 @@ void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int
     settings.keepVisAttributes = true;  // rast_outputs reads the barycentric planes
     pipeline.beginFrame(settings);
     pipeline.setup();
-    pipeline.bin();
+    pipeline.setupEmit();
     pipeline.raster();
     pipeline.rastOutputs(ids != nullptr, db != nullptr);
     pipeline.readRastOutputs(rast, ids, db);

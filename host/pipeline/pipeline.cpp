@@ -452,7 +452,7 @@ void Pipeline::runStages(const FrameSettings& settings)
 {
   beginFrame(settings);
   setup();  // transforms the vertices it reads (transform.cl)
-  bin();
+  setupEmit();
   raster();
   resolve();
   if (settings.wireframe != CLR_WIREFRAME_OFF) lines();

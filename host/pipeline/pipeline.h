@@ -1,7 +1,7 @@
 // pipeline.h — the frame pipeline: buffers, stages and per-frame statistics.
 //
 // A Pipeline owns every device buffer of a scene and runs the stages in
-// order: (transform) -> setup -> bin -> raster -> resolve, where setup
+// order: (transform) -> setup -> setup_emit and bin -> raster -> resolve, where setup
 // transforms the vertices it reads, so a frame needs no clip-position
 // buffer (transform() writes one for tests and the painter's sort). Each
 // stage is a member function defined in the host file named after its
@@ -13,6 +13,7 @@
 
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
+#include "pipeline/frame_settings.h"
 #include "io/scene.h"
 
 #include "kernels/shared.h"
@@ -108,51 +109,6 @@ struct SetupRecord {
   uint32_t flags;     // CLR_FLAG_BACKFACING, CLR_FLAG_DEAD (padding of a clipped triangle)
 };
 
-// What one frame renders: viewport, shading, culling and the methods.
-struct FrameSettings {
-  uint32_t width = 0, height = 0;
-  uint32_t shadeMode = CLR_SHADE_LAMBERT;
-  bool cullBack = false;
-  uint32_t samples = 1;           // per pixel: 1, 2, 4, 8, 16 (aa.h)
-  bool shadeEverySample = false;  // SSAA rather than MSAA
-  uint32_t edgeMode = CLR_EDGES_FIXED;
-  uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
-  uint32_t traversal = CLR_TRAVERSAL_BBOX;
-  // Depth format (CLR_DEPTH_*); CLR_DEPTH_REVERSED needs a reversed
-  // projection in mvp (Camera::viewProjection builds one, depth.h).
-  uint32_t depthMode = CLR_DEPTH_FLOAT32;
-  uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // CLR_VISIBILITY_*
-  glm::mat4 mvp{1.0f};
-  glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
-  glm::vec3 eye{0.0f, 0.0f, 0.0f};       // world space, for specular highlights
-  bool pointLightOn = false;             // a point light besides the directional one
-  glm::vec3 pointLight{0.0f};            // its position, world space
-  float pointLightRange = 1.0f;          // r of the attenuation 1 / (1 + (d / r)²), > 0
-  uint32_t texFilter = CLR_FILTER_TRILINEAR;
-  float zNear = 0.1f, zFar = 100.0f;  // for depth shading only
-  // Lines (lines.cpp): wireframe mode, method and anti-aliased width in pixels.
-  uint32_t wireframe = CLR_WIREFRAME_OFF;
-  uint32_t lineMethod = CLR_LINE_AA;
-  float lineWidth = 1.0f;
-  // A file's points (Mesh::points): squares of this many pixels a side (points.cpp).
-  uint32_t pointSize = 1;
-  // Raster also writes the depth and barycentric planes of the visibility
-  // buffer (12 more bytes per sample), for aov() and for the depth and
-  // barycentrics of readVis(). Frames with lines or float edges have them
-  // anyway; otherwise resolve recomputes the barycentrics (shared.h).
-  bool keepVisAttributes = false;
-  // Lets resolve use its lean lambert kernel when the frame qualifies
-  // (Pipeline::resolve); tests turn it off to compare the two kernels.
-  bool leanResolve = true;
-  // The fewest bits of a visibility index (16, 24 or 32; more when the
-  // frame's setup records need them, shared.h): tests compare the widths.
-  uint32_t minVisIndexBits = 16;
-  // Lets setup cull a small triangle that covers no pixel centre (shared.h,
-  // FrameParams.cullSampleFree); tests turn it off to show that the pixels
-  // do not change.
-  bool cullSampleFree = true;
-};
-
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
 FrameParams makeFrameParams(const FrameSettings& settings, size_t numVerts, size_t numTris);
 
@@ -238,9 +194,9 @@ class Pipeline {
   // The stages, in order (each defined in its own host file).
   void beginFrame(const FrameSettings& settings);
   void transform();  // optional: fills readClipPositions()
-  void setup();
-  void bin();
-  void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)
+  void setup();      // counts, lists and clips (setup.cpp)
+  void setupEmit();  // the tile scans, setup_emit's records and bins, the clipped bins (setup.cpp, bin.cpp)
+  void raster();     // with the painter's algorithm, sorts the triangles first (paintOrder)
   void resolve();
   // After resolve: draws the edges of the setup triangles (lines.cpp), or
   // the caller's segments, into the image with FrameSettings' line method.
@@ -350,10 +306,12 @@ class Pipeline {
   // then the rescan of every chunk.
   void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
   void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage);
-  // bin()'s scan of the tile counts: the offsets in place, and the
+  // setupEmit()'s scan of the tile counts: the offsets in place, and the
   // visibility slots (the non-zero counts) in the same launches, their
   // totals copied to the counters (CLR_COUNTER_BIN_TOTAL, SLOT_TOTAL).
   void enqueueBinScans();
+  // The clipped triangles' bins (bin_fill_clipped, bin.cl), after setup_emit.
+  void binClipped();
   // The frame's counters (shared.h, CLR_COUNTER_*), read with a wait for
   // every command enqueued before; counterTotal joins a total's two words.
   std::vector<uint32_t> readCounters() const { return counters_.download(CLR_NUM_COUNTERS); }

@@ -4,8 +4,8 @@
 // triangle behind each setup record, size the setup and ClipBary buffers
 // from the totals, and clip the listed triangles into their reserved
 // records, which they find in that list (counting their tiles too). The
-// unclipped triangles are emitted by bin() once the tile offsets are known,
-// because setup_emit also fills their bins.
+// unclipped triangles are emitted by setupEmit() once the tile offsets are
+// known (bin.cpp scans them), because setup_emit also fills their bins.
 #include "pipeline/pipeline.h"
 
 namespace clr {
@@ -19,7 +19,7 @@ void Pipeline::setup()
   // Step 1: count, and sum the counts, reading the clip-list length and the
   // total with one wait (one read of the counters, where the scans copy
   // their totals); if the clip list was too short, grow it and redo.
-  // When the previous frame clipped nothing, bin()'s tile scans go before the
+  // When the previous frame clipped nothing, setupEmit()'s tile scans go before the
   // wait too, so that a frame without clipping waits once; a frame that does clip counts
   // again without them, since setup_clip adds to the tile counts they scan.
   uint32_t clipped = 0;
@@ -90,6 +90,40 @@ void Pipeline::setup()
   cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
                                  &clipEvent);
   record("setup_clip", clipEvent);
+}
+
+void Pipeline::setupEmit()
+{
+  // Step 1: a slot of the visibility buffer for each tile with triangles,
+  // the tile offsets, and both totals in one read (setup() may have done
+  // this before its own wait).
+  if (!binScanned_) {
+    enqueueBinScans();
+    takeBinTotals(readCounters());
+  }
+  // (A speculative frame's: the capacities, scan.cl checking its totals.)
+  numBinEntries_ = speculate_ ? specCaps_[2] : binTotal_;
+  numVisSlots_ = speculate_ ? specCaps_[3] : uint32_t(slotTotal_);
+  usedVisSlots_ = numVisSlots_;
+  if (numBinEntries_ > UINT32_MAX)
+    throw Error("the frame needs " + std::to_string(numBinEntries_) +
+                " bin entries, more than the 2^32 a 32-bit offset can address");
+  binEntries_.reserve(numBinEntries_);
+  if (numSetup_ == 0) return;  // nothing in view: no record to emit, no bin to fill
+
+  // Step 2: emit the unclipped triangles into the setup buffer and their bins.
+  std::vector<cl::Event> fills;
+  tileCursor_.zero(numTiles_, &fills);
+  const uint32_t batches = (numSetup_ + cl_.lanes - 1) / cl_.lanes;  // over the records, not the input
+  cl::Event emitEvent;
+  setArgs(setupEmitKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
+          clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
+          binEntries_.get(), setupSource_.get(), numSetup_, uint32_t(CLR_SETUP_PASS_EMIT), clusterBounds_.get(),
+          clusterCount_.get());
+  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches),
+                                 cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &emitEvent);
+  record("setup_emit", emitEvent);
+  binClipped();
 }
 
 }  // namespace clr
