@@ -10,12 +10,9 @@ namespace clr {
 void Pipeline::binClipped()
 {
   if (numClipped_ == 0) return;
-  cl::Event fillEvent;
   setArgs(binFillClippedKernel_, paramsBuf_.get(), setup_.get(), clipBary_.get(), setupSource_.get(), clipList_.get(),
           numClipped_, tileCount_.get(), tileCursor_.get(), binEntries_.get());
-  cl_.queue.enqueueNDRangeKernel(binFillClippedKernel_, cl::NullRange, linear(uint64_t(numClipped_) * CLR_MAX_SUBTRIS),
-                                 cl::NDRange(64), nullptr, &fillEvent);
-  record("bin_fill", fillEvent);
+  launchLinear(binFillClippedKernel_, uint64_t(numClipped_) * CLR_MAX_SUBTRIS, "bin_fill");
 }
 
 void Pipeline::enqueueBinScans()

@@ -4,7 +4,7 @@
 
 #include "pipeline/embedded_kernels.h"
 #include "pipeline/program_cache.h"
-#include "kernels/fixed.h"
+#include "kernels/shared.h"
 
 #include <algorithm>
 #include <cctype>
@@ -148,6 +148,39 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
   return program;
 }
 
+DeviceNeeds deviceNeeds(int lanes, uint32_t tileSize)
+{
+  const size_t tilePixels = size_t(tileSize) * tileSize;
+  // Raster's GPU shape is a work-group per tile; resolve's a work-item per row of lanes, a tile per group, or a
+  // group of one where a row of lanes spans the tile (resolve.cl).
+  const size_t raster = lanes == 1 ? tilePixels : 1;
+  const size_t resolve = uint32_t(lanes) == tileSize ? 1 : tilePixels / size_t(lanes);
+  DeviceNeeds needs;
+  needs.workGroupSize = std::max({raster, resolve, size_t(CLR_LINEAR_GROUP)});
+  // Raster's batch in local memory (raster.cl: records, bounds, nearest keys, indices and ranks); scan's partials
+  // phase sums a value per work-item.
+  const uint64_t rasterLocal = lanes == 1 ? tilePixels * (sizeof(TriSetup) + 4 * sizeof(int32_t) + 3 * 4) : 0;
+  const uint64_t scanLocal = uint64_t(CLR_SCAN_GROUP(lanes)) * sizeof(uint64_t);
+  needs.localMemBytes = std::max(rasterLocal, scanLocal);
+  return needs;
+}
+
+void checkDeviceLimits(const std::string& deviceName, const DeviceLimits& limits, int lanes, uint32_t tileSize)
+{
+  const std::string what = "tile size " + std::to_string(tileSize) + " with " + std::to_string(lanes) + " lane" +
+                           (lanes == 1 ? "" : "s") + " on " + userText(deviceName);
+  if (tileSize == 0 || tileSize % uint32_t(lanes) != 0) throw Error(what + ": the lanes must divide the tile size");
+  const DeviceNeeds needs = deviceNeeds(lanes, tileSize);
+  if (needs.workGroupSize > limits.maxWorkGroupSize)
+    throw Error(what + " needs work-groups of " + std::to_string(needs.workGroupSize) +
+                " work-items; the device allows " + std::to_string(limits.maxWorkGroupSize) +
+                " (CL_DEVICE_MAX_WORK_GROUP_SIZE): build with a smaller CLR_TILE_SIZE");
+  if (needs.localMemBytes > limits.localMemBytes)
+    throw Error(what + " needs " + std::to_string(needs.localMemBytes) + " bytes of local memory; the device has " +
+                std::to_string(limits.localMemBytes) +
+                " (CL_DEVICE_LOCAL_MEM_SIZE): build with a smaller CLR_TILE_SIZE");
+}
+
 bool isPocl(const DeviceInfo& device)
 {
   return device.platformName.find("Portable Computing Language") != std::string::npos;
@@ -166,6 +199,10 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, bool clipIn
 {
   // Step 1: the work shape, the queue and the frame program.
   lanes = contextLanes(info.device, lanesOverride);
+  checkDeviceLimits(
+      info.name,
+      {info.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>(), info.device.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>()}, lanes,
+      CLR_TILE_SIZE);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   prefetch = isPocl(info);

@@ -28,11 +28,9 @@ void Pipeline::lines()
   if (n > UINT32_MAX) throw Error("the frame has more than 2^32 wireframe segments");
   lineSegs_.reserve(n);
   if (numSetup_ > 0) {
-    cl::Event event;
     cl::Kernel& fromSetup = extraKernel(linesFromSetupKernel_, "lines_from_setup");
     setArgs(fromSetup, setup_.get(), numSetup_, setupSource_.get(), clipBary_.get(), lineSegs_.get());
-    cl_.queue.enqueueNDRangeKernel(fromSetup, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr, &event);
-    record("lines_from_setup", event);
+    launchLinear(fromSetup, numSetup_, "lines_from_setup");
   }
   drawLineSegments(uint32_t(n), settingsLinePass());
 }
@@ -81,11 +79,9 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   lineTileCount_.zero(numTiles_ + 1, &fills);
   lineSegs_.reserve(n);
   if (n > 0) {
-    cl::Event countEvent;
     cl::Kernel& binCount = extraKernel(linesBinCountKernel_, "lines_bin_count");
     setArgs(binCount, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
-    cl_.queue.enqueueNDRangeKernel(binCount, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &countEvent);
-    record("lines_bin_count", countEvent);
+    launchLinear(binCount, n, "lines_bin_count");
   }
   const uint64_t entries = scan(lineTileCount_, numTiles_, "lines_bin_scan");
   if (entries > UINT32_MAX)
@@ -95,12 +91,10 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   // Step 3: fill the bins.
   lineTileCursor_.zero(numTiles_, &fills);
   if (n > 0) {
-    cl::Event fillEvent;
     cl::Kernel& binFill = extraKernel(linesBinFillKernel_, "lines_bin_fill");
     setArgs(binFill, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineTileCursor_.get(),
             lineBinEntries_.get());
-    cl_.queue.enqueueNDRangeKernel(binFill, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &fillEvent);
-    record("lines_bin_fill", fillEvent);
+    launchLinear(binFill, n, "lines_bin_fill");
   }
 
   // Step 4: one work-item per tile draws and blends.

@@ -295,10 +295,17 @@ cl::Kernel& Pipeline::extraKernel(cl::Kernel& kernel, const char* name)
   return kernel;
 }
 
-cl::NDRange Pipeline::linear(uint64_t n) const
+cl::NDRange Pipeline::linear(uint64_t n)
 {
-  const uint64_t group = 64;
+  const uint64_t group = CLR_LINEAR_GROUP;
   return cl::NDRange(size_t((n + group - 1) / group * group));
+}
+
+void Pipeline::launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage)
+{
+  cl::Event event;
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, linear(n), cl::NDRange(CLR_LINEAR_GROUP), nullptr, &event);
+  record(stage, event);
 }
 
 Pipeline::~Pipeline()
@@ -366,7 +373,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   speculated_ = missed_ = false;  // (runFrame sets them after the frame)
   if (speculate_)
     cl_.queue.enqueueWriteBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_SPECULATIVE * sizeof(uint32_t),
-                                 sizeof specCaps_, specCaps_);
+                                 sizeof specCaps_, &specCaps_);
 }
 
 bool Pipeline::speculationPays(const FrameSettings& settings)
@@ -390,10 +397,9 @@ bool Pipeline::speculationPays(const FrameSettings& settings)
   slots = std::min<uint64_t>(slots, numTiles_);
   const uint64_t bins = std::min<uint64_t>(binEntries_.capacity(), UINT32_MAX);
   if (records == 0 || slots == 0) return false;
-  specCaps_[0] = 1;
-  specCaps_[1] = uint32_t(records);
-  specCaps_[2] = uint32_t(bins);
-  specCaps_[3] = uint32_t(slots);
+  static_assert(sizeof(SpecCaps) == 4 * sizeof(uint32_t) && CLR_COUNTER_CAP_SLOTS == CLR_COUNTER_SPECULATIVE + 3,
+                "specCaps_ is written over the counters from CLR_COUNTER_SPECULATIVE");
+  specCaps_ = {1u, uint32_t(records), uint32_t(bins), uint32_t(slots)};
   return true;
 }
 

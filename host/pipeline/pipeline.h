@@ -27,8 +27,8 @@
 
 namespace clr {
 
-// How scan_chunks (scan.cl) splits n counts: at most 4096 chunks of at
-// least 64 counts each, and the work-items of its reduce and apply phases:
+// How scan_chunks (scan.cl) splits n counts: at most CLR_SCAN_MAX_CHUNKS
+// chunks of at least CLR_SCAN_MIN_CHUNK counts each (shared.h), and the work-items of its reduce and apply phases:
 // a work-group of CLR_SCAN_GROUP(1) per chunk in the GPU shape (lanes 1),
 // one work-item per chunk in the CPU shape. (Pipeline's scans; a kernel
 // test launches the phases the same way.)
@@ -344,7 +344,10 @@ class Pipeline {
     cl_uint index = 0;
     (kernel.setArg(index++, args), ...);
   }
-  cl::NDRange linear(uint64_t n) const;
+  // n work-items rounded up to whole CLR_LINEAR_GROUP work-groups.
+  static cl::NDRange linear(uint64_t n);
+  // Launches kernel over n work-items in CLR_LINEAR_GROUP work-groups and records it as stage.
+  void launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage);
   // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
   // unless the scene's bounds reach behind the eye or well beyond the view.
   float clusterMargin(const glm::mat4& mvp) const;
@@ -393,7 +396,10 @@ class Pipeline {
   // flag, records, bins, slots), the counters read after its image, and
   // the last frame's outcome (FrameStats).
   bool speculationOn_ = true, speculate_ = false, framedScene_ = false, speculated_ = false, missed_ = false;
-  uint32_t specCaps_[4] = {};
+  // The CLR_COUNTER_SPECULATIVE .. CLR_COUNTER_CAP_SLOTS words, in order.
+  struct SpecCaps {
+    uint32_t on, records, bins, slots;
+  } specCaps_{};
   std::vector<uint32_t> endCounters_;
   Mesh scene_;  // host copy, laid out: lazy uploads read it
   bool layoutOn_ = true;

@@ -16,7 +16,8 @@ namespace clr {
 
 ScanChunks scanChunks(uint32_t n)
 {
-  const uint32_t size = std::max<uint32_t>(64, (n + 4095) / 4096);
+  const uint32_t size =
+      std::max<uint32_t>(CLR_SCAN_MIN_CHUNK, uint32_t((uint64_t(n) + CLR_SCAN_MAX_CHUNKS - 1) / CLR_SCAN_MAX_CHUNKS));
   return {size, std::max<uint32_t>(1, (n + size - 1) / size)};
 }
 

@@ -48,7 +48,7 @@ void Pipeline::setup()
     // totals exceed them.
     if (speculate_) {
       binScanned_ = true;
-      numSetup_ = specCaps_[1];
+      numSetup_ = specCaps_.records;
       numClipped_ = 0;
       scanListingFinish(numSetup_, "setup_scan");
       return;
@@ -84,12 +84,9 @@ void Pipeline::setup()
 
   // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
-  cl::Event clipEvent;
   setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), setupSource_.get(), numSetup_,
           clipList_.get(), setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
-  cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
-                                 &clipEvent);
-  record("setup_clip", clipEvent);
+  launchLinear(setupClipKernel_, clipped, "setup_clip");
 }
 
 void Pipeline::setupEmit()
@@ -102,8 +99,8 @@ void Pipeline::setupEmit()
     takeBinTotals(readCounters());
   }
   // (A speculative frame's: the capacities, scan.cl checking its totals.)
-  numBinEntries_ = speculate_ ? specCaps_[2] : binTotal_;
-  numVisSlots_ = speculate_ ? specCaps_[3] : uint32_t(slotTotal_);
+  numBinEntries_ = speculate_ ? specCaps_.bins : binTotal_;
+  numVisSlots_ = speculate_ ? specCaps_.slots : uint32_t(slotTotal_);
   usedVisSlots_ = numVisSlots_;
   if (numBinEntries_ > UINT32_MAX)
     throw Error("the frame needs " + std::to_string(numBinEntries_) +
