@@ -10,8 +10,11 @@ namespace clr {
 void Pipeline::binClipped()
 {
   if (numClipped_ == 0) return;
-  setArgs(binFillClippedKernel_, paramsBuf_.get(), setup_.get(), clipBary_.get(), setupSource_.get(), clipList_.get(),
-          numClipped_, tileCount_.get(), tileCursor_.get(), binEntries_.get());
+  BinFillClippedArgs args;
+  args.params = paramsBuf_.get(), args.setup = setup_.get(), args.clipBary = clipBary_.get();
+  args.source = setupSource_.get(), args.clipList = clipList_.get(), args.numClipped = numClipped_;
+  args.tileOffset = tileCount_.get(), args.tileCursor = tileCursor_.get(), args.binEntries = binEntries_.get();
+  setKernelArgs(binFillClippedKernel_, args);
   launchLinear(binFillClippedKernel_, uint64_t(numClipped_) * CLR_MAX_SUBTRIS, "bin_fill");
 }
 

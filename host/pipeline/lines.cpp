@@ -29,7 +29,10 @@ void Pipeline::lines()
   lineSegs_.reserve(n);
   if (numSetup_ > 0) {
     cl::Kernel& fromSetup = extraKernel(linesFromSetupKernel_, "lines_from_setup");
-    setArgs(fromSetup, setup_.get(), numSetup_, setupSource_.get(), clipBary_.get(), lineSegs_.get());
+    LinesFromSetupArgs args;
+    args.setup = setup_.get(), args.numSetup = numSetup_, args.source = setupSource_.get();
+    args.clipBary = clipBary_.get(), args.segs = lineSegs_.get();
+    setKernelArgs(fromSetup, args);
     launchLinear(fromSetup, numSetup_, "lines_from_setup");
   }
   drawLineSegments(uint32_t(n), settingsLinePass());
@@ -80,7 +83,10 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   lineSegs_.reserve(n);
   if (n > 0) {
     cl::Kernel& binCount = extraKernel(linesBinCountKernel_, "lines_bin_count");
-    setArgs(binCount, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
+    LinesBinCountArgs args;
+    args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+    args.tileCount = lineTileCount_.get();
+    setKernelArgs(binCount, args);
     launchLinear(binCount, n, "lines_bin_count");
   }
   const uint64_t entries = scan(lineTileCount_, numTiles_, "lines_bin_scan");
@@ -92,19 +98,23 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   lineTileCursor_.zero(numTiles_, &fills);
   if (n > 0) {
     cl::Kernel& binFill = extraKernel(linesBinFillKernel_, "lines_bin_fill");
-    setArgs(binFill, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineTileCursor_.get(),
-            lineBinEntries_.get());
+    LinesBinFillArgs args;
+    args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+    args.tileOffset = lineTileCount_.get(), args.tileCursor = lineTileCursor_.get();
+    args.binEntries = lineBinEntries_.get();
+    setKernelArgs(binFill, args);
     launchLinear(binFill, n, "lines_bin_fill");
   }
 
   // Step 4: one work-item per tile draws and blends.
-  cl::Event drawEvent;
   cl::Kernel& draw = extraKernel(linesDrawKernel_, "lines_draw");
-  setArgs(draw, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineBinEntries_.get(),
-          tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get(), tileSlot_.get(), visPlane());
-  cl_.queue.enqueueNDRangeKernel(draw, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY), cl::NDRange(1, 1),
-                                 nullptr, &drawEvent);
-  record("lines_draw", drawEvent);
+  LinesDrawArgs args;
+  args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+  args.lineTileOffset = lineTileCount_.get(), args.lineBinEntries = lineBinEntries_.get();
+  args.triTileOffset = tileCount_.get(), args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.setup = setup_.get(), args.image = image_.get(), args.tileSlot = tileSlot_.get(), args.visPlane = visPlane();
+  setKernelArgs(draw, args);
+  launch(draw, cl::NDRange(params_.tilesX, params_.tilesY), cl::NDRange(1, 1), "lines_draw");
 }
 
 }  // namespace clr

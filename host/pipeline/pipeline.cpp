@@ -301,11 +301,22 @@ cl::NDRange Pipeline::linear(uint64_t n)
   return cl::NDRange(size_t((n + group - 1) / group * group));
 }
 
-void Pipeline::launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage)
+void Pipeline::launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* stage)
 {
   cl::Event event;
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, linear(n), cl::NDRange(CLR_LINEAR_GROUP), nullptr, &event);
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
   record(stage, event);
+}
+
+void Pipeline::launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage)
+{
+  launch(kernel, linear(n), cl::NDRange(CLR_LINEAR_GROUP), stage);
+}
+
+void Pipeline::launchPixels(cl::Kernel& kernel, const char* stage)
+{
+  launch(kernel, cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
+         cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), stage);
 }
 
 Pipeline::~Pipeline()

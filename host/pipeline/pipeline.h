@@ -14,6 +14,7 @@
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
 #include "pipeline/frame_settings.h"
+#include "pipeline/kernel_args.h"
 #include "io/scene.h"
 
 #include "kernels/shared.h"
@@ -306,6 +307,10 @@ class Pipeline {
   // then the rescan of every chunk.
   void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
   void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage);
+  // scan_chunks' arguments for one phase (CLR_SCAN_REDUCE, _PARTIALS, _APPLY) of job over n counts.
+  ScanChunksArgs scanArgs(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, uint32_t phase) const;
+  // setup_triangles' arguments for one pass (CLR_SETUP_PASS_COUNT, _EMIT) over numSetup records (setup.cpp).
+  SetupTrianglesArgs setupTrianglesArgs(uint32_t numSetup, uint32_t pass) const;
   // setupEmit()'s scan of the tile counts: the offsets in place, and the
   // visibility slots (the non-zero counts) in the same launches, their
   // totals copied to the counters (CLR_COUNTER_BIN_TOTAL, SLOT_TOTAL).
@@ -337,17 +342,13 @@ class Pipeline {
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n, const LinePass& pass);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
-  // Sets a kernel's arguments 0, 1, 2, ... in order.
-  template <typename... Args>
-  static void setArgs(cl::Kernel& kernel, const Args&... args)
-  {
-    cl_uint index = 0;
-    (kernel.setArg(index++, args), ...);
-  }
   // n work-items rounded up to whole CLR_LINEAR_GROUP work-groups.
   static cl::NDRange linear(uint64_t n);
-  // Launches kernel over n work-items in CLR_LINEAR_GROUP work-groups and records it as stage.
+  // Launches kernel over global in groups of local and records its event as stage; launchLinear over n
+  // work-items in CLR_LINEAR_GROUP groups, launchPixels over the tiles' pixels in a group per tile.
+  void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* stage);
   void launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage);
+  void launchPixels(cl::Kernel& kernel, const char* stage);
   // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
   // unless the scene's bounds reach behind the eye or well beyond the view.
   float clusterMargin(const glm::mat4& mvp) const;

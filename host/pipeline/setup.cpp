@@ -28,19 +28,13 @@ void Pipeline::setup()
   for (;;) {
     std::vector<cl::Event> fills;
     tileCount_.zero(numTiles_ + 1, &fills);
-    cl::Event countEvent;
     // (The emit pass's outputs are bound too; this pass does not touch them.)
     setup_.reserve(1);
     tileCursor_.reserve(1);
     binEntries_.reserve(1);
     setupSource_.reserve(1);
-    setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
-            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get(),
-            clusterCount_.get());
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(countItems),
-                                   cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
-    record("setup_count", countEvent);
+    setKernelArgs(setupCountKernel_, setupTrianglesArgs(0, CLR_SETUP_PASS_COUNT));
+    launch(setupCountKernel_, linear(countItems), cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), "setup_count");
     scanListingBegin("setup_scan");
     if (scanTiles) enqueueBinScans();
     // A speculative frame (Pipeline::runFrame) does not wait: its sizes are
@@ -84,8 +78,12 @@ void Pipeline::setup()
 
   // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
-  setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), setupSource_.get(), numSetup_,
-          clipList_.get(), setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
+  SetupClipArgs args;
+  args.params = paramsBuf_.get(), args.positions = positions_.get(), args.indices = indices_.get();
+  args.source = setupSource_.get(), args.numSetup = numSetup_, args.clipList = clipList_.get();
+  args.setup = setup_.get(), args.clipBary = clipBary_.get(), args.counters = counters_.get();
+  args.tileCount = tileCount_.get();
+  setKernelArgs(setupClipKernel_, args);
   launchLinear(setupClipKernel_, clipped, "setup_clip");
 }
 
@@ -112,15 +110,21 @@ void Pipeline::setupEmit()
   std::vector<cl::Event> fills;
   tileCursor_.zero(numTiles_, &fills);
   const uint32_t batches = (numSetup_ + cl_.lanes - 1) / cl_.lanes;  // over the records, not the input
-  cl::Event emitEvent;
-  setArgs(setupEmitKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
-          clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-          binEntries_.get(), setupSource_.get(), numSetup_, uint32_t(CLR_SETUP_PASS_EMIT), clusterBounds_.get(),
-          clusterCount_.get());
-  cl_.queue.enqueueNDRangeKernel(setupEmitKernel_, cl::NullRange, linear(batches),
-                                 cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &emitEvent);
-  record("setup_emit", emitEvent);
+  setKernelArgs(setupEmitKernel_, setupTrianglesArgs(numSetup_, CLR_SETUP_PASS_EMIT));
+  launch(setupEmitKernel_, linear(batches), cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), "setup_emit");
   binClipped();
+}
+
+SetupTrianglesArgs Pipeline::setupTrianglesArgs(uint32_t numSetup, uint32_t pass) const
+{
+  SetupTrianglesArgs args;
+  args.params = paramsBuf_.get(), args.positions = positions_.get(), args.indices = indices_.get();
+  args.triCount = triCount_.get(), args.counters = counters_.get(), args.clipList = clipList_.get();
+  args.clipListCapacity = uint32_t(clipList_.capacity()), args.tileCount = tileCount_.get();
+  args.setup = setup_.get(), args.tileCursor = tileCursor_.get(), args.binEntries = binEntries_.get();
+  args.source = setupSource_.get(), args.numSetup = numSetup, args.pass = pass;
+  args.clusterBounds = clusterBounds_.get(), args.clusterCount = clusterCount_.get();
+  return args;
 }
 
 }  // namespace clr

@@ -9,7 +9,9 @@ namespace clr {
 void Pipeline::transform()
 {
   clipPos_.reserve(params_.numVerts, true);
-  setArgs(transformKernel_, positions_.get(), paramsBuf_.get(), clipPos_.get());
+  TransformArgs args;
+  args.positions = positions_.get(), args.params = paramsBuf_.get(), args.clipPos = clipPos_.get();
+  setKernelArgs(transformKernel_, args);
   launchLinear(transformKernel_, params_.numVerts, "transform");
 }
 
