@@ -17,6 +17,7 @@
  * (CLR_VISIBILITY_PAINTER, ranks from host raster.cpp).
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "bin.h"
 
 #if CLR_TILE_SIZE % CLR_LANES != 0
 #error "CLR_LANES must divide CLR_TILE_SIZE"

@@ -97,7 +97,7 @@ typedef uint32_t uint;
   ((mode) == CLR_SHADE_FLAT || (mode) == CLR_SHADE_GOURAUD || (mode) == CLR_SHADE_PHONG || \
    ((mode) == CLR_SHADE_LAMBERT && (pointLightOn)))
 
-/* FrameParams.texFilter: how base-colour textures are sampled (texture.cl). */
+/* FrameParams.texFilter: how base-colour textures are sampled (texture.h). */
 #define CLR_FILTER_NEAREST 0u
 #define CLR_FILTER_BILINEAR 1u
 #define CLR_FILTER_TRILINEAR 2u /* bilinear in the two nearest mip levels, blended */

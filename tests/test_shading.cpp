@@ -1,4 +1,4 @@
-// test_shading.cpp — the shading modes of resolve (kernels/shade.cl) against
+// test_shading.cpp — the shading modes of resolve (kernels/shade.h) against
 // the same formulas evaluated on the host in double precision, anti-aliasing
 // with every mode, and the lazy attribute uploads of Pipeline.
 #include "test_support.h"
@@ -15,7 +15,7 @@ namespace {
 
 constexpr uint32_t W = 64, H = 64;
 
-// Lighting constants of kernels/shade.cl.
+// Lighting constants of kernels/shade.h.
 constexpr double kAmbient = 0.12, kDiffuse = 0.88, kSpecular = 0.4, kShininess = 32.0;
 const glm::dvec3 kGrey(0.80, 0.78, 0.74);
 
@@ -68,7 +68,7 @@ struct Scene {
   }
 };
 
-// Diffuse and specular sums of shade.cl at point p, unit normal nrm.
+// Diffuse and specular sums of shade.h at point p, unit normal nrm.
 void hostLights(const Scene& s, bool pointLight, glm::dvec3 nrm, glm::dvec3 p, double& diffuse, double& specular)
 {
   const glm::dvec3 view = glm::normalize(s.eye - p);

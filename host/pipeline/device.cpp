@@ -123,15 +123,61 @@ std::string programOptions(const std::string& options, bool extras)
   return options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0");
 }
 
+// Appends `text` to `out`, each line #include "name" replaced by the embedded file `name`, expanded the same way;
+// `included` collects the names so expanded.
+static void expandIncludes(const std::string& text, std::string& out, std::vector<std::string>& included, int depth)
+{
+  if (depth > 16) throw Error("kernel headers include each other more than 16 deep");
+  const std::string directive = "#include \"";
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    end = end == std::string::npos ? text.size() : end + 1;
+    const std::string line = text.substr(begin, end - begin);
+    if (line.compare(0, directive.size(), directive) == 0) {
+      const std::string name = line.substr(directive.size(), line.find('"', directive.size()) - directive.size());
+      const EmbeddedKernel* header = nullptr;
+      for (size_t i = 0; i < kEmbeddedKernelCount; ++i)
+        if (name == kEmbeddedKernels[i].name) header = &kEmbeddedKernels[i];
+      if (!header) throw Error("kernel source includes " + userText(name) + ", which is not embedded (CMakeLists.txt)");
+      included.push_back(name);
+      expandIncludes(header->text, out, included, depth + 1);
+      out += "\n";
+    } else {
+      out += line;
+    }
+    begin = end;
+  }
+}
+
+std::string programSource()
+{
+  // Step 1: the .cl files, expanded, and the headers they include.
+  std::string body;
+  std::vector<std::string> included;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) {
+    const std::string name = kEmbeddedKernels[i].name;
+    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".cl") == 0)
+      expandIncludes(kEmbeddedKernels[i].text, body, included, 0);
+  }
+  // Step 2: the prelude, the headers no .cl file includes, in embedding order.
+  std::string prelude;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) {
+    const std::string name = kEmbeddedKernels[i].name;
+    const bool source = name.size() > 3 && name.compare(name.size() - 3, 3, ".cl") == 0;
+    if (!source && std::find(included.begin(), included.end(), name) == included.end())
+      prelude += kEmbeddedKernels[i].text;
+  }
+  return prelude + body;
+}
+
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options, bool extras)
 {
   // Step 1: the program cache's binary for these sources, options and driver, if it holds one.
   const std::string fullOptions = programOptions(options, extras);
   if (cl::Program cached = loadCachedProgram(context, device, fullOptions); cached()) return cached;
-  // Step 2: the embedded sources, in dependency order.
-  cl::Program::Sources sources;
-  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) sources.push_back(kEmbeddedKernels[i].text);
-  cl::Program program(context, sources);
+  // Step 2: the embedded sources, their includes resolved (programSource).
+  cl::Program program(context, programSource());
   // Step 3: build; on failure report the device's log.
   try {
     program.build({device}, fullOptions.c_str());

@@ -1,4 +1,4 @@
-// setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
+// setup.cpp — host side of kernels/setup.cl (and clip.h): count the screen
 // triangles each input triangle yields (and, for binning, the tiles each
 // unclipped one touches), scan the counts into the list of the input
 // triangle behind each setup record, size the setup and ClipBary buffers
