@@ -380,66 +380,26 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
  * |E| <= W·(H + 2^8) + H·(W + 2^13) < 2^29 + 2^27 + 2^23 for W, H <= 2^14. */
 #define CLR_EDGE32_SPAN (1 << 14)
 
-/* Rows rowBegin .. rowEnd of one tile column, the first at sample y
- * firstSy: the edge functions are evaluated once and stepped by their exact
- * row increment (bx − ax)·ONE. Defined twice by the macro, with one body:
- * raster_rows_fixed in 64-bit lanes, raster_rows_fixed32 in 32-bit lanes
- * (stepped modulo 2^32, read as ints: signedL) for a triangle within
- * CLR_EDGE32_SPAN or rows that raster_segment_rows admits; the barycentrics
- * convert the same integers. Coverage by traversal: the edge test (or every
- * sample with acceptAll), the exact span, or the float walk from the
- * tile's first row, firstSy − rowBegin·ONE. skipEmptyRows: an empty row
- * skips the depth test, which pays where empty rows come in long runs
- * (large triangles) and not where they are few (bench/ab.sh). */
-#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, signedL, signedEdge, edgeFunction, toIntL, skipEmptyRows)      \
-  CLR_HOT void name(CLR_RECORD_SPACE const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,  \
-                    RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll, const uint traversal) \
-  {                                                                                                              \
-    edgeL e0 = edgeFunction(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);                                    \
-    edgeL e1 = edgeFunction(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);                                    \
-    edgeL e2 = edgeFunction(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);                                    \
-    const edge step0 = (edge)(t->x[2] - t->x[1]) * CLR_FIXED_ONE;                                                \
-    const edge step1 = (edge)(t->x[0] - t->x[2]) * CLR_FIXED_ONE;                                                \
-    const edge step2 = (edge)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;                                                \
-    const signedEdge low0 = -(signedEdge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                          \
-    const signedEdge low1 = -(signedEdge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                          \
-    const signedEdge low2 = -(signedEdge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                          \
-    const float invArea2 = CLR_RECORD_INV_AREA2(*t);                                                             \
-    const int firstSx = CLR_LANE0(sx);                                                                           \
-    Spans sp;                                                                                                    \
-    Walk w;                                                                                                      \
-    if (traversal == CLR_TRAVERSAL_SPANS) sp = spans_begin(t, firstSx, firstSy, true);                           \
-    if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                                \
-      w = walk_begin(t, (float)(firstSy - rowBegin * CLR_FIXED_ONE) * (1.0f / CLR_FIXED_ONE));                   \
-      for (int row = 0; row < rowBegin; ++row) w.x += w.step;                                                    \
-    }                                                                                                            \
-    for (int row = rowBegin; row <= rowEnd; ++row) {                                                             \
-      intL inside = (intL)(-1);                                                                                  \
-      bool any = true;                                                                                           \
-      if (traversal == CLR_TRAVERSAL_SPANS) {                                                                    \
-        const int2 span = spans_row(&sp);                                                                        \
-        inside = (CLR_LANE_INDEX >= (intL)span.x) & (CLR_LANE_INDEX <= (intL)span.y);                            \
-        any = span.x <= span.y;                                                                                  \
-        spans_step(&sp);                                                                                         \
-      } else if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                       \
-        inside = walk_inside(&w, sx, firstSy + (row - rowBegin) * CLR_FIXED_ONE);                                \
-        any = CLR_ANY(inside);                                                                                   \
-        w.x += w.step;                                                                                           \
-      } else if (!acceptAll) {                                                                                   \
-        inside = toIntL((signedL(e0) > low0) & (signedL(e1) > low1) & (signedL(e2) > low2));                     \
-        any = !(skipEmptyRows) || CLR_ANY(inside);                                                               \
-      }                                                                                                          \
-      if (any)                                                                                                   \
-        raster_depth_test(t, s, inside, convert_floatL(signedL(e1)) * invArea2,                                  \
-                          convert_floatL(signedL(e2)) * invArea2, &best[row], rule, rank);                       \
-      e0 += step0;                                                                                               \
-      e1 += step1;                                                                                               \
-      e2 += step2;                                                                                               \
-    }                                                                                                            \
-  }
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, , long, edge_function, convert_intL, true)
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, uintL, uint, as_intL, int, edge_function32, , false)
-#undef CLR_DEFINE_RASTER_ROWS
+/* raster_rows_fixed (64-bit lanes) and raster_rows_fixed32 (32-bit lanes, modulo 2^32): one row loop, raster_rows.h,
+ * specialised by the macros defined before each include. */
+#define CLR_ROWS_NAME raster_rows_fixed
+#define CLR_ROWS_EDGE_L longL
+#define CLR_ROWS_EDGE long
+#define CLR_ROWS_SIGNED_L(v) (v)
+#define CLR_ROWS_SIGNED_EDGE long
+#define CLR_ROWS_EDGE_FUNCTION edge_function
+#define CLR_ROWS_TO_INT_L(m) convert_intL(m)
+#define CLR_ROWS_SKIP_EMPTY true
+#include "raster_rows.h"
+#define CLR_ROWS_NAME raster_rows_fixed32
+#define CLR_ROWS_EDGE_L uintL
+#define CLR_ROWS_EDGE uint
+#define CLR_ROWS_SIGNED_L(v) as_intL(v)
+#define CLR_ROWS_SIGNED_EDGE int
+#define CLR_ROWS_EDGE_FUNCTION edge_function32
+#define CLR_ROWS_TO_INT_L(m) (m)
+#define CLR_ROWS_SKIP_EMPTY false
+#include "raster_rows.h"
 
 /* For a large triangle's row segment of CLR_LANES samples from sample x
  * firstSx (row r at sample y (firstY + r)·ONE + centreY): narrows rows
@@ -685,8 +645,9 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
 
-/* Local memory is declared at kernel scope (OpenCL 1.2): 256 records of 48
- * bytes, their bounds, nearest keys and two words each, 19 KB. */
+/* Local memory is declared at kernel scope (OpenCL 1.2): 256 records of 36
+ * bytes, their bounds, nearest keys and two words each, 16 KB (host
+ * deviceNeeds, device.h, checks the device has it). */
 #define CLR_RASTER_KERNEL(name, edgeMode, traversal)                                                           \
   __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void name(CLR_RASTER_PARAMS) \
   {                                                                                                            \
