@@ -15,7 +15,7 @@
  * are few (bench/ab.sh), so only the 64-bit loop does.
  */
 CLR_HOT void CLR_ROWS_NAME(CLR_RECORD_SPACE const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,
-                  RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll, const uint traversal)
+                           RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll, const uint traversal)
 {
   CLR_ROWS_EDGE_L e0 = CLR_ROWS_EDGE_FUNCTION(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);
   CLR_ROWS_EDGE_L e1 = CLR_ROWS_EDGE_FUNCTION(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);
@@ -48,7 +48,8 @@ CLR_HOT void CLR_ROWS_NAME(CLR_RECORD_SPACE const TriSetup* t, uint s, intL sx, 
       any = CLR_ANY(inside);
       w.x += w.step;
     } else if (!acceptAll) {
-      inside = CLR_ROWS_TO_INT_L((CLR_ROWS_SIGNED_L(e0) > low0) & (CLR_ROWS_SIGNED_L(e1) > low1) & (CLR_ROWS_SIGNED_L(e2) > low2));
+      inside = CLR_ROWS_TO_INT_L((CLR_ROWS_SIGNED_L(e0) > low0) & (CLR_ROWS_SIGNED_L(e1) > low1) &
+                                 (CLR_ROWS_SIGNED_L(e2) > low2));
       any = !CLR_ROWS_SKIP_EMPTY || CLR_ANY(inside);
     }
     if (any)
