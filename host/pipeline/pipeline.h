@@ -13,6 +13,7 @@
 
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
+#include "pipeline/device_scene.h"
 #include "pipeline/frame_settings.h"
 #include "pipeline/kernel_args.h"
 #include "io/scene.h"
@@ -138,7 +139,10 @@ struct FrameStats {
   bool speculative = false, speculationMissed = false;
 };
 
-class Pipeline {
+// The frame driver over a DeviceScene (device_scene.h): the frame's
+// buffers, the stages in order, speculation, and the read-backs of each
+// stage's output for tests, tools and the API.
+class Pipeline : public DeviceScene {
  public:
   explicit Pipeline(ClContext& cl);
   ~Pipeline();
@@ -151,25 +155,9 @@ class Pipeline {
   // (readSetup's and readClipBary's triangles, readClipPositions' order,
   // paintOrder, the id shading and AOV) speaks of the file's order.
   void uploadScene(const Mesh& mesh);
-  // Whether uploadScene lays scenes out (default); tests compare with the
-  // file's own order.
-  void setLayout(bool on) { layoutOn_ = on; }
   // Whether render() may size a frame from the last one's totals (default;
   // see runFrame). Off, every frame waits for its counts mid-frame.
   void setSpeculation(bool on) { speculationOn_ = on; }
-  // The milliseconds of the last uploadScene: the layout, the cluster bounds
-  // and the uploads (--stats prepare_ms).
-  double prepareMs() const { return prepareMs_; }
-
-  // What is on the device now, kResident* bits (for tests).
-  enum : uint32_t {
-    kResidentNormals = 1,
-    kResidentUvs = 2,
-    kResidentColors = 4,
-    kResidentMaterials = 8,  // the materials, and each triangle's unless they are all one
-    kResidentTextures = 16,  // descriptors and texels, once per scene
-  };
-  uint32_t resident() const { return resident_; }
 
   // The library's rasterize (api.cpp), on a ClContext built with clipInput:
   // clip-space positions (4 floats per vertex) and triangles whose indices
@@ -231,7 +219,6 @@ class Pipeline {
   const std::vector<uint32_t>& paintOrder() const { return paintOrder_; }
 
   const FrameParams& params() const { return params_; }
-  size_t deviceBytes() const { return memory_.bytesAllocated; }
   // Bytes per pixel of the per-sample buffers and the image of this frame:
   // per sample of a covered tile 2, 3 or 4 (the visibility buffer's setup
   // index, visIndexBits), 12 more with its depth and barycentric planes,
@@ -243,7 +230,6 @@ class Pipeline {
     return perSample * params_.samples * usedVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
-  const ClContext& cl() const { return cl_; }
 
  private:
   // beginFrame to resolve (and lines): the frame of both render()s.
@@ -349,21 +335,13 @@ class Pipeline {
   void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* stage);
   void launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage);
   void launchPixels(cl::Kernel& kernel, const char* stage);
-  // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
-  // unless the scene's bounds reach behind the eye or well beyond the view.
-  float clusterMargin(const glm::mat4& mvp) const;
   // A kernel of the extras program (ClContext::extras), created in `kernel`
   // at its first use.
   cl::Kernel& extraKernel(cl::Kernel& kernel, const char* name);
   // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
   // and uploads each triangle's rank to paintRank_.
   void sortForPainter();
-  // Uploads what this frame's shading reads and is not resident yet, and
-  // returns the FrameParams.sceneFlags it binds.
-  uint32_t bindAttributes(const FrameSettings& settings);
 
-  ClContext& cl_;
-  DeviceMemory memory_;
   FrameParams params_{};
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
@@ -386,7 +364,6 @@ class Pipeline {
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
   PrefetchChooser prefetchChooser_;
-  uint64_t sceneUploads_ = 0;        // counts uploadScene calls: part of PrefetchChooser's case
   uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
   uint64_t numBinEntries_ = 0;
@@ -402,13 +379,6 @@ class Pipeline {
     uint32_t on, records, bins, slots;
   } specCaps_{};
   std::vector<uint32_t> endCounters_;
-  Mesh scene_;  // host copy, laid out: lazy uploads read it
-  bool layoutOn_ = true;
-  double prepareMs_ = 0;
-  std::vector<uint32_t> fileTriHost_, laidVertex_;  // the layout's maps (layout.h)
-  bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
-  uint32_t resident_ = 0;                           // kResident* bits
-  bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
@@ -418,17 +388,6 @@ class Pipeline {
       rastOutputsKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
-  DeviceBuffer<float> positions_, normals_, uvs_, colors_;
-  DeviceBuffer<float> clusterBounds_;    // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
-  DeviceBuffer<uint32_t> clusterCount_;  // their setup counts' sums (shared.h), CPU work shape; else a dummy
-  // The bounds of the scene's finite vertices (empty: min > max), for
-  // FrameParams.clusterMargin.
-  glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};
-  DeviceBuffer<uint32_t> indices_, triMaterial_;
-  DeviceBuffer<uint32_t> fileTri_;  // each laid-out triangle's index in the file (shared.h)
-  DeviceBuffer<Material> materials_;
-  DeviceBuffer<TextureDesc> texDescs_;
-  DeviceBuffer<uint32_t> texels_;
   DeviceBuffer<cl_float4> clipPos_;
   DeviceBuffer<uint8_t> triCount_;  // setup counts, see shared.h
   DeviceBuffer<uint32_t> counters_;

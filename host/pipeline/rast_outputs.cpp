@@ -12,23 +12,9 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   if (!cl_.clipInput) throw Error("uploadClipScene needs a context built for clip-space input");
   if (numTris > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("too many triangles");
   if (numVerts > UINT32_MAX / 4) throw Error("too many vertices");
-  ++sceneUploads_;
+  placeClipScene(positions, numVerts, indices, numTris);
   framedScene_ = false;
-  positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
-  indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
-  // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
-  fileTriHost_.clear();
-  laidVertex_.clear();
-  fileOrder_ = true;
-  fileTri_.reserve(1);
-  // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
-  clusterBounds_.upload(std::vector<float>(6, NAN));
-  clusterCount_.reserve(1);
-  sceneMin_ = glm::vec3(INFINITY);
-  sceneMax_ = glm::vec3(-INFINITY);
   paintOrder_.clear();
-  scene_ = Mesh{};
-  resident_ = 0;
   triCount_.reserve(numTris, true);
   params_.numVerts = uint32_t(numVerts);
   params_.numTris = uint32_t(numTris);
