@@ -1,11 +1,5 @@
-/* transform.cl — stage 1: vertex transform, clip = mvp · (x, y, z, 1).
- *
- * Sums run in a fixed order with contraction off, so the test oracle reproduces them bit for bit. Frames transform
- * where setup reads (transform_vertex, transform_lanes), so no buffer holds clip positions; the kernel
- * transform_vertices writes them (one work-item per vertex) for the painter's sort and tests: the same floats.
- *
- * With -D CLR_CLIP_INPUT=1 (the library's rasterize, host/api/api.cpp) positions are clip-space float4 already and
- * transform_vertex reads them unchanged: every later stage is the frame's.
+/* transform.cl — stage 1: transform_vertices writes clip = mvp · (x, y, z, 1) of every vertex (one work-item each)
+ * for the painter's sort and tests; frames transform where setup reads instead (transform.h, the same floats).
  */
 #include "transform.h"
 

@@ -1,6 +1,9 @@
 /* transform.h — the vertex transform every stage that reads positions shares: clip = mvp · (x, y, z, 1) for one
  * vertex or a lane of them, 1/w of a record's vertices, and the position stride of -D CLR_CLIP_INPUT (clip-space
  * input, the library's rasterize). Used by transform.cl, setup.cl, clip.h, resolve.h, aov.cl and rast_outputs.cl.
+ * Sums run in a fixed order with contraction off, so the test oracle reproduces them bit for bit. With
+ * -D CLR_CLIP_INPUT=1 (host/api/api.cpp) positions are clip-space float4 already and transform_vertex reads them
+ * unchanged: every later stage is the frame's.
  */
 #ifndef CLR_TRANSFORM_H
 #define CLR_TRANSFORM_H
