@@ -23,6 +23,7 @@
  * Background: all zero.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "vis.h"
 #include "transform.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 

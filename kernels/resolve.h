@@ -7,6 +7,7 @@
 #define CLR_RESOLVE_H
 #include "transform.h"
 #include "shade.h"
+#include "vis.h"
 
 /* RGBA8 (R in the low byte, alpha 255) from colour channels in [0, 1]. */
 CLR_INLINE uintL pack_rgba(floatL r, floatL g, floatL b)
