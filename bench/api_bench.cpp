@@ -22,8 +22,9 @@
 // Prints one JSON line with ratio = rasterize_ms / cli_ms and the median
 // device time of each stage of both (OpenCL profiling).
 #include "render/flags.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "procedural.h"
+#include "pipeline/pipeline.h"
 
 #include <clraster/clraster.hpp>
 
@@ -115,7 +116,7 @@ int main(int argc, char** argv)
     auto rasterFrame = [&] {
       raster.beginFrame(rasterSettings);
       raster.setup();
-      raster.bin();
+      raster.setupEmit();
       raster.raster();
       raster.rastOutputs(false, false);
       raster.readRastOutputs(rast.data(), nullptr, nullptr);

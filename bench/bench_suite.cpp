@@ -23,7 +23,7 @@
 #include "render/flags.h"
 #include "pipeline/cl.h"
 #include "pipeline/device.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "io/image_io.h"
 #include "pipeline/layout.h"
 #include "pipeline/pipeline.h"

@@ -20,7 +20,7 @@
 #include "pipeline/layout.h"
 #include "pipeline/pipeline.h"
 #include "render/flags.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 
 #include <embree3/rtcore.h>
 #include <glm/gtc/matrix_transform.hpp>

@@ -92,7 +92,7 @@ void fixHeapTrimThreshold()
 
 namespace {
 
-// clraster's lambert shade per pixel (resolve.cl, shade.cl), in GLSL 1.20:
+// clraster's lambert shade per pixel (resolve.cl, shade.h), in GLSL 1.20:
 // the normal interpolated with the 1/w rule (GL's smooth varyings), made
 // unit (the eye-facing one when zero) and flipped on back faces, then
 // albedo · (0.12 + 0.88 · max(n·l, 0)).

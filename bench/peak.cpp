@@ -17,6 +17,7 @@
 #include "pipeline/cl.h"
 #include "render/flags.h"
 #include "pipeline/device.h"
+#include "pipeline/pipeline.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -8,6 +8,8 @@
  * Background: id −1, barycentrics 0, z/w 1, eye depth +inf, normal 0.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "vis.h"
+#include "transform.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 __kernel void aov(__constant FrameParams* params,

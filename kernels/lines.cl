@@ -14,6 +14,7 @@
  * so visible edges pass and hidden ones fail.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "vis.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 /* The three edges of every setup record. A clipped sub-triangle keeps only edges on an input edge (both ends weigh

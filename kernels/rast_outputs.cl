@@ -23,6 +23,8 @@
  * Background: all zero.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "vis.h"
+#include "transform.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 #define CLR_RAST_OUT_IDS 1u

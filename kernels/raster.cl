@@ -17,6 +17,8 @@
  * (CLR_VISIBILITY_PAINTER, ranks from host raster.cpp).
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "bin.h"
+#include "vis.h"
 
 #if CLR_TILE_SIZE % CLR_LANES != 0
 #error "CLR_LANES must divide CLR_TILE_SIZE"
@@ -379,66 +381,26 @@ CLR_INLINE uintL edge_function32(int ax, int ay, int bx, int by, intL px, int py
  * |E| <= W·(H + 2^8) + H·(W + 2^13) < 2^29 + 2^27 + 2^23 for W, H <= 2^14. */
 #define CLR_EDGE32_SPAN (1 << 14)
 
-/* Rows rowBegin .. rowEnd of one tile column, the first at sample y
- * firstSy: the edge functions are evaluated once and stepped by their exact
- * row increment (bx − ax)·ONE. Defined twice by the macro, with one body:
- * raster_rows_fixed in 64-bit lanes, raster_rows_fixed32 in 32-bit lanes
- * (stepped modulo 2^32, read as ints: signedL) for a triangle within
- * CLR_EDGE32_SPAN or rows that raster_segment_rows admits; the barycentrics
- * convert the same integers. Coverage by traversal: the edge test (or every
- * sample with acceptAll), the exact span, or the float walk from the
- * tile's first row, firstSy − rowBegin·ONE. skipEmptyRows: an empty row
- * skips the depth test, which pays where empty rows come in long runs
- * (large triangles) and not where they are few (bench/ab.sh). */
-#define CLR_DEFINE_RASTER_ROWS(name, edgeL, edge, signedL, signedEdge, edgeFunction, toIntL, skipEmptyRows)      \
-  CLR_HOT void name(CLR_RECORD_SPACE const TriSetup* t, uint s, intL sx, int firstSy, int rowBegin, int rowEnd,  \
-                    RowBest* best, const DepthRule* rule, uint rank, const bool acceptAll, const uint traversal) \
-  {                                                                                                              \
-    edgeL e0 = edgeFunction(t->x[1], t->y[1], t->x[2], t->y[2], sx, firstSy);                                    \
-    edgeL e1 = edgeFunction(t->x[2], t->y[2], t->x[0], t->y[0], sx, firstSy);                                    \
-    edgeL e2 = edgeFunction(t->x[0], t->y[0], t->x[1], t->y[1], sx, firstSy);                                    \
-    const edge step0 = (edge)(t->x[2] - t->x[1]) * CLR_FIXED_ONE;                                                \
-    const edge step1 = (edge)(t->x[0] - t->x[2]) * CLR_FIXED_ONE;                                                \
-    const edge step2 = (edge)(t->x[1] - t->x[0]) * CLR_FIXED_ONE;                                                \
-    const signedEdge low0 = -(signedEdge)edge_bias(t->x[1], t->y[1], t->x[2], t->y[2]);                          \
-    const signedEdge low1 = -(signedEdge)edge_bias(t->x[2], t->y[2], t->x[0], t->y[0]);                          \
-    const signedEdge low2 = -(signedEdge)edge_bias(t->x[0], t->y[0], t->x[1], t->y[1]);                          \
-    const float invArea2 = CLR_RECORD_INV_AREA2(*t);                                                             \
-    const int firstSx = CLR_LANE0(sx);                                                                           \
-    Spans sp;                                                                                                    \
-    Walk w;                                                                                                      \
-    if (traversal == CLR_TRAVERSAL_SPANS) sp = spans_begin(t, firstSx, firstSy, true);                           \
-    if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                                \
-      w = walk_begin(t, (float)(firstSy - rowBegin * CLR_FIXED_ONE) * (1.0f / CLR_FIXED_ONE));                   \
-      for (int row = 0; row < rowBegin; ++row) w.x += w.step;                                                    \
-    }                                                                                                            \
-    for (int row = rowBegin; row <= rowEnd; ++row) {                                                             \
-      intL inside = (intL)(-1);                                                                                  \
-      bool any = true;                                                                                           \
-      if (traversal == CLR_TRAVERSAL_SPANS) {                                                                    \
-        const int2 span = spans_row(&sp);                                                                        \
-        inside = (CLR_LANE_INDEX >= (intL)span.x) & (CLR_LANE_INDEX <= (intL)span.y);                            \
-        any = span.x <= span.y;                                                                                  \
-        spans_step(&sp);                                                                                         \
-      } else if (traversal == CLR_TRAVERSAL_SPANS_FLOAT) {                                                       \
-        inside = walk_inside(&w, sx, firstSy + (row - rowBegin) * CLR_FIXED_ONE);                                \
-        any = CLR_ANY(inside);                                                                                   \
-        w.x += w.step;                                                                                           \
-      } else if (!acceptAll) {                                                                                   \
-        inside = toIntL((signedL(e0) > low0) & (signedL(e1) > low1) & (signedL(e2) > low2));                     \
-        any = !(skipEmptyRows) || CLR_ANY(inside);                                                               \
-      }                                                                                                          \
-      if (any)                                                                                                   \
-        raster_depth_test(t, s, inside, convert_floatL(signedL(e1)) * invArea2,                                  \
-                          convert_floatL(signedL(e2)) * invArea2, &best[row], rule, rank);                       \
-      e0 += step0;                                                                                               \
-      e1 += step1;                                                                                               \
-      e2 += step2;                                                                                               \
-    }                                                                                                            \
-  }
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed, longL, long, , long, edge_function, convert_intL, true)
-CLR_DEFINE_RASTER_ROWS(raster_rows_fixed32, uintL, uint, as_intL, int, edge_function32, , false)
-#undef CLR_DEFINE_RASTER_ROWS
+/* raster_rows_fixed (64-bit lanes) and raster_rows_fixed32 (32-bit lanes, modulo 2^32): one row loop, raster_rows.h,
+ * specialised by the macros defined before each include. */
+#define CLR_ROWS_NAME raster_rows_fixed
+#define CLR_ROWS_EDGE_L longL
+#define CLR_ROWS_EDGE long
+#define CLR_ROWS_SIGNED_L(v) (v)
+#define CLR_ROWS_SIGNED_EDGE long
+#define CLR_ROWS_EDGE_FUNCTION edge_function
+#define CLR_ROWS_TO_INT_L(m) convert_intL(m)
+#define CLR_ROWS_SKIP_EMPTY true
+#include "raster_rows.h"
+#define CLR_ROWS_NAME raster_rows_fixed32
+#define CLR_ROWS_EDGE_L uintL
+#define CLR_ROWS_EDGE uint
+#define CLR_ROWS_SIGNED_L(v) as_intL(v)
+#define CLR_ROWS_SIGNED_EDGE int
+#define CLR_ROWS_EDGE_FUNCTION edge_function32
+#define CLR_ROWS_TO_INT_L(m) (m)
+#define CLR_ROWS_SKIP_EMPTY false
+#include "raster_rows.h"
 
 /* For a large triangle's row segment of CLR_LANES samples from sample x
  * firstSx (row r at sample y (firstY + r)·ONE + centreY): narrows rows
@@ -485,67 +447,6 @@ CLR_INLINE bool raster_segment_rows(CLR_RECORD_SPACE const TriSetup* t, int firs
   return (fits.x & fits.y & fits.z) != 0;
 }
 
-/* The visibility buffer's index entries (shared.h, visIndex): 16 or 24 bits
- * (all ones for none, 24 as a low half and a high byte in planes of their
- * own) or 32, by FrameParams.visIndexBits; i counts entries.
- * vis_load_index_lanes returns the lanes as a vector too: use that, not a
- * reload of `lanes`, which would wait for the split store. */
-CLR_INLINE uint vis_index_at(__constant FrameParams* params, __global const uint* visIndex, uint i)
-{
-  const uint bits = params->visIndexBits;
-  if (bits == 16) {
-    const uint v = ((__global const ushort*)visIndex)[i];
-    return v == 0xFFFFu ? CLR_NONE : v;
-  }
-  if (bits == 32) return visIndex[i];
-  const uint v =
-      ((__global const ushort*)visIndex)[i] | (uint)((__global const uchar*)visIndex)[2 * params->visEntries + i] << 16;
-  return v == 0xFFFFFFu ? CLR_NONE : v;
-}
-CLR_INLINE uintL vis_load_index_lanes(__constant FrameParams* params, __global const uint* visIndex, uint i, uint count,
-                                      uint* lanes)
-{
-  if (count < CLR_LANES) {
-    for (uint lane = 0; lane < CLR_LANES; ++lane)
-      lanes[lane] = lane < count ? vis_index_at(params, visIndex, i + lane) : CLR_NONE;
-    return CLR_LOAD_LANES(lanes);  // the viewport's edge
-  }
-  const uint bits = params->visIndexBits;
-  uintL v;
-  if (bits == 16) {
-    const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i));
-    v = select(wide, (uintL)CLR_NONE, wide == 0xFFFFu);
-  } else if (bits == 32) {
-    v = CLR_LOAD_LANES(visIndex + i);
-  } else {
-    const uintL wide = convert_uintL(CLR_LOAD_LANES((__global const ushort*)visIndex + i)) |
-                       convert_uintL(CLR_LOAD_LANES((__global const uchar*)visIndex + 2 * params->visEntries + i))
-                           << 16;
-    v = select(wide, (uintL)CLR_NONE, wide == 0xFFFFFFu);
-  }
-  CLR_STORE_LANES(v, lanes);
-  return v;
-}
-CLR_INLINE void vis_store_index_lanes(__constant FrameParams* params, uintL index, __global uint* visIndex, uint i)
-{
-  const uint bits = params->visIndexBits;
-  if (bits == 32) {
-    CLR_STORE_LANES(index, visIndex + i);
-    return;
-  }
-  // The low halves, then for 24 bits the high bytes (conversions keep the low bits: CLR_NONE gives all ones).
-#if CLR_LANES == 16
-  // One aligned vector store each (i is a multiple of 16: vis_address; so is
-  // 2·visEntries); vstore16 of ushorts compiles to 16 scalar stores on PoCL.
-  *(__global ushort16*)((__global ushort*)visIndex + i) = convert_ushort16(index);
-  if (bits == 24)
-    *(__global uchar16*)((__global uchar*)visIndex + 2 * params->visEntries + i) = convert_uchar16(index >> 16);
-#else
-  CLR_STORE_LANES(convert_ushortL(index), (__global ushort*)visIndex + i);
-  if (bits == 24) CLR_STORE_LANES(convert_ucharL(index >> 16), (__global uchar*)visIndex + 2 * params->visEntries + i);
-#endif
-}
-
 /* Writes a row segment into sample plane k at address a: the index plane,
  * and the depth and barycentric planes when the frame has them. Lanes past
  * the viewport's edge are stored too (the tile's block has room) and never
@@ -562,35 +463,6 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, 
   CLR_STORE_LANES(windowDepth, &visAttr[3 * k * visPlane + a]);
   CLR_STORE_LANES(best->b1, &visAttr[(3 * k + 1) * visPlane + a]);
   CLR_STORE_LANES(best->b2, &visAttr[(3 * k + 2) * visPlane + a]);
-}
-
-/* The edge function with a and b per lane: edge_function's integers. */
-CLR_INLINE longL edge_function_lanes(intL ax, intL ay, intL bx, intL by, intL px, int py)
-{
-  return convert_longL(bx - ax) * convert_longL(py - ay) - convert_longL(by - ay) * convert_longL(px - ax);
-}
-
-/* The screen barycentrics b1, b2 that raster kept with fixed edges, for
- * resolve when the frame has no barycentric planes: the same integers E1,
- * E2, so bit-identical floats. In 32 bits when every covered lane's scale
- * is at least 2^-30: a covered sample's E lies in [0, 2·area], and
- * scale = RN(1 / RN(2·area)) >= 2^-30 bounds 2·area below 2^30 + 64 < 2^31,
- * so the low 32 bits read as an int are E. Lanes outside `covered` give
- * values the caller discards. */
-CLR_INLINE void vis_barycentrics(intL x0, intL y0, intL x1, intL y1, intL x2, intL y2, floatL scale, intL covered,
-                                 intL sx, int sy, floatL* b1, floatL* b2)
-{
-  const float minScale = 1.0f / 1073741824.0f;  // 2^-30
-  if (!CLR_ANY(covered & (scale < minScale))) {
-    const uintL py = (uintL)(uint)sy, px = as_uintL(sx);
-    const uintL ax0 = as_uintL(x0), ax1 = as_uintL(x1), ax2 = as_uintL(x2);
-    const uintL ay0 = as_uintL(y0), ay1 = as_uintL(y1), ay2 = as_uintL(y2);
-    *b1 = convert_floatL(as_intL((ax0 - ax2) * (py - ay2) - (ay0 - ay2) * (px - ax2))) * scale;
-    *b2 = convert_floatL(as_intL((ax1 - ax0) * (py - ay0) - (ay1 - ay0) * (px - ax0))) * scale;
-    return;
-  }
-  *b1 = convert_floatL(edge_function_lanes(x2, y2, x0, y0, sx, sy)) * scale;
-  *b2 = convert_floatL(edge_function_lanes(x0, y0, x1, y1, sx, sy)) * scale;
 }
 
 /* The nearest key a triangle's fragments can have, for the skip of hidden
@@ -684,8 +556,9 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
   raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
 }
 
-/* Local memory is declared at kernel scope (OpenCL 1.2): 256 records of 48
- * bytes, their bounds, nearest keys and two words each, 19 KB. */
+/* Local memory is declared at kernel scope (OpenCL 1.2): 256 records of 36
+ * bytes, their bounds, nearest keys and two words each, 16 KB (host
+ * deviceNeeds, device.h, checks the device has it). */
 #define CLR_RASTER_KERNEL(name, edgeMode, traversal)                                                           \
   __kernel __attribute__((reqd_work_group_size(CLR_TILE_SIZE, CLR_TILE_SIZE, 1))) void name(CLR_RASTER_PARAMS) \
   {                                                                                                            \

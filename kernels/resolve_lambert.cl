@@ -1,10 +1,11 @@
 /* resolve_lambert.cl — stage 6's lean kernel for the default frame (lambert, one sample, perspective-correct, no
  * point light, textures or vertex colours; host resolve.cpp picks it): the general kernel's pixels bit for bit
  * (tested). Lane values are built in vector types: rows of few triangles run by run, rows of many lane by lane.
- * Row store, prefetch, background and kernel shape come from resolve.cl, which precedes this file.
+ * Row store, prefetch, background and kernel shape come from resolve.h, which both resolve kernels include.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
+#include "resolve.h"
 
 /* What resolve_lambert reads of the lanes' fragments. */
 typedef struct LambertLanes {

@@ -29,7 +29,8 @@ CLR_INLINE bool scan_frame_fits(__global const uint* counters, ulong bins, ulong
 }
 
 /* CLR_SCAN_PARTIALS: exclusive scan of partials[0 .. numChunks), total into partials[numChunks]. GPU: one
- * work-group with barriers. CPU: one work-item scans the <= 4096 sums, no barrier (barriers slow PoCL's compile). */
+ * work-group with barriers. CPU: one work-item scans the <= CLR_SCAN_MAX_CHUNKS sums, no barrier (barriers slow PoCL's
+ * compile). */
 #if CLR_LANES == 1
 CLR_INLINE void scan_partials(__global ulong* partials, uint numChunks, __local ulong* groupSums,
                               __global uint* counters, uint totalAt)

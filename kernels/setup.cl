@@ -1,15 +1,18 @@
 /* setup.cl — stage 3: triangle setup: count, scan, emit.
  *
  * Per input triangle: transform (transform.cl), cull non-finite and trivially outside, clip near-plane and
- * guard-band crossers (clip.cl), viewport (x_s = x_ndc·W/2 + W/2, y up), snap to CLR_SUBPIXEL_BITS, exact 64-bit
+ * guard-band crossers (clip.h), viewport (x_s = x_ndc·W/2 + W/2, y up), snap to CLR_SUBPIXEL_BITS, exact 64-bit
  * doubled area, cull zero-area, back-facing (if asked) and sample-free, orient counter-clockwise.
  * setup_triangles is one kernel run as two passes (one compile). Pass 1 (count) writes 0 or 1 screen triangles per
  * input, or reserves CLR_MAX_SUBTRIS and lists it for setup_clip. The scan lists each record's input triangle
  * (setupSource); setup_clip fills reserved records (unused ones CLR_FLAG_DEAD); pass 2 (emit) redoes the unclipped
  * survivors over the records, not the input, writing records and winding in input order whatever the scheduling.
- * CLR_LANES triangles per work-item (lanes.h); clipping is its own scalar kernel. Binning (bin.cl) rides along.
+ * CLR_LANES triangles per work-item (lanes.h); clipping is its own scalar kernel. Binning (bin.h) rides along.
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "transform.h"
+#include "clip.h"
+#include "bin.h"
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* CLR_LANES triangles' clip-space vertices, one lane per triangle. */
@@ -91,7 +94,7 @@ CLR_INLINE void setup_broadcast(const float4* c, ClipBatch* b)
   }
 }
 
-/* clip_outcode (clip.cl) of one vertex per lane, the same expressions. */
+/* clip_outcode (clip.h) of one vertex per lane, the same expressions. */
 CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx, float gy, float nearSign)
 {
   const uintL zero = 0;
@@ -323,7 +326,7 @@ CLR_INLINE void setup_count_none(__constant FrameParams* params, uint first, __g
 }
 
 /* Pass 2 for the same lanes: writes the `write` lanes' records, their winding into the source words, and their bin
- * entries; runs on one tile range take one atomic add per tile (BinRun, bin.cl), two-tile triangles one per tile. */
+ * entries; runs on one tile range take one atomic add per tile (BinRun, bin.h), two-tile triangles one per tile. */
 CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
                                  const SetupLanes* l, __global TriSetup* setup, __global uint* source,
                                  __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)

@@ -97,7 +97,7 @@ typedef uint32_t uint;
   ((mode) == CLR_SHADE_FLAT || (mode) == CLR_SHADE_GOURAUD || (mode) == CLR_SHADE_PHONG || \
    ((mode) == CLR_SHADE_LAMBERT && (pointLightOn)))
 
-/* FrameParams.texFilter: how base-colour textures are sampled (texture.cl). */
+/* FrameParams.texFilter: how base-colour textures are sampled (texture.h). */
 #define CLR_FILTER_NEAREST 0u
 #define CLR_FILTER_BILINEAR 1u
 #define CLR_FILTER_TRILINEAR 2u /* bilinear in the two nearest mip levels, blended */
@@ -144,16 +144,26 @@ typedef uint32_t uint;
 #define CLR_VISIBILITY_ZBUFFER 0u /* the depth test of depthMode */
 #define CLR_VISIBILITY_PAINTER 1u /* latest in far-to-near paintRank wins; beyond-far fragments still dropped */
 
-/* Work-group size of setup_triangles: 64 on a GPU; 1 on a CPU, where a work-item takes 16 triangles in vectors. */
-#define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
+/* Work-group size of the kernels launched over a plain count (transform_vertices, setup_clip, bin_fill_clipped,
+ * lines_from_setup, lines_bin_count, lines_bin_fill; host Pipeline::launchLinear), and of setup_triangles and
+ * scan_chunks in the GPU shape. */
+#define CLR_LINEAR_GROUP 64
+
+/* Work-group size of setup_triangles: CLR_LINEAR_GROUP on a GPU; 1 on a CPU, where a work-item takes 16 triangles
+ * in vectors. */
+#define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? CLR_LINEAR_GROUP : 1)
 
 /* Setup clusters (CPU shape): 6 floats of vertex bounds (min xyz, max xyz; NaN if none finite) per
  * CLR_CLUSTER_TRIS input triangles. Host writes (Pipeline::uploadScene); the count pass reads
  * (setup_cluster_outside). Size 24 bytes per 256 triangles. */
 #define CLR_CLUSTER_TRIS 256
 
-/* Work-group size of scan_chunks (scan.cl): 64 on a GPU, 1 on a CPU, as CLR_SETUP_GROUP. */
-#define CLR_SCAN_GROUP(lanes) ((lanes) == 1 ? 64 : 1)
+/* Work-group size of scan_chunks (scan.cl): as CLR_SETUP_GROUP. */
+#define CLR_SCAN_GROUP(lanes) ((lanes) == 1 ? CLR_LINEAR_GROUP : 1)
+/* How scan_chunks splits n counts (host scanChunks): at most CLR_SCAN_MAX_CHUNKS chunks, which its partials phase
+ * scans in one work-group, of at least CLR_SCAN_MIN_CHUNK counts each. */
+#define CLR_SCAN_MAX_CHUNKS 4096
+#define CLR_SCAN_MIN_CHUNK 64
 
 /* The pass argument of setup_triangles (setup.cl). */
 #define CLR_SETUP_PASS_COUNT 0u /* count screen triangles and tiles */
@@ -186,7 +196,7 @@ typedef uint32_t uint;
 #define CLR_NUM_COUNTERS 14
 #define CLR_SCAN_NO_TOTAL 0xFFFFFFFFu /* scan_chunks' totalAt: no copy among the counters */
 
-/* FrameParams[1], 368 bytes: the host writes it per frame; every kernel reads it. */
+/* FrameParams[1], 376 bytes: the host writes it per frame; every kernel reads it. */
 typedef struct FrameParams {
   float mvp[16];     /* column-major, clip = mvp · (x, y, z, 1) */
   float lightDir[4]; /* world space, unit, towards the light */

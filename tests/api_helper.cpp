@@ -11,7 +11,7 @@
 // Errors: one line on stderr, exit status 1 (runProgram).
 #include "render/camera.h"
 #include "render/flags.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "reference_raster.h"
 #include "io/scene.h"
 

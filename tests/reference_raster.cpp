@@ -31,7 +31,7 @@ float distance(const glm::vec4& c, int plane, float gx, float gy, float nearSign
 
 glm::vec4 intersect(const glm::vec4& in, const glm::vec4& out, int plane, float gx, float gy, float nearSign)
 {
-  // As clip.cl: halved values where a difference overflows, and the
+  // As clip.h: halved values where a difference overflows, and the
   // result put exactly on the plane.
   const float dIn = distance(in, plane, gx, gy, nearSign), dOut = distance(out, plane, gx, gy, nearSign);
   const float denom = dIn - dOut;

@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include "render/flags.h"
+#include "pipeline/pipeline.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>

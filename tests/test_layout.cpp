@@ -10,9 +10,10 @@
 
 #include "render/camera.h"
 #include "render/flags.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "pipeline/layout.h"
 #include "io/scene.h"
+#include "pipeline/pipeline.h"
 
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -74,7 +74,7 @@ void emptyFrame(clr::Pipeline& pipeline, uint32_t width, uint32_t height, uint32
   pipeline.beginFrame(s);
   pipeline.transform();
   pipeline.setup();
-  pipeline.bin();
+  pipeline.setupEmit();
   pipeline.raster();
   pipeline.resolve();
 }

@@ -75,16 +75,13 @@ TEST_CASE("scan_chunks gives exclusive sums and non-zero counts and lists setup 
       const cl::NDRange group(CLR_SCAN_GROUP(ctx.lanes));
       for (uint32_t phase : {CLR_SCAN_REDUCE, CLR_SCAN_PARTIALS, CLR_SCAN_APPLY}) {
         cl::Kernel kernel(ctx.program, "scan_chunks");
-        cl_uint a = 0;
-        kernel.setArg(a++, data), kernel.setArg(a++, data), kernel.setArg(a++, items), kernel.setArg(a++, c.size);
-        kernel.setArg(a++, c.count), kernel.setArg(a++, partials), kernel.setArg(a++, second);
-        kernel.setArg(a++, counts), kernel.setArg(a++, counters);
-        kernel.setArg(a++, uint32_t(CLR_COUNTER_SETUP_TOTAL)), kernel.setArg(a++, uint32_t(CLR_COUNTER_SLOT_TOTAL));
-        const uint32_t listMode = byCluster ? CLR_SCAN_LIST_CLUSTERS
-                                  : listing ? CLR_SCAN_LIST_BYTES
-                                            : CLR_SCAN_LIST_NONE;
-        kernel.setArg(a++, phase), kernel.setArg(a++, uint32_t(alsoNonZero)), kernel.setArg(a++, listMode);
-        kernel.setArg(a++, n);
+        clr::ScanChunksArgs args;
+        args.src = data, args.dst = data, args.n = items, args.chunk = c.size, args.numChunks = c.count;
+        args.partials = partials, args.second = second, args.byteCounts = counts, args.counters = counters;
+        args.totalAt = CLR_COUNTER_SETUP_TOTAL, args.nonZeroTotalAt = CLR_COUNTER_SLOT_TOTAL, args.phase = phase;
+        args.alsoNonZero = alsoNonZero, args.listEnd = n;
+        args.listSources = byCluster ? CLR_SCAN_LIST_CLUSTERS : listing ? CLR_SCAN_LIST_BYTES : CLR_SCAN_LIST_NONE;
+        clr::setKernelArgs(kernel, args);
         const cl::NDRange items = phase == CLR_SCAN_PARTIALS ? group : clr::scanChunkItems(ctx.lanes, c.count);
         ctx.queue.enqueueNDRangeKernel(kernel, cl::NullRange, items, group);
       }

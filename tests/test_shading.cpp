@@ -1,4 +1,4 @@
-// test_shading.cpp — the shading modes of resolve (kernels/shade.cl) against
+// test_shading.cpp — the shading modes of resolve (kernels/shade.h) against
 // the same formulas evaluated on the host in double precision, anti-aliasing
 // with every mode, and the lazy attribute uploads of Pipeline.
 #include "test_support.h"
@@ -17,7 +17,7 @@ namespace {
 
 constexpr uint32_t W = 64, H = 64;
 
-// Lighting constants of kernels/shade.cl.
+// Lighting constants of kernels/shade.h.
 constexpr double kAmbient = 0.12, kDiffuse = 0.88, kSpecular = 0.4, kShininess = 32.0;
 const glm::dvec3 kGrey(0.80, 0.78, 0.74);
 
@@ -71,7 +71,7 @@ struct Scene {
   }
 };
 
-// Diffuse and specular sums of shade.cl at point p, unit normal nrm.
+// Diffuse and specular sums of shade.h at point p, unit normal nrm.
 void hostLights(const Scene& s, bool pointLight, glm::dvec3 nrm, glm::dvec3 p, double& diffuse, double& specular)
 {
   const glm::dvec3 view = glm::normalize(s.eye - p);
@@ -94,7 +94,7 @@ glm::dvec2 uvAt(const Scene& s, glm::dvec3 mu)
   return mu.x * s.uv[0] + mu.y * s.uv[1] + mu.z * s.uv[2];
 }
 
-// The checker's grey (shade.cl: 1/8 squares, 0.9 and 0.25) at uv.
+// The checker's grey (kernels/shade.h: 1/8 squares, 0.9 and 0.25) at uv.
 double checkerGrey(glm::dvec2 uv)
 {
   return (int(std::floor(uv.x * 8.0)) + int(std::floor(uv.y * 8.0))) % 2 ? 0.25 : 0.9;

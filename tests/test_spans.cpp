@@ -7,10 +7,11 @@
 #include "render/camera.h"
 #include "render/flags.h"
 #include "cli_support.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "render/quality.h"
 #include "io/scene.h"
 #include "stability_scenes.h"
+#include "pipeline/pipeline.h"
 
 #include <catch2/catch.hpp>
 

@@ -109,7 +109,7 @@ TEST_CASE("stability: triangles at the fixed-point limits match the oracle", "[s
 TEST_CASE("stability: huge finite vertices are clipped to the guard band exactly", "[stability][clip]")
 {
   // Triangles with vertices at 1e20 and 3e38 contain the whole guard band.
-  // Without clip.cl's intersections exactly on the plane and its halved
+  // Without clip.h's intersections exactly on the plane and its halved
   // overflowing differences, the first covers half of the viewport
   // (rounding at 1e20 is 2^43) and the second nothing (6e38 overflows).
   const uint32_t W = 32, H = 32;

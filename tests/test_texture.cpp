@@ -1,5 +1,5 @@
 // test_texture.cpp — base-colour textures: nearest, bilinear and trilinear
-// sampling (kernels/texture.cl) against the formulas on crafted textures,
+// sampling (kernels/texture.h) against the formulas on crafted textures,
 // wrap modes, mip chains (host/io/texture.cpp), a glTF with an embedded texture
 // and the warnings for missing and corrupt image files.
 #include "cli_support.h"
@@ -60,7 +60,7 @@ int channel(uint32_t texel, int k)
   return int((texel >> (8 * k)) & 0xFFu);
 }
 
-// The host's wrap of texture.cl.
+// The host's wrap of texture.h.
 int wrap(int i, int n, uint32_t mode)
 {
   if (mode == CLR_WRAP_CLAMP) return std::clamp(i, 0, n - 1);

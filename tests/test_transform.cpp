@@ -1,6 +1,6 @@
 // test_transform.cpp — the transform and clip stages on the device:
 // transformed vertices match the oracle bit for bit, and triangles through
-// the near plane are clipped (clip.cl), never projected through w <= 0.
+// the near plane are clipped (clip.h), never projected through w <= 0.
 #include "test_support.h"
 
 #include <catch2/catch.hpp>

@@ -51,6 +51,7 @@ void Context::setMemoryLimit(uint64_t bytes)
   Impl& i = impl();
   i.memoryLimit = bytes;
   if (i.clipPipeline) i.clipPipeline->memory().limitBytes = bytes ? bytes : UINT64_MAX;
+  if (i.diff) i.diff->memory().limitBytes = bytes ? bytes : UINT64_MAX;
 }
 uint64_t Context::memoryLimit() const
 {
@@ -58,6 +59,7 @@ uint64_t Context::memoryLimit() const
 }
 void Context::release()
 {
+  impl().diff.reset();
   impl().clipPipeline.reset();
 }
 
@@ -183,7 +185,7 @@ void rasterizeInto(Context& ctx, const float* pos, size_t numVertices, const int
     settings.keepVisAttributes = true;  // rast_outputs reads the barycentric planes
     pipeline.beginFrame(settings);
     pipeline.setup();
-    pipeline.bin();
+    pipeline.setupEmit();
     pipeline.raster();
     pipeline.rastOutputs(ids != nullptr, db != nullptr);
     pipeline.readRastOutputs(rast, ids, db);

@@ -2,7 +2,7 @@
 // (clraster.hpp, "The command line"): usage, help detection, `info`, and
 // `render` for one view or a views file, with its --stats line. The CLI
 // (host/cli/main.cpp) is a thin client of these; they share every step with the
-// scene-level calls (frame_settings.h, quality.h, views.h).
+// scene-level calls (frame_request.h, quality.h, views.h).
 //
 // renderCommand checks arguments and output paths before any device work,
 // loads a file (quick checks first, then the import on a second thread
@@ -12,13 +12,14 @@
 #include "pipeline/aov.h"
 #include "api/api_impl.h"
 #include "render/camera.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "render/frame_writer.h"
 #include "io/image_io.h"
 #include "render/info.h"
 #include "pipeline/program_cache.h"
 #include "render/quality.h"
 #include "render/views.h"
+#include "pipeline/pipeline.h"
 
 #include <algorithm>
 #include <chrono>

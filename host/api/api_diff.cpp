@@ -16,7 +16,10 @@ namespace clraster {
 clr::DiffKernels& Context::Impl::diffKernels()
 {
   rasterPipeline();  // builds the clip-input context
-  if (!diff) diff = std::make_unique<clr::DiffKernels>(*clip);
+  if (!diff) {
+    diff = std::make_unique<clr::DiffKernels>(*clip);
+    diff->memory().limitBytes = memoryLimit ? memoryLimit : UINT64_MAX;
+  }
   return *diff;
 }
 
@@ -315,7 +318,7 @@ void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int
     settings.shadeMode = CLR_SHADE_ID;
     pipeline.beginFrame(settings);
     pipeline.setup();
-    pipeline.bin();
+    pipeline.setupEmit();
     pipeline.peelLayer(floorDepth, rast, db, nextFloor);
   });
 }

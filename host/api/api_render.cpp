@@ -3,13 +3,14 @@
 // command's steps as calls. RenderOptions keeps the flags and parses them
 // with the CLI's parser (flags.h), the one place that decides what a flag
 // means; a Renderer frames its camera, chooses the methods and renders as
-// the command does (camera.h, frame_settings.h, quality.h).
+// the command does (camera.h, frame_request.h, quality.h).
 #include "pipeline/aov.h"
 #include "api/api_impl.h"
 #include "render/camera.h"
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 #include "io/image_io.h"
 #include "render/quality.h"
+#include "pipeline/pipeline.h"
 
 #include <glm/glm.hpp>
 

@@ -1,5 +1,5 @@
 // texture.cpp — image decoding and mip chains for base-colour textures
-// (texture.h). The sampling itself is kernels/texture.cl.
+// (texture.h). The sampling itself is kernels/texture.h.
 #include "io/texture.h"
 
 #include "base/error.h"

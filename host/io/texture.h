@@ -1,5 +1,5 @@
 // texture.h — base-colour textures on the host: decoding, mip chains and the
-// one packed upload the resolve kernel samples (kernels/texture.cl).
+// one packed upload the resolve kernel samples (kernels/texture.h).
 //
 // Images are decoded with stb_image (Debian's libstb-dev) to RGBA8 and
 // flipped so that row 0 is the bottom (v = 0, assimp's convention). Texel

@@ -26,15 +26,14 @@ void Pipeline::aov()
     resident_ |= kResidentNormals;
   }
   aov_.reserve(uint64_t(CLR_AOV_CHANNELS) * params_.width * params_.height, true);
-  cl::Event event;
   cl::Kernel& kernel = extraKernel(aovKernel_, "aov");
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setupSource_.get(),
-          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), aov_.get(), tileSlot_.get(), visPlane(),
-          fileTri_.get());
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
-                                 cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);
-  record("aov", event);
+  AovArgs args;
+  args.params = paramsBuf_.get(), args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.tileOffset = tileCount_.get(), args.source = setupSource_.get(), args.clipBary = clipBary_.get();
+  args.indices = indices_.get(), args.positions = positions_.get(), args.normals = normals_.get();
+  args.out = aov_.get(), args.tileSlot = tileSlot_.get(), args.visPlane = visPlane(), args.fileTri = fileTri_.get();
+  setKernelArgs(kernel, args);
+  launchPixels(kernel, "aov");
 }
 
 std::vector<float> Pipeline::readAov() const

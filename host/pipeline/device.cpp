@@ -4,7 +4,7 @@
 
 #include "pipeline/embedded_kernels.h"
 #include "pipeline/program_cache.h"
-#include "kernels/fixed.h"
+#include "kernels/shared.h"
 
 #include <algorithm>
 #include <cctype>
@@ -123,15 +123,61 @@ std::string programOptions(const std::string& options, bool extras)
   return options + (extras ? " -D CLR_EXTRAS=1" : " -D CLR_EXTRAS=0");
 }
 
+// Appends `text` to `out`, each line #include "name" replaced by the embedded file `name`, expanded the same way;
+// `included` collects the names so expanded.
+static void expandIncludes(const std::string& text, std::string& out, std::vector<std::string>& included, int depth)
+{
+  if (depth > 16) throw Error("kernel headers include each other more than 16 deep");
+  const std::string directive = "#include \"";
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    end = end == std::string::npos ? text.size() : end + 1;
+    const std::string line = text.substr(begin, end - begin);
+    if (line.compare(0, directive.size(), directive) == 0) {
+      const std::string name = line.substr(directive.size(), line.find('"', directive.size()) - directive.size());
+      const EmbeddedKernel* header = nullptr;
+      for (size_t i = 0; i < kEmbeddedKernelCount; ++i)
+        if (name == kEmbeddedKernels[i].name) header = &kEmbeddedKernels[i];
+      if (!header) throw Error("kernel source includes " + userText(name) + ", which is not embedded (CMakeLists.txt)");
+      included.push_back(name);
+      expandIncludes(header->text, out, included, depth + 1);
+      out += "\n";
+    } else {
+      out += line;
+    }
+    begin = end;
+  }
+}
+
+std::string programSource()
+{
+  // Step 1: the .cl files, expanded, and the headers they include.
+  std::string body;
+  std::vector<std::string> included;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) {
+    const std::string name = kEmbeddedKernels[i].name;
+    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".cl") == 0)
+      expandIncludes(kEmbeddedKernels[i].text, body, included, 0);
+  }
+  // Step 2: the prelude, the headers no .cl file includes, in embedding order.
+  std::string prelude;
+  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) {
+    const std::string name = kEmbeddedKernels[i].name;
+    const bool source = name.size() > 3 && name.compare(name.size() - 3, 3, ".cl") == 0;
+    if (!source && std::find(included.begin(), included.end(), name) == included.end())
+      prelude += kEmbeddedKernels[i].text;
+  }
+  return prelude + body;
+}
+
 cl::Program buildProgram(const cl::Context& context, const cl::Device& device, const std::string& options, bool extras)
 {
   // Step 1: the program cache's binary for these sources, options and driver, if it holds one.
   const std::string fullOptions = programOptions(options, extras);
   if (cl::Program cached = loadCachedProgram(context, device, fullOptions); cached()) return cached;
-  // Step 2: the embedded sources, in dependency order.
-  cl::Program::Sources sources;
-  for (size_t i = 0; i < kEmbeddedKernelCount; ++i) sources.push_back(kEmbeddedKernels[i].text);
-  cl::Program program(context, sources);
+  // Step 2: the embedded sources, their includes resolved (programSource).
+  cl::Program program(context, programSource());
   // Step 3: build; on failure report the device's log.
   try {
     program.build({device}, fullOptions.c_str());
@@ -146,6 +192,39 @@ cl::Program buildProgram(const cl::Context& context, const cl::Device& device, c
                 log);
   }
   return program;
+}
+
+DeviceNeeds deviceNeeds(int lanes, uint32_t tileSize)
+{
+  const size_t tilePixels = size_t(tileSize) * tileSize;
+  // Raster's GPU shape is a work-group per tile; resolve's a work-item per row of lanes, a tile per group, or a
+  // group of one where a row of lanes spans the tile (resolve.cl).
+  const size_t raster = lanes == 1 ? tilePixels : 1;
+  const size_t resolve = uint32_t(lanes) == tileSize ? 1 : tilePixels / size_t(lanes);
+  DeviceNeeds needs;
+  needs.workGroupSize = std::max({raster, resolve, size_t(CLR_LINEAR_GROUP)});
+  // Raster's batch in local memory (raster.cl: records, bounds, nearest keys, indices and ranks); scan's partials
+  // phase sums a value per work-item.
+  const uint64_t rasterLocal = lanes == 1 ? tilePixels * (sizeof(TriSetup) + 4 * sizeof(int32_t) + 3 * 4) : 0;
+  const uint64_t scanLocal = uint64_t(CLR_SCAN_GROUP(lanes)) * sizeof(uint64_t);
+  needs.localMemBytes = std::max(rasterLocal, scanLocal);
+  return needs;
+}
+
+void checkDeviceLimits(const std::string& deviceName, const DeviceLimits& limits, int lanes, uint32_t tileSize)
+{
+  const std::string what = "tile size " + std::to_string(tileSize) + " with " + std::to_string(lanes) + " lane" +
+                           (lanes == 1 ? "" : "s") + " on " + userText(deviceName);
+  if (tileSize == 0 || tileSize % uint32_t(lanes) != 0) throw Error(what + ": the lanes must divide the tile size");
+  const DeviceNeeds needs = deviceNeeds(lanes, tileSize);
+  if (needs.workGroupSize > limits.maxWorkGroupSize)
+    throw Error(what + " needs work-groups of " + std::to_string(needs.workGroupSize) +
+                " work-items; the device allows " + std::to_string(limits.maxWorkGroupSize) +
+                " (CL_DEVICE_MAX_WORK_GROUP_SIZE): build with a smaller CLR_TILE_SIZE");
+  if (needs.localMemBytes > limits.localMemBytes)
+    throw Error(what + " needs " + std::to_string(needs.localMemBytes) + " bytes of local memory; the device has " +
+                std::to_string(limits.localMemBytes) +
+                " (CL_DEVICE_LOCAL_MEM_SIZE): build with a smaller CLR_TILE_SIZE");
 }
 
 bool isPocl(const DeviceInfo& device)
@@ -166,6 +245,10 @@ ClContext::ClContext(const std::string& selector, int lanesOverride, bool clipIn
 {
   // Step 1: the work shape, the queue and the frame program.
   lanes = contextLanes(info.device, lanesOverride);
+  checkDeviceLimits(
+      info.name,
+      {info.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>(), info.device.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>()}, lanes,
+      CLR_TILE_SIZE);
   context = cl::Context(info.device);
   queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
   prefetch = isPocl(info);

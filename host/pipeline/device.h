@@ -9,6 +9,7 @@
 
 #include "pipeline/cl.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,28 @@ int defaultLanes(const cl::Device& device);
 // The work shape a context takes: lanesOverride unless 0, else
 // CLRASTER_LANES, else defaultLanes; anything but 1 or 16 is an error.
 int contextLanes(const cl::Device& device, int lanesOverride);
+
+// The limits of a device that the tile size and the work shape depend on
+// (CL_DEVICE_MAX_WORK_GROUP_SIZE, CL_DEVICE_LOCAL_MEM_SIZE).
+struct DeviceLimits {
+  size_t maxWorkGroupSize = 0;
+  uint64_t localMemBytes = 0;
+};
+
+// What the kernels built with tileSize and lanes ask of a device: their
+// largest work-group (raster's and resolve's tile groups, CLR_LINEAR_GROUP)
+// and the local memory of raster's GPU shape (a batch of tileSize² records,
+// raster.cl) or of scan_chunks' partials phase.
+struct DeviceNeeds {
+  size_t workGroupSize = 0;
+  uint64_t localMemBytes = 0;
+};
+DeviceNeeds deviceNeeds(int lanes, uint32_t tileSize);
+
+// Throws a clr::Error naming the device, the tile size and the limit it
+// exceeds when a device with these limits cannot run them (ClContext
+// checks before it builds).
+void checkDeviceLimits(const std::string& deviceName, const DeviceLimits& limits, int lanes, uint32_t tileSize);
 
 // The OpenCL context every stage shares. lanes 0 picks the device's default.
 struct ClContext {

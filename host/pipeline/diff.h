@@ -38,6 +38,7 @@ struct TextureCall {
 
 class DiffKernels {
  public:
+  DeviceMemory& memory() { return memory_; }  // its limits (buffer.h)
   explicit DiffKernels(ClContext& cl);
 
   // gradPos (posImages · numVertices · 4 floats, posImages 1 or

@@ -28,11 +28,12 @@ void Pipeline::lines()
   if (n > UINT32_MAX) throw Error("the frame has more than 2^32 wireframe segments");
   lineSegs_.reserve(n);
   if (numSetup_ > 0) {
-    cl::Event event;
     cl::Kernel& fromSetup = extraKernel(linesFromSetupKernel_, "lines_from_setup");
-    setArgs(fromSetup, setup_.get(), numSetup_, setupSource_.get(), clipBary_.get(), lineSegs_.get());
-    cl_.queue.enqueueNDRangeKernel(fromSetup, cl::NullRange, linear(numSetup_), cl::NDRange(64), nullptr, &event);
-    record("lines_from_setup", event);
+    LinesFromSetupArgs args;
+    args.setup = setup_.get(), args.numSetup = numSetup_, args.source = setupSource_.get();
+    args.clipBary = clipBary_.get(), args.segs = lineSegs_.get();
+    setKernelArgs(fromSetup, args);
+    launchLinear(fromSetup, numSetup_, "lines_from_setup");
   }
   drawLineSegments(uint32_t(n), settingsLinePass());
 }
@@ -81,11 +82,12 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   lineTileCount_.zero(numTiles_ + 1, &fills);
   lineSegs_.reserve(n);
   if (n > 0) {
-    cl::Event countEvent;
     cl::Kernel& binCount = extraKernel(linesBinCountKernel_, "lines_bin_count");
-    setArgs(binCount, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get());
-    cl_.queue.enqueueNDRangeKernel(binCount, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &countEvent);
-    record("lines_bin_count", countEvent);
+    LinesBinCountArgs args;
+    args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+    args.tileCount = lineTileCount_.get();
+    setKernelArgs(binCount, args);
+    launchLinear(binCount, n, "lines_bin_count");
   }
   const uint64_t entries = scan(lineTileCount_, numTiles_, "lines_bin_scan");
   if (entries > UINT32_MAX)
@@ -95,22 +97,24 @@ void Pipeline::drawLineSegments(uint32_t n, const LinePass& pass)
   // Step 3: fill the bins.
   lineTileCursor_.zero(numTiles_, &fills);
   if (n > 0) {
-    cl::Event fillEvent;
     cl::Kernel& binFill = extraKernel(linesBinFillKernel_, "lines_bin_fill");
-    setArgs(binFill, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineTileCursor_.get(),
-            lineBinEntries_.get());
-    cl_.queue.enqueueNDRangeKernel(binFill, cl::NullRange, linear(n), cl::NDRange(64), nullptr, &fillEvent);
-    record("lines_bin_fill", fillEvent);
+    LinesBinFillArgs args;
+    args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+    args.tileOffset = lineTileCount_.get(), args.tileCursor = lineTileCursor_.get();
+    args.binEntries = lineBinEntries_.get();
+    setKernelArgs(binFill, args);
+    launchLinear(binFill, n, "lines_bin_fill");
   }
 
   // Step 4: one work-item per tile draws and blends.
-  cl::Event drawEvent;
   cl::Kernel& draw = extraKernel(linesDrawKernel_, "lines_draw");
-  setArgs(draw, paramsBuf_.get(), lineParams_.get(), lineSegs_.get(), lineTileCount_.get(), lineBinEntries_.get(),
-          tileCount_.get(), visIndex_.get(), visAttr_.get(), setup_.get(), image_.get(), tileSlot_.get(), visPlane());
-  cl_.queue.enqueueNDRangeKernel(draw, cl::NullRange, cl::NDRange(params_.tilesX, params_.tilesY), cl::NDRange(1, 1),
-                                 nullptr, &drawEvent);
-  record("lines_draw", drawEvent);
+  LinesDrawArgs args;
+  args.params = paramsBuf_.get(), args.lp = lineParams_.get(), args.segs = lineSegs_.get();
+  args.lineTileOffset = lineTileCount_.get(), args.lineBinEntries = lineBinEntries_.get();
+  args.triTileOffset = tileCount_.get(), args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.setup = setup_.get(), args.image = image_.get(), args.tileSlot = tileSlot_.get(), args.visPlane = visPlane();
+  setKernelArgs(draw, args);
+  launch(draw, cl::NDRange(params_.tilesX, params_.tilesY), cl::NDRange(1, 1), "lines_draw");
 }
 
 }  // namespace clr

@@ -3,6 +3,7 @@
 // include/clraster/diff.hpp). Uploads the floor depths, runs one work-item
 // per pixel over its tile's bin list, reads rast, rast_db and the layer's
 // depths back (blocking).
+#include "pipeline/kernel_args.h"
 #include "pipeline/pipeline.h"
 
 namespace clr {
@@ -19,9 +20,12 @@ void Pipeline::peelLayer(const float* floor, float* rast, float* db, float* next
   rastDb_.reserve(db ? n : 1, true);
   cl_.queue.enqueueWriteBuffer(peelFloor_.get(), CL_FALSE, 0, n * sizeof(float), floor);
   cl::Kernel& kernel = extraKernel(peelKernel_, "peel_layer");
-  setArgs(kernel, paramsBuf_.get(), setup_.get(), tileCount_.get(), binEntries_.get(), setupSource_.get(),
-          clipBary_.get(), indices_.get(), positions_.get(), peelFloor_.get(), rastOut_.get(), rastDb_.get(),
-          cl_uint(db ? 1 : 0), peelNext_.get());
+  PeelArgs args;
+  args.params = paramsBuf_.get(), args.setup = setup_.get(), args.tileOffset = tileCount_.get();
+  args.binEntries = binEntries_.get(), args.source = setupSource_.get(), args.clipBary = clipBary_.get();
+  args.indices = indices_.get(), args.positions = positions_.get(), args.floorDepth = peelFloor_.get();
+  args.rast = rastOut_.get(), args.db = rastDb_.get(), args.withDb = db ? 1 : 0, args.nextFloor = peelNext_.get();
+  setKernelArgs(kernel, args);
   cl::Event event;
   cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
                                  cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),

@@ -95,21 +95,8 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
 }
 
 Pipeline::Pipeline(ClContext& cl)
-    : cl_(cl),
-      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0, cl.globalMemBytes, UINT64_MAX, cl.info.type == "CPU"},
+    : DeviceScene(cl),
       paramsBuf_(memory_, "frame parameters"),
-      positions_(memory_, "vertex positions"),
-      normals_(memory_, "vertex normals"),
-      uvs_(memory_, "vertex texture coordinates"),
-      colors_(memory_, "vertex colours"),
-      clusterBounds_(memory_, "cluster bounds"),
-      clusterCount_(memory_, "cluster counts"),
-      indices_(memory_, "triangle indices"),
-      triMaterial_(memory_, "triangle materials"),
-      fileTri_(memory_, "triangles' file order"),
-      materials_(memory_, "materials"),
-      texDescs_(memory_, "texture descriptors"),
-      texels_(memory_, "texels"),
       clipPos_(memory_, "clip-space positions"),
       triCount_(memory_, "setup counts"),
       counters_(memory_, "counters"),
@@ -152,44 +139,8 @@ Pipeline::Pipeline(ClContext& cl)
   resolveKernel_ = cl::Kernel(cl.program, "resolve");
   resolveLambertKernel_ = cl::Kernel(cl.program, "resolve_lambert");
   paramsBuf_.reserve(1);
-  // Attributes a frame does not read are bound as 1-element dummies.
-  normals_.reserve(1);
-  uvs_.reserve(1);
-  colors_.reserve(1);
-  triMaterial_.reserve(1);
-  materials_.reserve(1);
-  texDescs_.reserve(1);
-  texels_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);
   clipList_.reserve(1024);
-}
-
-// The bounds of each cluster of CLR_CLUSTER_TRIS consecutive triangles
-// (shared.h): over its finite vertices, NaN where it has none (the count
-// pass then never skips it; setup_classify culls non-finite triangles).
-static std::vector<float> clusterBounds(const Mesh& mesh)
-{
-  const size_t clusters = (mesh.numTris() + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS;
-  std::vector<float> bounds(6 * clusters);
-  for (size_t c = 0; c < clusters; ++c) {
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    const size_t end = std::min<size_t>(3 * (c + 1) * CLR_CLUSTER_TRIS, mesh.indices.size());
-    for (size_t k = 3 * c * CLR_CLUSTER_TRIS; k < end; ++k) {
-      if (mesh.indices[k] >= mesh.numVerts()) continue;  // (scene.cpp rejects such files)
-      const float* p = &mesh.positions[3 * size_t(mesh.indices[k])];
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a]);
-      }
-    }
-    const bool any = lo[0] <= hi[0];
-    for (int a = 0; a < 3; ++a) {
-      bounds[6 * c + a] = any ? lo[a] : NAN;
-      bounds[6 * c + 3 + a] = any ? hi[a] : NAN;
-    }
-  }
-  return bounds;
 }
 
 void Pipeline::uploadScene(const Mesh& fileMesh)
@@ -213,82 +164,14 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
   // Step 2: the layout; what every mode reads, now; the rest when a frame reads it.
-  SceneLayout layout = layOutScene(fileMesh, layoutOn_);
-  scene_ = std::move(layout.mesh);
-  fileTriHost_ = std::move(layout.fileTri);
-  laidVertex_ = std::move(layout.laidVertex);
-  oneMaterial_ = std::all_of(scene_.triMaterial.begin(), scene_.triMaterial.end(),
-                             [&](uint32_t m) { return m == scene_.triMaterial[0]; });
-  ++sceneUploads_;
+  placeScene(fileMesh);
   framedScene_ = false;
-  fileOrder_ = true;
-  for (uint32_t t = 0; t < fileTriHost_.size() && fileOrder_; ++t) fileOrder_ = fileTriHost_[t] == t;
-  if (fileOrder_)
-    fileTri_.reserve(1);  // FrameParams.fileOrder: no reader takes it
-  else
-    fileTri_.upload(fileTriHost_);
-  positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
-  indices_.upload(scene_.indices);
-  const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
-  clusterBounds_.upload(bounds);
-  clusterCount_.reserve(std::max<size_t>(1, bounds.size() / 6), true);
-  sceneMin_ = glm::vec3(INFINITY);
-  sceneMax_ = glm::vec3(-INFINITY);
-  for (size_t c = 0; c + 5 < bounds.size(); c += 6)
-    if (!std::isnan(bounds[c])) {
-      sceneMin_ = glm::min(sceneMin_, glm::vec3(bounds[c], bounds[c + 1], bounds[c + 2]));
-      sceneMax_ = glm::max(sceneMax_, glm::vec3(bounds[c + 3], bounds[c + 4], bounds[c + 5]));
-    }
   paintOrder_.clear();
-  resident_ = 0;
   triCount_.reserve(mesh.numTris(), true);
   params_.numVerts = uint32_t(scene_.numVerts());
   params_.numTris = uint32_t(mesh.numTris());
   cl_.queue.finish();
   prepareMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-uint32_t Pipeline::bindAttributes(const FrameSettings& settings)
-{
-  const uint32_t mode = settings.shadeMode;
-  const bool albedo = CLR_USES_ALBEDO(mode);
-  const bool materials = albedo && !scene_.materials.empty() && !scene_.triMaterial.empty();
-  const bool textures = materials && scene_.hasTextures();
-  const bool colors = CLR_NEEDS_COLORS(mode) && !scene_.colors.empty();
-  // Step 1: upload what is missing, once.
-  if (CLR_NEEDS_NORMALS(mode) && !(resident_ & kResidentNormals)) {
-    normals_.upload(scene_.normals);
-    resident_ |= kResidentNormals;
-  }
-  if ((CLR_NEEDS_UVS(mode) || textures) && !(resident_ & kResidentUvs)) {
-    // Meshes without texture coordinates read (0, 0).
-    uvs_.upload(scene_.uvs.empty() ? std::vector<float>(2 * scene_.numVerts(), 0.0f) : scene_.uvs);
-    resident_ |= kResidentUvs;
-  }
-  if (colors && !(resident_ & kResidentColors)) {
-    colors_.upload(scene_.colors);
-    resident_ |= kResidentColors;
-  }
-  // One material for every triangle (assimp gives a file without materials one): no per-triangle buffer.
-  const bool oneMaterial = materials && oneMaterial_;
-  if (materials && !(resident_ & kResidentMaterials)) {
-    if (oneMaterial) {
-      materials_.upload({scene_.materials[scene_.triMaterial[0]]});
-    } else {
-      triMaterial_.upload(scene_.triMaterial);
-      materials_.upload(scene_.materials);
-    }
-    resident_ |= kResidentMaterials;
-  }
-  if (textures && !(resident_ & kResidentTextures)) {
-    const TexturePack pack = packTextures(scene_.textures);
-    texDescs_.upload(pack.descs);
-    texels_.upload(pack.texels);
-    resident_ |= kResidentTextures;
-  }
-  // Step 2: the flags resolve follows.
-  return (colors ? CLR_SCENE_COLORS : 0u) | (materials ? CLR_SCENE_MATERIALS : 0u) |
-         (materials && !oneMaterial ? CLR_SCENE_TRI_MATERIALS : 0u) | (textures ? CLR_SCENE_TEXTURES : 0u);
 }
 
 cl::Kernel& Pipeline::extraKernel(cl::Kernel& kernel, const char* name)
@@ -297,10 +180,28 @@ cl::Kernel& Pipeline::extraKernel(cl::Kernel& kernel, const char* name)
   return kernel;
 }
 
-cl::NDRange Pipeline::linear(uint64_t n) const
+cl::NDRange Pipeline::linear(uint64_t n)
 {
-  const uint64_t group = 64;
+  const uint64_t group = CLR_LINEAR_GROUP;
   return cl::NDRange(size_t((n + group - 1) / group * group));
+}
+
+void Pipeline::launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* stage)
+{
+  cl::Event event;
+  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
+  record(stage, event);
+}
+
+void Pipeline::launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage)
+{
+  launch(kernel, linear(n), cl::NDRange(CLR_LINEAR_GROUP), stage);
+}
+
+void Pipeline::launchPixels(cl::Kernel& kernel, const char* stage)
+{
+  launch(kernel, cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
+         cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), stage);
 }
 
 Pipeline::~Pipeline()
@@ -317,37 +218,6 @@ void Pipeline::unmapImage()
   if (!mappedImage_) return;
   cl_.queue.enqueueUnmapMemObject(image_.get(), mappedImage_);  // ordered before any later kernel
   mappedImage_ = nullptr;
-}
-
-float Pipeline::clusterMargin(const glm::mat4& mvp) const
-{
-  // Step 1: whether the test can pay. The kernel's test is conservative on
-  // its own, so this only chooses when to run it: when a corner of the
-  // scene's box lies behind the eye, or the box's projection covers more
-  // than twice the view (NDC area 8), much of the scene may lie beside the
-  // view. Where less can, the test costs more than it saves (bench/ab.sh).
-  if (sceneMin_.x > sceneMax_.x) return 0.0f;
-  bool behind = false;
-  glm::vec2 lo(INFINITY), hi(-INFINITY);
-  float largest = 0.0f;  // M (setup_cluster_outside): bounds every vertex's, since each lies in the box
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p(corner & 1 ? sceneMax_.x : sceneMin_.x, corner & 2 ? sceneMax_.y : sceneMin_.y,
-                      corner & 4 ? sceneMax_.z : sceneMin_.z);
-    const glm::vec4 c = mvp * glm::vec4(p, 1.0f);
-    behind = behind || !(c.w > 0.0f);
-    if (c.w > 0.0f) {
-      lo = glm::min(lo, glm::vec2(c) / c.w);
-      hi = glm::max(hi, glm::vec2(c) / c.w);
-    }
-    float sum = 0.0f;
-    for (int row = 0; row < 4; ++row)
-      sum += std::abs(mvp[0][row] * p.x) + std::abs(mvp[1][row] * p.y) + std::abs(mvp[2][row] * p.z) +
-             std::abs(mvp[3][row]);
-    largest = std::max(largest, sum);
-  }
-  const bool wide = !behind && (hi.x - lo.x) * (hi.y - lo.y) > 8.0f;
-  // Step 2: the margin, 2^-16 M.
-  return (behind || wide) && std::isfinite(largest) ? largest / 65536.0f : 0.0f;
 }
 
 void Pipeline::beginFrame(const FrameSettings& settings)
@@ -368,7 +238,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   speculated_ = missed_ = false;  // (runFrame sets them after the frame)
   if (speculate_)
     cl_.queue.enqueueWriteBuffer(counters_.get(), CL_FALSE, CLR_COUNTER_SPECULATIVE * sizeof(uint32_t),
-                                 sizeof specCaps_, specCaps_);
+                                 sizeof specCaps_, &specCaps_);
 }
 
 bool Pipeline::speculationPays(const FrameSettings& settings)
@@ -392,10 +262,9 @@ bool Pipeline::speculationPays(const FrameSettings& settings)
   slots = std::min<uint64_t>(slots, numTiles_);
   const uint64_t bins = std::min<uint64_t>(binEntries_.capacity(), UINT32_MAX);
   if (records == 0 || slots == 0) return false;
-  specCaps_[0] = 1;
-  specCaps_[1] = uint32_t(records);
-  specCaps_[2] = uint32_t(bins);
-  specCaps_[3] = uint32_t(slots);
+  static_assert(sizeof(SpecCaps) == 4 * sizeof(uint32_t) && CLR_COUNTER_CAP_SLOTS == CLR_COUNTER_SPECULATIVE + 3,
+                "specCaps_ is written over the counters from CLR_COUNTER_SPECULATIVE");
+  specCaps_ = {1u, uint32_t(records), uint32_t(bins), uint32_t(slots)};
   return true;
 }
 
@@ -454,7 +323,7 @@ void Pipeline::runStages(const FrameSettings& settings)
 {
   beginFrame(settings);
   setup();  // transforms the vertices it reads (transform.cl)
-  bin();
+  setupEmit();
   raster();
   resolve();
   if (settings.wireframe != CLR_WIREFRAME_OFF) lines();

@@ -1,7 +1,7 @@
 // pipeline.h — the frame pipeline: buffers, stages and per-frame statistics.
 //
 // A Pipeline owns every device buffer of a scene and runs the stages in
-// order: (transform) -> setup -> bin -> raster -> resolve, where setup
+// order: (transform) -> setup -> setup_emit and bin -> raster -> resolve, where setup
 // transforms the vertices it reads, so a frame needs no clip-position
 // buffer (transform() writes one for tests and the painter's sort). Each
 // stage is a member function defined in the host file named after its
@@ -13,6 +13,9 @@
 
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
+#include "pipeline/device_scene.h"
+#include "pipeline/frame_settings.h"
+#include "pipeline/kernel_args.h"
 #include "io/scene.h"
 
 #include "kernels/shared.h"
@@ -26,8 +29,8 @@
 
 namespace clr {
 
-// How scan_chunks (scan.cl) splits n counts: at most 4096 chunks of at
-// least 64 counts each, and the work-items of its reduce and apply phases:
+// How scan_chunks (scan.cl) splits n counts: at most CLR_SCAN_MAX_CHUNKS
+// chunks of at least CLR_SCAN_MIN_CHUNK counts each (shared.h), and the work-items of its reduce and apply phases:
 // a work-group of CLR_SCAN_GROUP(1) per chunk in the GPU shape (lanes 1),
 // one work-item per chunk in the CPU shape. (Pipeline's scans; a kernel
 // test launches the phases the same way.)
@@ -108,51 +111,6 @@ struct SetupRecord {
   uint32_t flags;     // CLR_FLAG_BACKFACING, CLR_FLAG_DEAD (padding of a clipped triangle)
 };
 
-// What one frame renders: viewport, shading, culling and the methods.
-struct FrameSettings {
-  uint32_t width = 0, height = 0;
-  uint32_t shadeMode = CLR_SHADE_LAMBERT;
-  bool cullBack = false;
-  uint32_t samples = 1;           // per pixel: 1, 2, 4, 8, 16 (aa.h)
-  bool shadeEverySample = false;  // SSAA rather than MSAA
-  uint32_t edgeMode = CLR_EDGES_FIXED;
-  uint32_t interpMode = CLR_INTERP_PERSPECTIVE;
-  uint32_t traversal = CLR_TRAVERSAL_BBOX;
-  // Depth format (CLR_DEPTH_*); CLR_DEPTH_REVERSED needs a reversed
-  // projection in mvp (Camera::viewProjection builds one, depth.h).
-  uint32_t depthMode = CLR_DEPTH_FLOAT32;
-  uint32_t visibility = CLR_VISIBILITY_ZBUFFER;  // CLR_VISIBILITY_*
-  glm::mat4 mvp{1.0f};
-  glm::vec3 lightDir{0.0f, 0.0f, 1.0f};  // world space, towards the light
-  glm::vec3 eye{0.0f, 0.0f, 0.0f};       // world space, for specular highlights
-  bool pointLightOn = false;             // a point light besides the directional one
-  glm::vec3 pointLight{0.0f};            // its position, world space
-  float pointLightRange = 1.0f;          // r of the attenuation 1 / (1 + (d / r)²), > 0
-  uint32_t texFilter = CLR_FILTER_TRILINEAR;
-  float zNear = 0.1f, zFar = 100.0f;  // for depth shading only
-  // Lines (lines.cpp): wireframe mode, method and anti-aliased width in pixels.
-  uint32_t wireframe = CLR_WIREFRAME_OFF;
-  uint32_t lineMethod = CLR_LINE_AA;
-  float lineWidth = 1.0f;
-  // A file's points (Mesh::points): squares of this many pixels a side (file_primitives.cpp).
-  uint32_t pointSize = 1;
-  // Raster also writes the depth and barycentric planes of the visibility
-  // buffer (12 more bytes per sample), for aov() and for the depth and
-  // barycentrics of readVis(). Frames with lines or float edges have them
-  // anyway; otherwise resolve recomputes the barycentrics (shared.h).
-  bool keepVisAttributes = false;
-  // Lets resolve use its lean lambert kernel when the frame qualifies
-  // (Pipeline::resolve); tests turn it off to compare the two kernels.
-  bool leanResolve = true;
-  // The fewest bits of a visibility index (16, 24 or 32; more when the
-  // frame's setup records need them, shared.h): tests compare the widths.
-  uint32_t minVisIndexBits = 16;
-  // Lets setup cull a small triangle that covers no pixel centre (shared.h,
-  // FrameParams.cullSampleFree); tests turn it off to show that the pixels
-  // do not change.
-  bool cullSampleFree = true;
-};
-
 // Fills the per-frame constant block (guard band, tiles, viewport matrix).
 FrameParams makeFrameParams(const FrameSettings& settings, size_t numVerts, size_t numTris);
 
@@ -181,7 +139,10 @@ struct FrameStats {
   bool speculative = false, speculationMissed = false;
 };
 
-class Pipeline {
+// The frame driver over a DeviceScene (device_scene.h): the frame's
+// buffers, the stages in order, speculation, and the read-backs of each
+// stage's output for tests, tools and the API.
+class Pipeline : public DeviceScene {
  public:
   explicit Pipeline(ClContext& cl);
   ~Pipeline();
@@ -194,25 +155,9 @@ class Pipeline {
   // (readSetup's and readClipBary's triangles, readClipPositions' order,
   // paintOrder, the id shading and AOV) speaks of the file's order.
   void uploadScene(const Mesh& mesh);
-  // Whether uploadScene lays scenes out (default); tests compare with the
-  // file's own order.
-  void setLayout(bool on) { layoutOn_ = on; }
   // Whether render() may size a frame from the last one's totals (default;
   // see runFrame). Off, every frame waits for its counts mid-frame.
   void setSpeculation(bool on) { speculationOn_ = on; }
-  // The milliseconds of the last uploadScene: the layout, the cluster bounds
-  // and the uploads (--stats prepare_ms).
-  double prepareMs() const { return prepareMs_; }
-
-  // What is on the device now, kResident* bits (for tests).
-  enum : uint32_t {
-    kResidentNormals = 1,
-    kResidentUvs = 2,
-    kResidentColors = 4,
-    kResidentMaterials = 8,  // the materials, and each triangle's unless they are all one
-    kResidentTextures = 16,  // descriptors and texels, once per scene
-  };
-  uint32_t resident() const { return resident_; }
 
   // The library's rasterize (api.cpp), on a ClContext built with clipInput:
   // clip-space positions (4 floats per vertex) and triangles whose indices
@@ -243,9 +188,9 @@ class Pipeline {
   // The stages, in order (each defined in its own host file).
   void beginFrame(const FrameSettings& settings);
   void transform();  // optional: fills readClipPositions()
-  void setup();
-  void bin();
-  void raster();  // with the painter's algorithm, sorts the triangles first (paintOrder)
+  void setup();      // counts, lists and clips (setup.cpp)
+  void setupEmit();  // the tile scans, setup_emit's records and bins, the clipped bins (setup.cpp, bin.cpp)
+  void raster();     // with the painter's algorithm, sorts the triangles first (paintOrder)
   void resolve();
   // After resolve: draws the edges of the setup triangles (lines.cpp), or
   // the caller's segments, into the image with FrameSettings' line method.
@@ -279,8 +224,6 @@ class Pipeline {
   const std::vector<uint32_t>& paintOrder() const { return paintOrder_; }
 
   const FrameParams& params() const { return params_; }
-  size_t deviceBytes() const { return memory_.bytesAllocated; }
-  DeviceMemory& memory() { return memory_; }  // its limits (buffer.h)
   // Bytes per pixel of the per-sample buffers and the image of this frame:
   // per sample of a covered tile 2, 3 or 4 (the visibility buffer's setup
   // index, visIndexBits), 12 more with its depth and barycentric planes,
@@ -292,7 +235,6 @@ class Pipeline {
     return perSample * params_.samples * usedVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE / pixels + 4.0;
   }
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
-  const ClContext& cl() const { return cl_; }
 
  private:
   // beginFrame to resolve (and lines): the frame of both render()s.
@@ -356,10 +298,16 @@ class Pipeline {
   // then the rescan of every chunk.
   void scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& partials, const char* stage);
   void scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage);
-  // bin()'s scan of the tile counts: the offsets in place, and the
+  // scan_chunks' arguments for one phase (CLR_SCAN_REDUCE, _PARTIALS, _APPLY) of job over n counts.
+  ScanChunksArgs scanArgs(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, uint32_t phase) const;
+  // setup_triangles' arguments for one pass (CLR_SETUP_PASS_COUNT, _EMIT) over numSetup records (setup.cpp).
+  SetupTrianglesArgs setupTrianglesArgs(uint32_t numSetup, uint32_t pass) const;
+  // setupEmit()'s scan of the tile counts: the offsets in place, and the
   // visibility slots (the non-zero counts) in the same launches, their
   // totals copied to the counters (CLR_COUNTER_BIN_TOTAL, SLOT_TOTAL).
   void enqueueBinScans();
+  // The clipped triangles' bins (bin_fill_clipped, bin.cl), after setup_emit.
+  void binClipped();
   // The frame's counters (shared.h, CLR_COUNTER_*), read with a wait for
   // every command enqueued before; counterTotal joins a total's two words.
   std::vector<uint32_t> readCounters() const { return counters_.download(CLR_NUM_COUNTERS); }
@@ -385,29 +333,20 @@ class Pipeline {
   // Bins and draws the first n segments of lineSegs_ (lines.cpp).
   void drawLineSegments(uint32_t n, const LinePass& pass);
   void record(const char* stage, const cl::Event& event) { events_.push_back({stage, event}); }
-  // Sets a kernel's arguments 0, 1, 2, ... in order.
-  template <typename... Args>
-  static void setArgs(cl::Kernel& kernel, const Args&... args)
-  {
-    cl_uint index = 0;
-    (kernel.setArg(index++, args), ...);
-  }
-  cl::NDRange linear(uint64_t n) const;
-  // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
-  // unless the scene's bounds reach behind the eye or well beyond the view.
-  float clusterMargin(const glm::mat4& mvp) const;
+  // n work-items rounded up to whole CLR_LINEAR_GROUP work-groups.
+  static cl::NDRange linear(uint64_t n);
+  // Launches kernel over global in groups of local and records its event as stage; launchLinear over n
+  // work-items in CLR_LINEAR_GROUP groups, launchPixels over the tiles' pixels in a group per tile.
+  void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* stage);
+  void launchLinear(cl::Kernel& kernel, uint64_t n, const char* stage);
+  void launchPixels(cl::Kernel& kernel, const char* stage);
   // A kernel of the extras program (ClContext::extras), created in `kernel`
   // at its first use.
   cl::Kernel& extraKernel(cl::Kernel& kernel, const char* name);
   // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
   // and uploads each triangle's rank to paintRank_.
   void sortForPainter();
-  // Uploads what this frame's shading reads and is not resident yet, and
-  // returns the FrameParams.sceneFlags it binds.
-  uint32_t bindAttributes(const FrameSettings& settings);
 
-  ClContext& cl_;
-  DeviceMemory memory_;
   FrameParams params_{};
   FrameSettings settings_{};  // of the current frame
   uint32_t numTiles_ = 0;
@@ -430,7 +369,6 @@ class Pipeline {
   bool timedPrefetch_ = false;    // this frame's resolve time goes to prefetchChooser_
   bool resolvePrefetch_ = false;  // this frame's resolve fetched rows ahead
   PrefetchChooser prefetchChooser_;
-  uint64_t sceneUploads_ = 0;        // counts uploadScene calls: part of PrefetchChooser's case
   uint32_t numClipped_ = 0;          // input triangles clipped this frame (clip list length)
   uint32_t numCulledUnclipped_ = 0;  // input triangles the count pass culled (from the scan's total)
   uint64_t numBinEntries_ = 0;
@@ -441,15 +379,11 @@ class Pipeline {
   // flag, records, bins, slots), the counters read after its image, and
   // the last frame's outcome (FrameStats).
   bool speculationOn_ = true, speculate_ = false, framedScene_ = false, speculated_ = false, missed_ = false;
-  uint32_t specCaps_[4] = {};
+  // The CLR_COUNTER_SPECULATIVE .. CLR_COUNTER_CAP_SLOTS words, in order.
+  struct SpecCaps {
+    uint32_t on, records, bins, slots;
+  } specCaps_{};
   std::vector<uint32_t> endCounters_;
-  Mesh scene_;  // host copy, laid out: lazy uploads read it
-  bool layoutOn_ = true;
-  double prepareMs_ = 0;
-  std::vector<uint32_t> fileTriHost_, laidVertex_;  // the layout's maps (layout.h)
-  bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
-  uint32_t resident_ = 0;                           // kResident* bits
-  bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)
   std::vector<std::pair<const char*, cl::Event>> events_;
 
   cl::Kernel transformKernel_, setupCountKernel_, setupEmitKernel_, setupClipKernel_, scanReduceKernel_,
@@ -459,17 +393,6 @@ class Pipeline {
       rastOutputsKernel_, peelKernel_;
 
   DeviceBuffer<FrameParams> paramsBuf_;
-  DeviceBuffer<float> positions_, normals_, uvs_, colors_;
-  DeviceBuffer<float> clusterBounds_;    // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
-  DeviceBuffer<uint32_t> clusterCount_;  // their setup counts' sums (shared.h), CPU work shape; else a dummy
-  // The bounds of the scene's finite vertices (empty: min > max), for
-  // FrameParams.clusterMargin.
-  glm::vec3 sceneMin_{0.0f}, sceneMax_{-1.0f};
-  DeviceBuffer<uint32_t> indices_, triMaterial_;
-  DeviceBuffer<uint32_t> fileTri_;  // each laid-out triangle's index in the file (shared.h)
-  DeviceBuffer<Material> materials_;
-  DeviceBuffer<TextureDesc> texDescs_;
-  DeviceBuffer<uint32_t> texels_;
   DeviceBuffer<cl_float4> clipPos_;
   DeviceBuffer<uint8_t> triCount_;  // setup counts, see shared.h
   DeviceBuffer<uint32_t> counters_;

@@ -12,23 +12,9 @@ void Pipeline::uploadClipScene(const float* positions, size_t numVerts, const ui
   if (!cl_.clipInput) throw Error("uploadClipScene needs a context built for clip-space input");
   if (numTris > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("too many triangles");
   if (numVerts > UINT32_MAX / 4) throw Error("too many vertices");
-  ++sceneUploads_;
+  placeClipScene(positions, numVerts, indices, numTris);
   framedScene_ = false;
-  positions_.upload(std::vector<float>(positions, positions + 4 * numVerts));
-  indices_.upload(std::vector<uint32_t>(indices, indices + 3 * numTris));
-  // No layout: the caller's order is the file's (FrameParams.fileOrder; raster's ties by setup index).
-  fileTriHost_.clear();
-  laidVertex_.clear();
-  fileOrder_ = true;
-  fileTri_.reserve(1);
-  // No cluster test (setup.cl compiles it out): empty bounds, margin 0.
-  clusterBounds_.upload(std::vector<float>(6, NAN));
-  clusterCount_.reserve(1);
-  sceneMin_ = glm::vec3(INFINITY);
-  sceneMax_ = glm::vec3(-INFINITY);
   paintOrder_.clear();
-  scene_ = Mesh{};
-  resident_ = 0;
   triCount_.reserve(numTris, true);
   params_.numVerts = uint32_t(numVerts);
   params_.numTris = uint32_t(numTris);
@@ -44,15 +30,15 @@ void Pipeline::rastOutputs(bool ids, bool derivatives)
   rastDb_.reserve(derivatives ? n : 1, true);
   rastIdsWritten_ = ids;
   rastDbWritten_ = derivatives;
-  cl::Event event;
   cl::Kernel& kernel = extraKernel(rastOutputsKernel_, "rast_outputs");
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setupSource_.get(),
-          clipBary_.get(), indices_.get(), positions_.get(), tileSlot_.get(), visPlane(), rastOut_.get(),
-          rastIds_.get(), rastDb_.get(), (ids ? 1u : 0u) | (derivatives ? 2u : 0u));  // CLR_RAST_OUT_*
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                 cl::NDRange(params_.tilesX * CLR_TILE_SIZE, params_.tilesY * CLR_TILE_SIZE),
-                                 cl::NDRange(CLR_TILE_SIZE, CLR_TILE_SIZE), nullptr, &event);
-  record("rast_outputs", event);
+  RastOutputsArgs args;
+  args.params = paramsBuf_.get(), args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.tileOffset = tileCount_.get(), args.source = setupSource_.get(), args.clipBary = clipBary_.get();
+  args.indices = indices_.get(), args.positions = positions_.get(), args.tileSlot = tileSlot_.get();
+  args.visPlane = visPlane(), args.rast = rastOut_.get(), args.ids = rastIds_.get(), args.db = rastDb_.get();
+  args.outputs = (ids ? 1u : 0u) | (derivatives ? 2u : 0u);  // CLR_RAST_OUT_*
+  setKernelArgs(kernel, args);
+  launchPixels(kernel, "rast_outputs");
 }
 
 void Pipeline::readRastOutputs(float* rast, uint32_t* ids, float* db) const

@@ -95,13 +95,15 @@ void Pipeline::raster()
     kernel = &extraKernel(rasterSpansKernel_, "raster_spans");
   else if (params_.traversal == CLR_TRAVERSAL_SPANS_FLOAT)
     kernel = &extraKernel(rasterSpansFloatKernel_, "raster_spans_float");
-  cl::Event event;
-  setArgs(*kernel, paramsBuf_.get(), setup_.get(), setupSource_.get(), clipBary_.get(), tileCount_.get(),
-          binEntries_.get(), visIndex_.get(), visAttr_.get(), painter ? paintRank_.get() : fileTri_.get(),
-          tileSlot_.get(), visPlane());
+  RasterArgs args;
+  args.params = paramsBuf_.get(), args.setup = setup_.get(), args.source = setupSource_.get();
+  args.clipBary = clipBary_.get(), args.tileOffset = tileCount_.get(), args.binEntries = binEntries_.get();
+  args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.paintRank = painter ? paintRank_.get() : fileTri_.get();
+  args.tileSlot = tileSlot_.get(), args.visPlane = visPlane();
+  setKernelArgs(*kernel, args);
   const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
-  cl_.queue.enqueueNDRangeKernel(*kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
-  record("raster", event);
+  launch(*kernel, shape.global, shape.local, "raster");
 }
 
 WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples)

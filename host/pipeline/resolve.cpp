@@ -64,7 +64,6 @@ void Pipeline::resolve()
   // drew on it.
   if (!(tileBlankImage_ == blank)) tileBlank_.zero(numTiles_);
   tileBlankImage_ = blank;
-  cl::Event event;
   // Step 1: the lean lambert kernel when the frame is its case (resolve_lambert.cl).
   const bool lean = settings_.leanResolve && resolveIsLean(params_.shadeMode, params_.samples, params_.interpMode,
                                                            params_.pointLightOn, params_.sceneFlags);
@@ -77,13 +76,18 @@ void Pipeline::resolve()
                                         params_.shadeMode, params_.samples, lean};
   resolvePrefetch_ = timedPrefetch_ && prefetchChooser_.next(frameCase);
   cl::Kernel& kernel = lean ? resolveLambertKernel_ : resolveKernel_;
-  setArgs(kernel, paramsBuf_.get(), visIndex_.get(), visAttr_.get(), tileCount_.get(), setup_.get(), setupSource_.get(),
-          clipBary_.get(), indices_.get(), positions_.get(), normals_.get(), uvs_.get(), colors_.get(),
-          triMaterial_.get(), materials_.get(), texDescs_.get(), texels_.get(), image_.get(), tileSlot_.get(),
-          visPlane(), cl_uint(resolvePrefetch_), fileTri_.get(), tileBlank_.get());
+  ResolveArgs args;
+  args.params = paramsBuf_.get(), args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
+  args.tileOffset = tileCount_.get(), args.setup = setup_.get(), args.source = setupSource_.get();
+  args.clipBary = clipBary_.get(), args.indices = indices_.get(), args.positions = positions_.get();
+  args.normals = normals_.get(), args.uvs = uvs_.get(), args.colours = colors_.get();
+  args.triMaterial = triMaterial_.get(), args.materials = materials_.get(), args.texDescs = texDescs_.get();
+  args.texels = texels_.get(), args.image = image_.get(), args.tileSlot = tileSlot_.get();
+  args.visPlane = visPlane(), args.prefetchRows = cl_uint(resolvePrefetch_), args.fileTri = fileTri_.get();
+  args.tileBlank = tileBlank_.get();
+  setKernelArgs(kernel, args);
   const WorkShape shape = resolveShape(cl_.lanes, params_.tilesX, params_.tilesY);
-  cl_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, shape.global, shape.local, nullptr, &event);
-  record("resolve", event);
+  launch(kernel, shape.global, shape.local, "resolve");
 }
 
 WorkShape resolveShape(int lanes, uint32_t tilesX, uint32_t tilesY)

@@ -16,7 +16,8 @@ namespace clr {
 
 ScanChunks scanChunks(uint32_t n)
 {
-  const uint32_t size = std::max<uint32_t>(64, (n + 4095) / 4096);
+  const uint32_t size =
+      std::max<uint32_t>(CLR_SCAN_MIN_CHUNK, uint32_t((uint64_t(n) + CLR_SCAN_MAX_CHUNKS - 1) / CLR_SCAN_MAX_CHUNKS));
   return {size, std::max<uint32_t>(1, (n + size - 1) / size)};
 }
 
@@ -31,28 +32,29 @@ void Pipeline::scanSums(const ScanJob& job, uint32_t n, DeviceBuffer<cl_ulong>& 
   const ScanChunks c = scanChunks(n);
   partials.reserve((job.alsoNonZero ? 2 : 1) * (uint64_t(c.count) + 1));
   const cl::NDRange group(CLR_SCAN_GROUP(cl_.lanes));
-  cl::Event reduceEvent, partialsEvent;
-  setArgs(scanReduceKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_REDUCE, job.alsoNonZero, job.listing, job.listEnd);
-  cl_.queue.enqueueNDRangeKernel(scanReduceKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count), group, nullptr,
-                                 &reduceEvent);
-  setArgs(scanPartialsKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_PARTIALS, job.alsoNonZero, job.listing,
-          job.listEnd);
-  cl_.queue.enqueueNDRangeKernel(scanPartialsKernel_, cl::NullRange, group, group, nullptr, &partialsEvent);
-  record(stage, reduceEvent);
-  record(stage, partialsEvent);
+  setKernelArgs(scanReduceKernel_, scanArgs(job, n, partials, CLR_SCAN_REDUCE));
+  launch(scanReduceKernel_, scanChunkItems(cl_.lanes, c.count), group, stage);
+  setKernelArgs(scanPartialsKernel_, scanArgs(job, n, partials, CLR_SCAN_PARTIALS));
+  launch(scanPartialsKernel_, group, group, stage);
 }
 
 void Pipeline::scanApply(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials, const char* stage)
 {
+  setKernelArgs(scanApplyKernel_, scanArgs(job, n, partials, CLR_SCAN_APPLY));
+  launch(scanApplyKernel_, scanChunkItems(cl_.lanes, scanChunks(n).count), cl::NDRange(CLR_SCAN_GROUP(cl_.lanes)),
+         stage);
+}
+
+ScanChunksArgs Pipeline::scanArgs(const ScanJob& job, uint32_t n, const DeviceBuffer<cl_ulong>& partials,
+                                  uint32_t phase) const
+{
   const ScanChunks c = scanChunks(n);
-  cl::Event applyEvent;
-  setArgs(scanApplyKernel_, job.src, job.dst, n, c.size, c.count, partials.get(), job.second, job.bytes,
-          counters_.get(), job.totalAt, job.nonZeroTotalAt, CLR_SCAN_APPLY, job.alsoNonZero, job.listing, job.listEnd);
-  cl_.queue.enqueueNDRangeKernel(scanApplyKernel_, cl::NullRange, scanChunkItems(cl_.lanes, c.count),
-                                 cl::NDRange(CLR_SCAN_GROUP(cl_.lanes)), nullptr, &applyEvent);
-  record(stage, applyEvent);
+  ScanChunksArgs args;
+  args.src = job.src, args.dst = job.dst, args.n = n, args.chunk = c.size, args.numChunks = c.count;
+  args.partials = partials.get(), args.second = job.second, args.byteCounts = job.bytes;
+  args.counters = counters_.get(), args.totalAt = job.totalAt, args.nonZeroTotalAt = job.nonZeroTotalAt;
+  args.phase = phase, args.alsoNonZero = job.alsoNonZero, args.listSources = job.listing, args.listEnd = job.listEnd;
+  return args;
 }
 
 uint64_t Pipeline::scan(DeviceBuffer<uint32_t>& data, uint32_t n, const char* stage, uint32_t totalAt)

@@ -1,11 +1,11 @@
-// setup.cpp — host side of kernels/setup.cl (and clip.cl): count the screen
+// setup.cpp — host side of kernels/setup.cl (and clip.h): count the screen
 // triangles each input triangle yields (and, for binning, the tiles each
 // unclipped one touches), scan the counts into the list of the input
 // triangle behind each setup record, size the setup and ClipBary buffers
 // from the totals, and clip the listed triangles into their reserved
 // records, which they find in that list (counting their tiles too). The
-// unclipped triangles are emitted by bin() once the tile offsets are known,
-// because setup_emit also fills their bins.
+// unclipped triangles are emitted by setupEmit() once the tile offsets are
+// known (bin.cpp scans them), because setup_emit also fills their bins.
 #include "pipeline/pipeline.h"
 
 namespace clr {
@@ -19,7 +19,7 @@ void Pipeline::setup()
   // Step 1: count, and sum the counts, reading the clip-list length and the
   // total with one wait (one read of the counters, where the scans copy
   // their totals); if the clip list was too short, grow it and redo.
-  // When the previous frame clipped nothing, bin()'s tile scans go before the
+  // When the previous frame clipped nothing, setupEmit()'s tile scans go before the
   // wait too, so that a frame without clipping waits once; a frame that does clip counts
   // again without them, since setup_clip adds to the tile counts they scan.
   uint32_t clipped = 0;
@@ -28,19 +28,13 @@ void Pipeline::setup()
   for (;;) {
     std::vector<cl::Event> fills;
     tileCount_.zero(numTiles_ + 1, &fills);
-    cl::Event countEvent;
     // (The emit pass's outputs are bound too; this pass does not touch them.)
     setup_.reserve(1);
     tileCursor_.reserve(1);
     binEntries_.reserve(1);
     setupSource_.reserve(1);
-    setArgs(setupCountKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), triCount_.get(), counters_.get(),
-            clipList_.get(), uint32_t(clipList_.capacity()), tileCount_.get(), setup_.get(), tileCursor_.get(),
-            binEntries_.get(), setupSource_.get(), 0u, uint32_t(CLR_SETUP_PASS_COUNT), clusterBounds_.get(),
-            clusterCount_.get());
-    cl_.queue.enqueueNDRangeKernel(setupCountKernel_, cl::NullRange, linear(countItems),
-                                   cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), nullptr, &countEvent);
-    record("setup_count", countEvent);
+    setKernelArgs(setupCountKernel_, setupTrianglesArgs(0, CLR_SETUP_PASS_COUNT));
+    launch(setupCountKernel_, linear(countItems), cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), "setup_count");
     scanListingBegin("setup_scan");
     if (scanTiles) enqueueBinScans();
     // A speculative frame (Pipeline::runFrame) does not wait: its sizes are
@@ -48,7 +42,7 @@ void Pipeline::setup()
     // totals exceed them.
     if (speculate_) {
       binScanned_ = true;
-      numSetup_ = specCaps_[1];
+      numSetup_ = specCaps_.records;
       numClipped_ = 0;
       scanListingFinish(numSetup_, "setup_scan");
       return;
@@ -84,12 +78,53 @@ void Pipeline::setup()
 
   // Step 3: clip the listed triangles into their reserved slots.
   if (clipped == 0) return;
-  cl::Event clipEvent;
-  setArgs(setupClipKernel_, paramsBuf_.get(), positions_.get(), indices_.get(), setupSource_.get(), numSetup_,
-          clipList_.get(), setup_.get(), clipBary_.get(), counters_.get(), tileCount_.get());
-  cl_.queue.enqueueNDRangeKernel(setupClipKernel_, cl::NullRange, linear(clipped), cl::NDRange(64), nullptr,
-                                 &clipEvent);
-  record("setup_clip", clipEvent);
+  SetupClipArgs args;
+  args.params = paramsBuf_.get(), args.positions = positions_.get(), args.indices = indices_.get();
+  args.source = setupSource_.get(), args.numSetup = numSetup_, args.clipList = clipList_.get();
+  args.setup = setup_.get(), args.clipBary = clipBary_.get(), args.counters = counters_.get();
+  args.tileCount = tileCount_.get();
+  setKernelArgs(setupClipKernel_, args);
+  launchLinear(setupClipKernel_, clipped, "setup_clip");
+}
+
+void Pipeline::setupEmit()
+{
+  // Step 1: a slot of the visibility buffer for each tile with triangles,
+  // the tile offsets, and both totals in one read (setup() may have done
+  // this before its own wait).
+  if (!binScanned_) {
+    enqueueBinScans();
+    takeBinTotals(readCounters());
+  }
+  // (A speculative frame's: the capacities, scan.cl checking its totals.)
+  numBinEntries_ = speculate_ ? specCaps_.bins : binTotal_;
+  numVisSlots_ = speculate_ ? specCaps_.slots : uint32_t(slotTotal_);
+  usedVisSlots_ = numVisSlots_;
+  if (numBinEntries_ > UINT32_MAX)
+    throw Error("the frame needs " + std::to_string(numBinEntries_) +
+                " bin entries, more than the 2^32 a 32-bit offset can address");
+  binEntries_.reserve(numBinEntries_);
+  if (numSetup_ == 0) return;  // nothing in view: no record to emit, no bin to fill
+
+  // Step 2: emit the unclipped triangles into the setup buffer and their bins.
+  std::vector<cl::Event> fills;
+  tileCursor_.zero(numTiles_, &fills);
+  const uint32_t batches = (numSetup_ + cl_.lanes - 1) / cl_.lanes;  // over the records, not the input
+  setKernelArgs(setupEmitKernel_, setupTrianglesArgs(numSetup_, CLR_SETUP_PASS_EMIT));
+  launch(setupEmitKernel_, linear(batches), cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), "setup_emit");
+  binClipped();
+}
+
+SetupTrianglesArgs Pipeline::setupTrianglesArgs(uint32_t numSetup, uint32_t pass) const
+{
+  SetupTrianglesArgs args;
+  args.params = paramsBuf_.get(), args.positions = positions_.get(), args.indices = indices_.get();
+  args.triCount = triCount_.get(), args.counters = counters_.get(), args.clipList = clipList_.get();
+  args.clipListCapacity = uint32_t(clipList_.capacity()), args.tileCount = tileCount_.get();
+  args.setup = setup_.get(), args.tileCursor = tileCursor_.get(), args.binEntries = binEntries_.get();
+  args.source = setupSource_.get(), args.numSetup = numSetup, args.pass = pass;
+  args.clusterBounds = clusterBounds_.get(), args.clusterCount = clusterCount_.get();
+  return args;
 }
 
 }  // namespace clr

@@ -9,11 +9,10 @@ namespace clr {
 void Pipeline::transform()
 {
   clipPos_.reserve(params_.numVerts, true);
-  cl::Event event;
-  setArgs(transformKernel_, positions_.get(), paramsBuf_.get(), clipPos_.get());
-  cl_.queue.enqueueNDRangeKernel(transformKernel_, cl::NullRange, linear(params_.numVerts), cl::NDRange(64), nullptr,
-                                 &event);
-  record("transform", event);
+  TransformArgs args;
+  args.positions = positions_.get(), args.params = paramsBuf_.get(), args.clipPos = clipPos_.get();
+  setKernelArgs(transformKernel_, args);
+  launchLinear(transformKernel_, params_.numVerts, "transform");
 }
 
 }  // namespace clr

@@ -9,7 +9,7 @@
 // work, or once framed (frameCamera).
 #pragma once
 
-#include "pipeline/pipeline.h"
+#include "kernels/shared.h"
 #include "io/scene.h"
 
 #include <glm/glm.hpp>

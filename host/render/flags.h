@@ -4,7 +4,7 @@
 
 #include "render/camera.h"
 #include "render/depth.h"
-#include "pipeline/pipeline.h"
+#include "kernels/shared.h"
 #include "render/views.h"
 
 #include <functional>

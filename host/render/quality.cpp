@@ -2,6 +2,7 @@
 #include "render/quality.h"
 
 #include "render/flags.h"
+#include "pipeline/pipeline.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// frame_settings.h — the one place a frame's FrameSettings are built.
+// frame_request.h — the one place a frame's FrameSettings are built from a request.
 //
 // makeFrameSettings turns the render command's arguments (RenderArgs, flags.h),
 // a framed camera (camera.h), a viewport and the scene's bounds into the
@@ -15,7 +15,7 @@
 #include "render/camera.h"
 #include "render/flags.h"
 #include "render/depth.h"
-#include "pipeline/pipeline.h"
+#include "pipeline/frame_settings.h"
 #include "io/scene.h"
 
 namespace clr {

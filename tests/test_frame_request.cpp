@@ -1,8 +1,8 @@
-// test_frame_settings.cpp — makeFrameSettings (frame_settings.h), the one
+// test_frame_request.cpp — makeFrameSettings (frame_request.h), the one
 // function that turns render arguments, a camera and a viewport into a
 // frame's settings: each flag lands in its field, the camera's matrices and
 // the depth choice agree, and the defaults are FrameSettings' own.
-#include "render/frame_settings.h"
+#include "render/frame_request.h"
 
 #include <catch2/catch.hpp>
 

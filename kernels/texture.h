@@ -1,4 +1,4 @@
-/* texture.cl — base-colour sampling for resolve: per lane (tex_sample) or a row's lanes on one texture in lane
+/* texture.h — base-colour sampling for resolve: per lane (tex_sample) or a row's lanes on one texture in lane
  * types (tex_sample_lanes), with the same floats. OpenCL only (after lanes.h).
  *
  * Texels: one buffer described by TextureDesc (shared.h), RGBA8, rows bottom first; (u, v) maps to (u·w, v·h) of a
@@ -10,6 +10,8 @@
  * Values are t / 255 correctly rounded (no sRGB decoding), so an 8-bit texel round-trips exactly. Texel
  * coordinates are clamped to ±2^24 first, so NaN or huge (u, v) stay inside the texture.
  */
+#ifndef CLR_TEXTURE_H
+#define CLR_TEXTURE_H
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
@@ -182,3 +184,5 @@ CLR_CALLED void tex_sample_lanes(__global const TextureDesc* d, __global const u
   for (int k = 0; k < 3; ++k) rgb[k] = select(rgb[k], mixed[k], t > 0.0f);
 }
 #endif
+
+#endif /* CLR_TEXTURE_H */

@@ -1,4 +1,4 @@
-/* clip.cl — stage 2: homogeneous clipping (helpers used by setup.cl).
+/* clip.h — stage 2: homogeneous clipping (helpers included by setup.cl).
  *
  * Culled: a non-finite clip coordinate, or all three vertices outside one viewport plane or the near plane.
  * Clipped (Sutherland–Hodgman in homogeneous space, never dividing by w <= 0): a vertex behind the near plane or
@@ -7,6 +7,9 @@
  * at the same point from both sides (no seams), and land exactly on the plane, finite for any finite vertices
  * (docs/limits.md).
  */
+#ifndef CLR_CLIP_H
+#define CLR_CLIP_H
+#include "transform.h"
 #pragma OPENCL FP_CONTRACT OFF
 
 /* A polygon vertex during clipping: clip position and barycentrics in the input triangle. */
@@ -95,3 +98,5 @@ CLR_INLINE int clip_polygon(ClipVertex* poly, int n, uint planeMask, float gx, f
   }
   return n;
 }
+
+#endif /* CLR_CLIP_H */

@@ -1,4 +1,4 @@
-/* shade.cl — lighting and base colour for resolve, in lane types (after texture.cl, before resolve.cl).
+/* shade.h — lighting and base colour for resolve, in lane types (included by resolve.h).
  *
  * Blinn-Phong: a directional light (lightDir, intensity 1) and an optional point light at pointLight.xyz with
  * attenuation 1 / (1 + (d / pointLight.w)²). With unit normal n and view v = (eye − p) / |eye − p|, each light
@@ -6,6 +6,9 @@
  * h = (l + v) / |l + v|. Lit colour = albedo·(CLR_AMBIENT + CLR_DIFFUSE·D) + CLR_SPECULAR·S (lambert: S = 0);
  * albedo = material factor × texture × vertex colour, or CLR_GREY_* without materials.
  */
+#ifndef CLR_SHADE_H
+#define CLR_SHADE_H
+#include "texture.h"
 #pragma OPENCL FP_CONTRACT OFF
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
@@ -115,3 +118,5 @@ CLR_INLINE void shade_albedo(__constant FrameParams* params, __global const Mate
   for (int k = 0; k < 3; ++k) albedo[k] = CLR_LOAD_LANES(rgb[k]);
 }
 #endif
+
+#endif /* CLR_SHADE_H */

@@ -1,5 +1,5 @@
-// frame_settings.cpp — a frame's settings from the arguments (see frame_settings.h).
-#include "render/frame_settings.h"
+// frame_request.cpp — a frame's settings from the arguments (see frame_request.h).
+#include "render/frame_request.h"
 
 #include "pipeline/aa.h"
 
