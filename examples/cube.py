@@ -13,14 +13,13 @@ iterations, and the time per iteration; run() returns (iteration, loss,
 corner error, colour error) tuples. The only change from an nvdiffrast
 script is the import.
 """
-import argparse
 import time
 
 import numpy as np
 import torch
 
 import clraster.torch as dr
-from pose import projection, quat_to_matrix, random_quat
+from pose import main, projection, quat_to_matrix, random_quat
 
 
 def cube_target(seed=0):
@@ -74,12 +73,4 @@ def run(iterations=500, resolution=64, seed=2, log=print):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--iterations", type=int, default=500)
-    parser.add_argument("--resolution", type=int, default=64)
-    parser.add_argument("--curve", help="write the history here, one tab-separated line per iteration")
-    args = parser.parse_args()
-    rows = run(args.iterations, args.resolution)
-    if args.curve:
-        with open(args.curve, "w") as f:
-            f.writelines("\t".join(str(v) for v in row) + "\n" for row in rows)
+    main(__doc__, run, 500)

@@ -11,14 +11,13 @@ mode, so the loss reaches every mip level, and steps Adam on the texture.
 Prints the loss and the mean texel error every 50 iterations, and the time
 per iteration; run() returns (iteration, loss, texel error) tuples.
 """
-import argparse
 import time
 
 import numpy as np
 import torch
 
 import clraster.torch as dr
-from pose import projection, quat_to_matrix, random_quat
+from pose import main, projection, quat_to_matrix, random_quat
 
 
 def uv_sphere(rows=12, cols=24):
@@ -82,12 +81,4 @@ def run(iterations=400, resolution=64, seed=3, log=print):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--iterations", type=int, default=400)
-    parser.add_argument("--resolution", type=int, default=64)
-    parser.add_argument("--curve", help="write the history here, one tab-separated line per iteration")
-    args = parser.parse_args()
-    rows = run(args.iterations, args.resolution)
-    if args.curve:
-        with open(args.curve, "w") as f:
-            f.writelines("\t".join(str(v) for v in row) + "\n" for row in rows)
+    main(__doc__, run, 400)

@@ -101,9 +101,11 @@ def run(iterations=300, resolution=64, start_degrees=25.0, seed=1, log=print):
     return history
 
 
-if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--iterations", type=int, default=300)
+def main(doc, run, iterations):
+    """The examples' command line: --iterations, --resolution, and --curve
+    FILE for the history, one tab-separated line per iteration."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--iterations", type=int, default=iterations)
     parser.add_argument("--resolution", type=int, default=64)
     parser.add_argument("--curve", help="write the history here, one tab-separated line per iteration")
     args = parser.parse_args()
@@ -111,3 +113,7 @@ if __name__ == "__main__":
     if args.curve:
         with open(args.curve, "w") as f:
             f.writelines("\t".join(str(v) for v in row) + "\n" for row in rows)
+
+
+if __name__ == "__main__":
+    main(__doc__, run, 300)
