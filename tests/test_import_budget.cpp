@@ -65,7 +65,7 @@ std::string sparseGltf(const std::string& count)
 
 }  // namespace
 
-TEST_CASE("import budget: a sparse glTF accessor is counted from its declared size", "[budget][cli]")
+TEST_CASE("import budget: a sparse glTF accessor is counted from its declared size", "[budget][cli][rlimit]")
 {
   const test::Run small = infoLimited(write("budget-sparse-small.gltf", sparseGltf("1000")));
   INFO(small.err);
@@ -76,7 +76,7 @@ TEST_CASE("import budget: a sparse glTF accessor is counted from its declared si
                 "about 15259 MiB, over the import budget of 4096 MiB");
 }
 
-TEST_CASE("import budget: the files a glTF names count each time it names them", "[budget][cli]")
+TEST_CASE("import budget: the files a glTF names count each time it names them", "[budget][cli][rlimit]")
 {
   // 80 buffers naming one 16 MiB file (sparse on disk): 1,280 MiB together.
   const std::string big = test::tempDir() + "/budget-big.bin";
@@ -100,7 +100,7 @@ TEST_CASE("import budget: the files a glTF names count each time it names them",
                 "budget-buffers.gltf: the files it names take more than 1024 MiB together, the limit for one import");
 }
 
-TEST_CASE("import budget: OBJ materials and groups are limited by name", "[budget][cli]")
+TEST_CASE("import budget: OBJ materials and groups are limited by name", "[budget][cli][rlimit]")
 {
   // Step 1: distinct undefined usemtl names, and newmtl lines in a library.
   std::string obj = kTriangle;
@@ -121,7 +121,7 @@ TEST_CASE("import budget: OBJ materials and groups are limited by name", "[budge
   CHECK(clr::countMaterials("newmtl a\n  newmtl b\n# newmtl c\nxnewmtl d\n") == 2);
 }
 
-TEST_CASE("import budget: glTF nodes count as often as the scene reaches them", "[budget][cli]")
+TEST_CASE("import budget: glTF nodes count as often as the scene reaches them", "[budget][cli][rlimit]")
 {
   // 24 levels of two nodes, each naming both nodes of the next level as
   // children: 1.4 kB that assimp imports as 2^24 - 1 node instances.

@@ -121,7 +121,7 @@ TEST_CASE("model read: the model file is opened once and the bytes checked are i
   }
 }
 
-TEST_CASE("model read: guards run for the reader assimp chooses by content", "[io][hostile][cli]")
+TEST_CASE("model read: guards run for the reader assimp chooses by content", "[io][hostile][cli][rlimit]")
 {
   // An OFF of a billion vertices named .txt: refused from its header, not
   // allocated (the memory limit turns an allocation into a failure).

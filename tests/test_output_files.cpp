@@ -107,7 +107,7 @@ TEST_CASE("outputs: a views run ended by a signal leaves no temporary file", "[o
   CHECK(left.out == "0\n");
 }
 
-TEST_CASE("outputs: --aov or a PNG past an address-space limit is refused naming the size", "[outputs]")
+TEST_CASE("outputs: --aov or a PNG past an address-space limit is refused naming the size", "[outputs][rlimit]")
 {
   // 4096x4096 visibility planes take about 2.7 GB of host memory beyond the
   // frame: under a 1.5 GB address-space limit, one error line, no output.
