@@ -12,6 +12,7 @@
  * nothing is left, so later layers stay empty).
  */
 #pragma OPENCL FP_CONTRACT OFF
+#include "rast_pixel.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 CLR_INLINE long peel_edge(int ax, int ay, int bx, int by, int px, int py)
@@ -82,19 +83,6 @@ __kernel void peel_layer(__constant FrameParams* params, __global const TriSetup
       mu[j] += (q[i] * eyeDepth) * wt;
     }
   rast[p] = (float4)(mu[0], mu[1], 2.0f * best - 1.0f, rast_id_float(triId + 1u));
-  if (!withDb) return;
-  float4 c[3];
-  for (int j = 0; j < 3; ++j) c[j] = vload4(indices[3 * triId + j], positions);
-  const float3 p0 = (float3)(c[0].x, c[0].y, c[0].w), p1 = (float3)(c[1].x, c[1].y, c[1].w),
-               p2 = (float3)(c[2].x, c[2].y, c[2].w);
-  const float3 r0 = cross(p1, p2), r1 = cross(p2, p0), r2 = cross(p0, p1);
-  const float3 sc = (float3)(2.0f * ((float)px + 0.5f) / (float)params->width - 1.0f,
-                             2.0f * ((float)py + 0.5f) / (float)params->height - 1.0f, 1.0f);
-  const float k0 = dot(r0, sc), k1 = dot(r1, sc), k2 = dot(r2, sc);
-  const float sum = k0 + k1 + k2, l0 = k0 / sum, l1 = k1 / sum;
-  const float sxs = r0.x + r1.x + r2.x, sys = r0.y + r1.y + r2.y;
-  const float dx = 2.0f / (float)params->width, dy = 2.0f / (float)params->height;
-  db[p] = (float4)((r0.x - l0 * sxs) / sum * dx, (r0.y - l0 * sys) / sum * dy, (r1.x - l1 * sxs) / sum * dx,
-                   (r1.y - l1 * sys) / sum * dy);
+  if (withDb) db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);
 }
 #endif

@@ -9,32 +9,21 @@
  *    ClipBary and the back-face swap as aov.cl does; z/w = 2d − 1 from the
  *    window depth d = z/w · 0.5 + 0.5 that raster interpolated in screen
  *    space and kept (float32 depth, setup.cl); id = triangle index + 1 as
- *    nvdiffrast encodes it
- *    (exact float up to 2^24, above that the biased bit pattern
- *    0x4a800000 + id, which decodes exactly);
+ *    nvdiffrast encodes it (rast_pixel.h);
  *  ids uint: triangle index + 1, exact, when `outputs` has
  *    CLR_RAST_OUT_IDS;
  *  db float4 (du/dX, du/dY, dv/dX, dv/dY) per pixel, when `outputs` has
- *    CLR_RAST_OUT_DB (the only output that reads the positions): with the
- *    clip vertices p_i = (x_i, y_i, w_i) and s = (x_ndc, y_ndc, 1), k_i =
- *    (p_j × p_k)·s (i, j, k cyclic) and λ_i = k_i / Σk, so
- *    dλ_i/dx_ndc = (r_i.x − λ_i Σ r.x) / Σk with r_i = p_j × p_k, and
- *    dx_ndc/dX = 2/W, dy_ndc/dY = 2/H.
+ *    CLR_RAST_OUT_DB (the only output that reads the positions; rast_pixel.h).
  * Background: all zero.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vis.h"
 #include "transform.h"
+#include "rast_pixel.h"
 #if CLR_EXTRAS /* the extras program (CLR_EXTRAS, shared.h) */
 
 #define CLR_RAST_OUT_IDS 1u
 #define CLR_RAST_OUT_DB 2u
-
-/* nvdiffrast's triangle-id encoding (triidx_to_float). */
-CLR_INLINE float rast_id_float(uint id)
-{
-  return id <= 0x01000000u ? (float)id : as_float(0x4a800000u + id);
-}
 
 __kernel void rast_outputs(__constant FrameParams* params,
                            __global const uint* visIndex,    // sample plane 0 (shared.h)
@@ -87,19 +76,6 @@ __kernel void rast_outputs(__constant FrameParams* params,
   rast[p] = (float4)(mu[0], mu[1], 2.0f * visAttr[v] - 1.0f, rast_id_float(triId + 1u));
   if (outputs & CLR_RAST_OUT_IDS) ids[p] = triId + 1u;
   if (!(outputs & CLR_RAST_OUT_DB)) return;
-  // Step 4: the pixel derivatives of u and v (the formula above).
-  float4 c[3];
-  for (int j = 0; j < 3; ++j) c[j] = vload4(indices[3 * triId + j], positions);
-  const float3 p0 = (float3)(c[0].x, c[0].y, c[0].w), p1 = (float3)(c[1].x, c[1].y, c[1].w),
-               p2 = (float3)(c[2].x, c[2].y, c[2].w);
-  const float3 r0 = cross(p1, p2), r1 = cross(p2, p0), r2 = cross(p0, p1);
-  const float3 s = (float3)(2.0f * ((float)px + 0.5f) / (float)params->width - 1.0f,
-                            2.0f * ((float)py + 0.5f) / (float)params->height - 1.0f, 1.0f);
-  const float k0 = dot(r0, s), k1 = dot(r1, s), k2 = dot(r2, s);
-  const float sum = k0 + k1 + k2, l0 = k0 / sum, l1 = k1 / sum;
-  const float sx = r0.x + r1.x + r2.x, sy = r0.y + r1.y + r2.y;
-  const float dx = 2.0f / (float)params->width, dy = 2.0f / (float)params->height;
-  db[p] = (float4)((r0.x - l0 * sx) / sum * dx, (r0.y - l0 * sy) / sum * dy, (r1.x - l1 * sx) / sum * dx,
-                   (r1.y - l1 * sy) / sum * dy);
+  db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);
 }
 #endif

@@ -8,6 +8,8 @@
 // are checked; __init__.py makes calls on one Context take turns.
 #include <clraster/clraster.hpp>
 
+#include "arrays.h"
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -20,19 +22,9 @@ void bindDiff(py::module_& m);  // module_diff.cpp: the backward passes
 
 namespace {
 
-using FloatArray = py::array_t<float, py::array::c_style>;
-using IntArray = py::array_t<int32_t, py::array::c_style>;
-
-void expectShape(const char* name, const py::array& a, std::initializer_list<py::ssize_t> shape)
-{
-  bool ok = a.ndim() == py::ssize_t(shape.size());
-  size_t k = 0;
-  for (py::ssize_t n : shape) {
-    ok = ok && (n < 0 || a.shape(k) == n);
-    ++k;
-  }
-  if (!ok) throw py::value_error(std::string(name) + ": wrong shape");
-}
+using clraster_py::expectShape;
+using clraster_py::FloatArray;
+using clraster_py::IntArray;
 
 // rasterize of one image into rast (and db when given): pos [V, 4], tri [T, 3], out [H, W, 4].
 void rasterizeInto(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, FloatArray rast,

@@ -5,6 +5,8 @@
 // released around the device work.
 #include <clraster/diff.hpp>
 
+#include "arrays.h"
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -16,23 +18,13 @@ namespace py = pybind11;
 
 namespace {
 
-using FloatArray = py::array_t<float, py::array::c_style>;
-using IntArray = py::array_t<int32_t, py::array::c_style>;
-
-void expectDims(const char* name, const py::array& a, std::initializer_list<py::ssize_t> shape)
-{
-  bool ok = a.ndim() == py::ssize_t(shape.size());
-  size_t k = 0;
-  for (py::ssize_t n : shape) {
-    ok = ok && (n < 0 || a.shape(k) == n);
-    ++k;
-  }
-  if (!ok) throw py::value_error(std::string(name) + ": wrong shape");
-}
+using clraster_py::expectShape;
+using clraster_py::FloatArray;
+using clraster_py::IntArray;
 
 clraster::ImageBatch batchOf(const FloatArray& rast)
 {
-  expectDims("rast", rast, {-1, -1, -1, 4});
+  expectShape("rast", rast, {-1, -1, -1, 4});
   return {size_t(rast.shape(0)), uint32_t(rast.shape(2)), uint32_t(rast.shape(1))};
 }
 
@@ -41,11 +33,11 @@ clraster::ImageBatch batchOf(const FloatArray& rast)
 FloatArray rasterizeGrad(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, const FloatArray& rast,
                          const FloatArray& gradRast, std::optional<FloatArray> gradDb)
 {
-  expectDims("pos", pos, {-1, -1, 4});
-  expectDims("tri", tri, {-1, 3});
+  expectShape("pos", pos, {-1, -1, 4});
+  expectShape("tri", tri, {-1, 3});
   const clraster::ImageBatch b = batchOf(rast);
-  expectDims("grad_rast", gradRast, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
-  if (gradDb) expectDims("grad_db", *gradDb, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
+  expectShape("grad_rast", gradRast, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
+  if (gradDb) expectShape("grad_db", *gradDb, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
   FloatArray out({pos.shape(0), pos.shape(1), py::ssize_t(4)});
   const float *p = pos.data(), *r = rast.data(), *gr = gradRast.data(), *gd = gradDb ? gradDb->data() : nullptr;
   const int32_t* t = tri.data();
@@ -65,15 +57,15 @@ py::tuple interpolateGrad(clraster::Context& ctx, const FloatArray& attr, const 
                           const FloatArray& gradOut, std::optional<FloatArray> db, const std::vector<int>& diff,
                           std::optional<FloatArray> gradDa)
 {
-  expectDims("attr", attr, {-1, -1, -1});
-  expectDims("tri", tri, {-1, 3});
+  expectShape("attr", attr, {-1, -1, -1});
+  expectShape("tri", tri, {-1, 3});
   const clraster::ImageBatch b = batchOf(rast);
   const py::ssize_t n0 = rast.shape(0), n1 = rast.shape(1), n2 = rast.shape(2), c = attr.shape(2);
-  expectDims("grad_out", gradOut, {n0, n1, n2, c});
+  expectShape("grad_out", gradOut, {n0, n1, n2, c});
   if (!diff.empty()) {
     if (!db || !gradDa) throw py::value_error("rast_db: needed with diff_attrs");
-    expectDims("rast_db", *db, {n0, n1, n2, 4});
-    expectDims("grad_da", *gradDa, {n0, n1, n2, py::ssize_t(2 * diff.size())});
+    expectShape("rast_db", *db, {n0, n1, n2, 4});
+    expectShape("grad_da", *gradDa, {n0, n1, n2, py::ssize_t(2 * diff.size())});
   }
   FloatArray gradAttr({attr.shape(0), attr.shape(1), c});
   FloatArray gradRast({n0, n1, n2, py::ssize_t(4)});
@@ -95,8 +87,8 @@ py::tuple interpolateGrad(clraster::Context& ctx, const FloatArray& attr, const 
 clraster::TextureSpec textureSpec(const FloatArray& tex, const FloatArray& uv, bool hasUvDa, bool hasBias, int filter,
                                   int boundary, int maxMipLevel)
 {
-  expectDims("tex", tex, {-1, -1, -1, -1});
-  expectDims("uv", uv, {-1, -1, -1, 2});
+  expectShape("tex", tex, {-1, -1, -1, -1});
+  expectShape("uv", uv, {-1, -1, -1, 2});
   if (filter < 0 || filter > 3) throw py::value_error("filter_mode: unknown");
   if (boundary < 0 || boundary > 2) throw py::value_error("boundary_mode: unknown");
   clraster::TextureSpec s;
@@ -115,8 +107,8 @@ clraster::TextureSpec textureSpec(const FloatArray& tex, const FloatArray& uv, b
 
 void checkPixels(const FloatArray& uv, const std::optional<FloatArray>& uvDa, const std::optional<FloatArray>& bias)
 {
-  if (uvDa) expectDims("uv_da", *uvDa, {uv.shape(0), uv.shape(1), uv.shape(2), 4});
-  if (bias) expectDims("mip_level_bias", *bias, {uv.shape(0), uv.shape(1), uv.shape(2)});
+  if (uvDa) expectShape("uv_da", *uvDa, {uv.shape(0), uv.shape(1), uv.shape(2), 4});
+  if (bias) expectShape("mip_level_bias", *bias, {uv.shape(0), uv.shape(1), uv.shape(2)});
 }
 
 void checkMips(const clraster::TextureSpec& s, const std::optional<FloatArray>& mips)
@@ -128,7 +120,7 @@ void checkMips(const clraster::TextureSpec& s, const std::optional<FloatArray>& 
 // The mip levels 1.. of tex, flat (textureMipFloats floats).
 FloatArray textureMips(clraster::Context& ctx, const FloatArray& tex, int maxMipLevel)
 {
-  expectDims("tex", tex, {-1, -1, -1, -1});
+  expectShape("tex", tex, {-1, -1, -1, -1});
   FloatArray uv(std::vector<py::ssize_t>{tex.shape(0), 1, 1, 2});
   const clraster::TextureSpec s = textureSpec(tex, uv, true, false, 3, 0, maxMipLevel);
   FloatArray mips(py::ssize_t(clraster::textureMipFloats(s)));
@@ -167,7 +159,7 @@ py::tuple textureGrad(clraster::Context& ctx, const FloatArray& tex, std::option
   const clraster::TextureSpec s = textureSpec(tex, uv, bool(uvDa), bool(bias), filter, boundary, maxMipLevel);
   checkPixels(uv, uvDa, bias);
   checkMips(s, mips);
-  expectDims("grad_out", gradOut, {uv.shape(0), uv.shape(1), uv.shape(2), tex.shape(3)});
+  expectShape("grad_out", gradOut, {uv.shape(0), uv.shape(1), uv.shape(2), tex.shape(3)});
   FloatArray gradTex({tex.shape(0), tex.shape(1), tex.shape(2), tex.shape(3)});
   FloatArray gradUv({uv.shape(0), uv.shape(1), uv.shape(2), py::ssize_t(2)});
   FloatArray gradUvDa({uv.shape(0), uv.shape(1), uv.shape(2), py::ssize_t(uvDa ? 4 : 0)});
@@ -191,10 +183,10 @@ void checkAntialias(const FloatArray& color, const FloatArray& rast, const Float
                     const IntArray& opp)
 {
   const clraster::ImageBatch b = batchOf(rast);
-  expectDims("color", color, {py::ssize_t(b.images), b.height, b.width, -1});
-  expectDims("pos", pos, {-1, -1, 4});
-  expectDims("tri", tri, {-1, 3});
-  expectDims("topology_hash", opp, {tri.shape(0), 3});
+  expectShape("color", color, {py::ssize_t(b.images), b.height, b.width, -1});
+  expectShape("pos", pos, {-1, -1, 4});
+  expectShape("tri", tri, {-1, 3});
+  expectShape("topology_hash", opp, {tri.shape(0), 3});
 }
 
 FloatArray antialiasForward(clraster::Context& ctx, const FloatArray& color, const FloatArray& rast,
@@ -219,7 +211,7 @@ py::tuple antialiasGrad(clraster::Context& ctx, const FloatArray& color, const F
                         const IntArray& tri, const IntArray& opp, const FloatArray& gradOut, float posBoost)
 {
   checkAntialias(color, rast, pos, tri, opp);
-  expectDims("grad_out", gradOut, {color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
+  expectShape("grad_out", gradOut, {color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
   const clraster::ImageBatch b = batchOf(rast);
   FloatArray gradColor({color.shape(0), color.shape(1), color.shape(2), color.shape(3)});
   FloatArray gradPos({pos.shape(0), pos.shape(1), py::ssize_t(4)});
@@ -237,7 +229,7 @@ py::tuple antialiasGrad(clraster::Context& ctx, const FloatArray& color, const F
 
 IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
 {
-  expectDims("tri", tri, {-1, 3});
+  expectShape("tri", tri, {-1, 3});
   std::vector<int32_t> opp;
   const int32_t* t = tri.data();
   const size_t n = size_t(tri.shape(0));
@@ -255,9 +247,9 @@ IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
 py::tuple rasterizePeel(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, const FloatArray& floor,
                         bool withDb)
 {
-  expectDims("pos", pos, {-1, 4});
-  expectDims("tri", tri, {-1, 3});
-  expectDims("floor", floor, {-1, -1});
+  expectShape("pos", pos, {-1, 4});
+  expectShape("tri", tri, {-1, 3});
+  expectShape("floor", floor, {-1, -1});
   const py::ssize_t h = floor.shape(0), w = floor.shape(1);
   FloatArray rast({h, w, py::ssize_t(4)}), db({h, w, py::ssize_t(withDb ? 4 : 0)}), next({h, w});
   const float *p = pos.data(), *f = floor.data();
