@@ -66,23 +66,9 @@ __kernel void peel_layer(__constant FrameParams* params, __global const TriSetup
   }
   nextFloor[p] = best;
   // Step 2: rast_outputs.cl's outputs for that fragment.
-  const uint from = source[bestS], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
-  const float b[3] = {1.0f - b1 - b2, b1, b2};
-  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
-  float w[3];
-  record_clip_w(params, positions, clipBary, from, vertex, w);
-  const float q[3] = {b[0] * (1.0f / w[0]), b[1] * (1.0f / w[1]), b[2] * (1.0f / w[2])};
-  const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
-  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
-  const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
-  float mu[3] = {0.0f, 0.0f, 0.0f};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const int identity = swapped && i != 0 ? 3 - i : i;
-      const float wt = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
-      mu[j] += (q[i] * eyeDepth) * wt;
-    }
-  rast[p] = (float4)(mu[0], mu[1], 2.0f * best - 1.0f, rast_id_float(triId + 1u));
+  const uint from = source[bestS], triId = clr_source_triangle(from, clipBary);
+  const float2 uv = rast_pixel_uv(params, positions, indices, clipBary, from, b1, b2);
+  rast[p] = (float4)(uv.x, uv.y, 2.0f * best - 1.0f, rast_id_float(triId + 1u));
   if (withDb) db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);
 }
 #endif

@@ -53,27 +53,12 @@ __kernel void rast_outputs(__constant FrameParams* params,
     if (outputs & CLR_RAST_OUT_DB) db[p] = (float4)(0.0f);
     return;
   }
-  const uint from = source[index], clipSlot = clr_source_clip_slot(from), triId = clr_source_triangle(from, clipBary);
-  // Step 2: perspective-correct weights of the setup vertices, then of the
-  // input vertices (aov.cl, steps 2 and 3).
-  const float b[3] = {1.0f - visAttr[visPlane + v] - visAttr[2 * visPlane + v], visAttr[visPlane + v],
-                      visAttr[2 * visPlane + v]};
-  const uint vertex[3] = {indices[3 * triId], indices[3 * triId + 1], indices[3 * triId + 2]};
-  float w[3];
-  record_clip_w(params, positions, clipBary, from, vertex, w);
-  const float q[3] = {b[0] * (1.0f / w[0]), b[1] * (1.0f / w[1]), b[2] * (1.0f / w[2])};
-  const float eyeDepth = 1.0f / (q[0] + q[1] + q[2]);
-  const bool clipped = clipSlot != CLR_NOT_CLIPPED;
-  const bool swapped = !clipped && clr_source_backfacing(from, clipBary);
-  float mu[3] = {0.0f, 0.0f, 0.0f};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const int identity = swapped && i != 0 ? 3 - i : i;
-      const float w = clipped ? clipBary[clipSlot].w[i][j] : (float)(identity == j);
-      mu[j] += (q[i] * eyeDepth) * w;
-    }
+  const uint from = source[index], triId = clr_source_triangle(from, clipBary);
+  // Step 2: perspective-correct weights of the input vertices (rast_pixel.h).
+  const float2 uv =
+      rast_pixel_uv(params, positions, indices, clipBary, from, visAttr[visPlane + v], visAttr[2 * visPlane + v]);
   // Step 3: the outputs.
-  rast[p] = (float4)(mu[0], mu[1], 2.0f * visAttr[v] - 1.0f, rast_id_float(triId + 1u));
+  rast[p] = (float4)(uv.x, uv.y, 2.0f * visAttr[v] - 1.0f, rast_id_float(triId + 1u));
   if (outputs & CLR_RAST_OUT_IDS) ids[p] = triId + 1u;
   if (!(outputs & CLR_RAST_OUT_DB)) return;
   db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);

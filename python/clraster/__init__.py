@@ -222,6 +222,28 @@ def triangle_ids(rast):
     return np.where(f > 0, ids, 0).astype(np.int32)
 
 
+def _diff_list(diff_attrs, num_attrs):
+    """diff_attrs (None, 'all' or integer indices, negative from the end) as
+    a list of indices in [0, num_attrs); ValueError naming diff_attrs."""
+    if diff_attrs is None:
+        return []
+    if isinstance(diff_attrs, str):
+        if diff_attrs != "all":
+            raise ValueError(f"diff_attrs: expected a list of indices or 'all', got {diff_attrs!r}")
+        return list(range(num_attrs))
+    try:
+        diff = [int(j) for j in diff_attrs if not isinstance(j, bool) and isinstance(j, numbers.Integral)]
+        ok = len(diff) == len(diff_attrs)
+    except TypeError:
+        ok = False
+    if not ok:
+        raise ValueError(f"diff_attrs: expected a list of integer indices or 'all', got {diff_attrs!r}")
+    for j in diff:
+        if not -num_attrs <= j < num_attrs:
+            raise ValueError(f"diff_attrs: attribute index {j} outside [-{num_attrs}, {num_attrs})")
+    return [j % num_attrs for j in diff]
+
+
 def _check_rast_ids(rast, num_triangles):
     """ValueError naming rast unless every channel 3 is 0 (background) or
     the encoding of an id in 1..num_triangles."""
@@ -251,23 +273,7 @@ def interpolate(attr, rast, tri, rast_db=None, diff_attrs=None, *, out=None):
         raise ValueError(f"attr: {attrs.shape[0]} attribute sets for {batch} images in rast")
     tri = _check_tri(tri, attrs.shape[1])
     num_attrs = attrs.shape[2]
-    if diff_attrs is None:
-        diff = []
-    elif isinstance(diff_attrs, str):
-        if diff_attrs != "all":
-            raise ValueError(f"diff_attrs: expected a list of indices or 'all', got {diff_attrs!r}")
-        diff = list(range(num_attrs))
-    else:
-        try:
-            diff = [int(j) for j in diff_attrs if not isinstance(j, bool) and isinstance(j, numbers.Integral)]
-            ok = len(diff) == len(diff_attrs)
-        except TypeError:
-            ok = False
-        if not ok:
-            raise ValueError(f"diff_attrs: expected a list of integer indices or 'all', got {diff_attrs!r}")
-        for j in diff:
-            if not -num_attrs <= j < num_attrs:
-                raise ValueError(f"diff_attrs: attribute index {j} outside [-{num_attrs}, {num_attrs})")
+    diff = _diff_list(diff_attrs, num_attrs)
     if diff:
         if rast_db is None:
             raise ValueError("rast_db: needed with diff_attrs (rasterize(..., grad_db=True))")

@@ -26,7 +26,7 @@ import torch
 
 from . import _clraster
 from . import ArgumentTypeError, Context, Error  # noqa: F401  (re-exported)
-from . import _MAX_RESOLUTION, _check_rast_ids, triangle_ids  # noqa: F401
+from . import _MAX_RESOLUTION, _check_rast_ids, _diff_list, triangle_ids  # noqa: F401
 from . import rasterize as np_rasterize
 
 __all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
@@ -274,25 +274,6 @@ class DepthPeeler:
                     np.zeros((0, height, width, 4 if self._grad_db else 0), np.float32))
         return np.stack(rasts), np.stack(dbs)
 
-
-def _diff_list(diff_attrs, num_attrs):
-    if diff_attrs is None:
-        return []
-    if isinstance(diff_attrs, str):
-        if diff_attrs != "all":
-            raise ValueError(f"diff_attrs: expected a list of indices or 'all', got {diff_attrs!r}")
-        return list(range(num_attrs))
-    try:
-        diff = [int(j) for j in diff_attrs if not isinstance(j, bool) and isinstance(j, numbers.Integral)]
-        ok = len(diff) == len(diff_attrs)
-    except TypeError:
-        ok = False
-    if not ok:
-        raise ValueError(f"diff_attrs: expected a list of integer indices or 'all', got {diff_attrs!r}")
-    for j in diff:
-        if not -num_attrs <= j < num_attrs:
-            raise ValueError(f"diff_attrs: attribute index {j} outside [-{num_attrs}, {num_attrs})")
-    return [j % num_attrs for j in diff]
 
 
 class _Interpolate(torch.autograd.Function):
