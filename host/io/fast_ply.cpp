@@ -82,6 +82,8 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
   // Step 2: faces, the body exactly as long as they need.
   const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + layout.bodyStart + 12 * n;
   const unsigned char* const end = reinterpret_cast<const unsigned char*>(bytes.data()) + bytes.size();
+  // Each face takes at least 13 bytes: the count is bounded by the body before anything is reserved.
+  if (layout.faces > uint64_t(end - p) / 13) return false;
   out.indices.reserve(3 * layout.faces);
   for (uint64_t f = 0; f < layout.faces; ++f) {
     if (p == end) return false;
@@ -98,19 +100,24 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
     }
   }
   if (p != end) return false;
-  // Step 3: what the assimp path adds for such a file.
-  out.normals.assign(3 * n, 0.0f);
-  out.uvs.assign(2 * n, 0.0f);
-  out.triMaterial.assign(out.indices.size() / 3, 0);
+  addImportDefaults(out);
+  mesh = std::move(out);
+  return true;
+}
+
+void addImportDefaults(Mesh& mesh)
+{
+  const size_t n = mesh.numVerts();
+  if (mesh.normals.empty()) mesh.normals.assign(3 * n, 0.0f);
+  mesh.uvs.assign(2 * n, 0.0f);
+  mesh.triMaterial.assign(mesh.numTris(), 0);
   Material grey{};
   grey.baseColor[0] = 0.80f;
   grey.baseColor[1] = 0.78f;
   grey.baseColor[2] = 0.74f;
   grey.baseColor[3] = 1.0f;
   grey.texture = -1;
-  out.materials.push_back(grey);
-  mesh = std::move(out);
-  return true;
+  mesh.materials.assign(1, grey);
 }
 
 }  // namespace clr

@@ -24,4 +24,10 @@ namespace clr {
 // read here, `mesh` left empty.
 bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh);
 
+// What the assimp path adds to a mesh of positions and triangles from a
+// file without texture coordinates, colours or materials (PLY, OFF, STL):
+// normals zero where `mesh` has none, texture coordinates (0, 0), every
+// triangle of material 0, the built-in grey. The direct readers share it.
+void addImportDefaults(Mesh& mesh);
+
 }  // namespace clr
