@@ -83,7 +83,7 @@ std::string readAll(const std::string& path)
   return s.str();
 }
 
-// Which direct reader takes the file, if any: "off", "stl-binary", "stl-ascii", "ply-binary", or "".
+// Which direct reader takes the file, if any: "off", "stl-binary", "stl-ascii", "ply-binary", "ply-ascii" or "".
 std::string directKind(const std::string& path)
 {
   const std::string bytes = readAll(path);
@@ -91,7 +91,8 @@ std::string directKind(const std::string& path)
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   clr::Mesh m;
   if (ext == "off") return clr::readPlainOff(bytes, m) ? "off" : "";
-  if (ext == "ply") return clr::readPlainBinaryPly(bytes, m) ? "ply-binary" : "";
+  if (ext == "ply")
+    return clr::readPlainBinaryPly(bytes, m) ? "ply-binary" : clr::readPlainAsciiPly(bytes, m) ? "ply-ascii" : "";
   if (ext == "stl" && clr::readPlainStl(bytes, m))
     return bytes.compare(0, 5, "solid") == 0 && m.numVerts() * 50 / 3 + 84 != bytes.size() ? "stl-ascii" : "stl-binary";
   return "";
@@ -167,6 +168,17 @@ std::string offFile(uint32_t seed, int vertices, int faces, const std::string& e
     s += eol;
   }
   return s;
+}
+
+// A random ASCII PLY: OFF's body under a PLY header (the header's lines end in '\n').
+std::string asciiPly(uint32_t seed, int vertices, int faces, const std::string& eol, int maxCorners = 12)
+{
+  const std::string off = offFile(seed, vertices, faces, eol, maxCorners);
+  size_t body = off.find(eol, off.find(" 0" + eol)) + eol.size();
+  if (off.compare(body, 3, "  #") == 0) body = off.find(eol, body) + eol.size();  // offFile's comment
+  return "ply\nformat ascii 1.0\ncomment made by a test\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
+         "\nproperty list uchar int vertex_indices\nend_header\n" + off.substr(body);
 }
 
 // A random ASCII STL of `solids` solids of `facets` facets each.
@@ -312,5 +324,47 @@ TEST_CASE("direct readers: generated STL files read the same both ways", "[io][m
     const std::string path = test::writeFile("unusual-" + name + ".stl", text);
     const std::string kind = compareBothWays(path);
     CHECK((kind == "" || name == "normal-comma"));
+  }
+}
+
+TEST_CASE("direct readers: generated ASCII PLY files read the same both ways", "[io][models][direct]")
+{
+  int accepted = 0;
+  for (uint32_t seed = 1; seed <= 8; ++seed) {
+    const std::string eol = seed % 2 ? "\n" : "\r\n";
+    const std::string path = test::writeFile("direct" + std::to_string(seed) + ".ply",
+                                             asciiPly(seed, 30 + int(seed) * 9, 20 + int(seed) * 5, eol));
+    accepted += compareBothWays(path) == "ply-ascii";
+  }
+  accepted += compareBothWays(test::writeFile("direct-big.ply", asciiPly(98, 40000, 60000, "\n"))) == "ply-ascii";
+  CHECK(accepted == 9);
+  const std::string plain =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::vector<std::pair<std::string, std::string>> unusual = {
+      {"two-corners", plain + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n"},
+      {"index-range", plain + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"},
+      {"short", plain + "0 0 0\n1 0 0\n0 1 0\n"},
+      {"long", plain + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n"},
+      {"huge", plain + "0 0 0\n1e30 0 0\n0 1 0\n3 0 1 2\n"},
+      {"blank-line", plain + "0 0 0\n\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"crlf-header",
+       [&] {
+         std::string t;
+         for (char c : plain + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+           t += c == '\n' ? std::string("\r\n") : std::string(1, c);
+         return t;
+       }()},
+      {"extra-value", plain + "0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"integer-x",
+       [&] {
+         std::string t = plain + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+         t.replace(t.find("float x"), 7, "int x");
+         return t;
+       }()},
+  };
+  for (const auto& [name, text] : unusual) {
+    const std::string path = test::writeFile("unusual-" + name + ".ply", text);
+    CHECK(compareBothWays(path) == "");
   }
 }

@@ -49,7 +49,7 @@ struct Part {
   bool ok = false;
 };
 
-void parsePart(Part& part, uint64_t vertices, float* positions)
+void parsePart(Part& part, uint64_t vertices, uint64_t maxCorners, float* positions)
 {
   const char* p = part.text.begin;
   const char* const end = part.text.end;
@@ -73,7 +73,7 @@ void parsePart(Part& part, uint64_t vertices, float* positions)
     } else {
       uint64_t k = 0, first = 0, previous = 0;
       q = scanUnsigned(q, e, k);
-      if (!q || k < 3 || k > 9) return;
+      if (!q || k < 3 || k > maxCorners) return;
       for (uint64_t j = 0; j < k; ++j) {
         uint64_t index = 0;
         q = scanUnsigned(skipBlanks(q, e), e, index);
@@ -92,14 +92,9 @@ void parsePart(Part& part, uint64_t vertices, float* positions)
 
 }  // namespace
 
-bool readPlainOff(const std::string& bytes, Mesh& mesh)
+bool readVertexFaceLines(const char* body, const char* end, uint64_t vertices, uint64_t faces, uint64_t maxCorners,
+                         Mesh& out)
 {
-  const char* const begin = bytes.data();
-  const char* end = begin + bytes.size();
-  uint64_t counts[3] = {0, 0, 0};
-  const char* body = nullptr;
-  if (!readHeader(begin, end, counts, body)) return false;
-  const uint64_t vertices = counts[0], faces = counts[1];
   if (vertices == 0 || faces == 0 || vertices > UINT32_MAX) return false;
   // White space after the last face line is not a line.
   while (end > body && (isBlank(end[-1]) || end[-1] == '\r' || end[-1] == '\n')) --end;
@@ -116,9 +111,8 @@ bool readPlainOff(const std::string& bytes, Mesh& mesh)
   }
   if (total != vertices + faces) return false;  // also bounds the counts by the file's size
   // Step 2: every part parsed on its own thread.
-  Mesh out;
   out.positions.resize(3 * vertices);
-  runParts(parts.size(), [&](size_t i) { parsePart(parts[i], vertices, out.positions.data()); });
+  runParts(parts.size(), [&](size_t i) { parsePart(parts[i], vertices, maxCorners, out.positions.data()); });
   size_t indices = 0;
   for (const Part& part : parts) {
     if (!part.ok) return false;
@@ -129,6 +123,17 @@ bool readPlainOff(const std::string& bytes, Mesh& mesh)
     out.indices.insert(out.indices.end(), part.indices.begin(), part.indices.end());
     part.indices = {};
   }
+  return true;
+}
+
+bool readPlainOff(const std::string& bytes, Mesh& mesh)
+{
+  uint64_t counts[3] = {0, 0, 0};
+  const char* body = nullptr;
+  Mesh out;
+  if (!readHeader(bytes.data(), bytes.data() + bytes.size(), counts, body) ||
+      !readVertexFaceLines(body, bytes.data() + bytes.size(), counts[0], counts[1], 9, out))
+    return false;
   addImportDefaults(out);
   mesh = std::move(out);
   return true;

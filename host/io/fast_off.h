@@ -27,4 +27,12 @@ namespace clr {
 // not read here, `mesh` left empty.
 bool readPlainOff(const std::string& bytes, Mesh& mesh);
 
+// The body shared with ASCII PLY (fast_ply.h): from `body` to `end`,
+// exactly `vertices` lines of three coordinates, then `faces` lines
+// "k i1 .. ik" (3 <= k <= maxCorners), then white space, checked and
+// read as above into out.positions and out.indices (fan-triangulated);
+// false: not read, `out` to be discarded.
+bool readVertexFaceLines(const char* body, const char* end, uint64_t vertices, uint64_t faces, uint64_t maxCorners,
+                         Mesh& out);
+
 }  // namespace clr

@@ -1,6 +1,8 @@
 // fast_ply.cpp — the plain binary PLY reader (see fast_ply.h).
 #include "io/fast_ply.h"
 
+#include "io/fast_off.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -19,8 +21,8 @@ struct Layout {
   size_t bodyStart = 0;
 };
 
-// The header, if it is the plain layout.
-bool plainHeader(const std::string& bytes, Layout& layout)
+// The header, if it is the plain layout in `format` (its "format" line).
+bool plainHeader(const std::string& bytes, const char* format, Layout& layout)
 {
   const size_t end = bytes.find("\nend_header\n");
   if (end == std::string::npos || end > (size_t(1) << 20)) return false;
@@ -32,14 +34,8 @@ bool plainHeader(const std::string& bytes, Layout& layout)
     if (line.rfind("comment", 0) == 0 && (line.size() == 7 || line[7] == ' ')) continue;
     lines.push_back(line);
   }
-  static const char* const kExpected[] = {"ply",
-                                          "format binary_little_endian 1.0",
-                                          nullptr,
-                                          "property float x",
-                                          "property float y",
-                                          "property float z",
-                                          nullptr,
-                                          nullptr};
+  const char* const kExpected[] = {"ply",   format, nullptr, "property float x", "property float y", "property float z",
+                                   nullptr, nullptr};
   if (lines.size() != 8) return false;
   for (size_t i = 0; i < 8; ++i)
     if (kExpected[i] && lines[i] != kExpected[i]) return false;
@@ -68,7 +64,7 @@ bool plainHeader(const std::string& bytes, Layout& layout)
 bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
 {
   Layout layout;
-  if (!plainHeader(bytes, layout)) return false;
+  if (!plainHeader(bytes, "format binary_little_endian 1.0", layout)) return false;
   const uint64_t n = layout.vertices;
   if (n > UINT32_MAX || (bytes.size() - layout.bodyStart) / 12 < n) return false;
   Mesh out;
@@ -100,6 +96,20 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
     }
   }
   if (p != end) return false;
+  addImportDefaults(out);
+  mesh = std::move(out);
+  return true;
+}
+
+bool readPlainAsciiPly(const std::string& bytes, Mesh& mesh)
+{
+  Layout layout;
+  Mesh out;
+  // A face's count is a uchar: at most 255 corners.
+  if (!plainHeader(bytes, "format ascii 1.0", layout) ||
+      !readVertexFaceLines(bytes.data() + layout.bodyStart, bytes.data() + bytes.size(), layout.vertices, layout.faces,
+                           255, out))
+    return false;
   addImportDefaults(out);
   mesh = std::move(out);
   return true;

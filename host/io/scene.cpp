@@ -435,7 +435,7 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
   // The plainest PLY, OFF and STL files, read directly (fast_ply.h, fast_off.h, fast_stl.h): the same mesh.
   Mesh direct;
   if (file.direct && file.byExtension &&
-      ((file.format == "ply" && readPlainBinaryPly(*file.bytes, direct)) ||
+      ((file.format == "ply" && (readPlainBinaryPly(*file.bytes, direct) || readPlainAsciiPly(*file.bytes, direct))) ||
        (file.format == "off" && readPlainOff(*file.bytes, direct)) ||
        (file.format == "stl" && readPlainStl(*file.bytes, direct)))) {
     repairNormals(direct, path, direct.facts.normalsInFile);
