@@ -368,3 +368,29 @@ TEST_CASE("direct readers: generated ASCII PLY files read the same both ways", "
     CHECK(compareBothWays(path) == "");
   }
 }
+
+TEST_CASE("direct readers: the fuzz seeds of OFF, STL and PLY read the same both ways", "[io][models][direct]")
+{
+  // The seeds lie beside the corpus list: one selector byte, then the file (fuzz_load.cpp).
+  const std::string list = CLRASTER_CORPUS_LIST;
+  const std::string dir = list.substr(0, list.rfind('/')) + "/fuzz_corpus";
+  DIR* d = opendir(dir.c_str());
+  REQUIRE(d);
+  std::map<std::string, int> accepted;
+  while (const dirent* e = readdir(d)) {
+    const std::string bytes = readAll(dir + "/" + e->d_name);
+    const char* ext = bytes.empty()     ? nullptr
+                      : bytes[0] == 'f' ? "off"
+                      : bytes[0] == 's' ? "stl"
+                      : bytes[0] == 'p' ? "ply"
+                                        : nullptr;
+    if (!ext || e->d_type != DT_REG) continue;
+    ++accepted[compareBothWays(test::writeFile(std::string("seed-") + e->d_name + "." + ext, bytes.substr(1)))];
+  }
+  closedir(d);
+  CHECK(accepted["off"] > 0);
+  CHECK(accepted["stl-ascii"] > 0);
+  CHECK(accepted["stl-binary"] > 0);
+  CHECK(accepted["ply-ascii"] > 0);
+  CHECK(accepted["ply-binary"] > 0);
+}
