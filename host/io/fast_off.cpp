@@ -4,8 +4,10 @@
 #include "io/fast_ply.h"
 #include "io/text_scan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 
 namespace clr {
 
@@ -112,7 +114,13 @@ bool readVertexFaceLines(const char* body, const char* end, uint64_t vertices, u
   if (total != vertices + faces) return false;  // also bounds the counts by the file's size
   // Step 2: every part parsed on its own thread.
   out.positions.resize(3 * vertices);
-  runParts(parts.size(), [&](size_t i) { parsePart(parts[i], vertices, maxCorners, out.positions.data()); });
+  runParts(parts.size(), [&](size_t i) {
+    try {
+      parsePart(parts[i], vertices, maxCorners, out.positions.data());
+    } catch (const std::bad_alloc&) {
+      parts[i].ok = false;  // assimp's path decides, as for any doubt
+    }
+  });
   size_t indices = 0;
   for (const Part& part : parts) {
     if (!part.ok) return false;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 
 namespace clr {
 
@@ -223,7 +224,13 @@ bool readAscii(const std::string& bytes, Mesh& out)
   while (end > begin && (isBlank(end[-1]) || end[-1] == '\r' || end[-1] == '\n')) --end;
   std::vector<AsciiPart> parts;
   for (const TextPart& t : splitLines(begin, end, textParts(size_t(end - begin)))) parts.emplace_back().text = t;
-  runParts(parts.size(), [&](size_t i) { parseAsciiPart(parts[i]); });
+  runParts(parts.size(), [&](size_t i) {
+    try {
+      parseAsciiPart(parts[i]);
+    } catch (const std::bad_alloc&) {
+      parts[i].ok = false;  // assimp's path decides, as for any doubt
+    }
+  });
   for (const AsciiPart& part : parts)
     if (!part.ok) return false;
   if (!validSequence(parts)) return false;
