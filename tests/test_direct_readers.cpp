@@ -394,3 +394,23 @@ TEST_CASE("direct readers: the fuzz seeds of OFF, STL and PLY read the same both
   CHECK(accepted["ply-ascii"] > 0);
   CHECK(accepted["ply-binary"] > 0);
 }
+
+TEST_CASE("direct readers: OFF face lines that assimp skips are refused", "[io][models][direct]")
+{
+  // assimp's OFF reader skips a face line of count 0 or above 9 but counts the faces down: the last
+  // face was dropped silently, and more such lines than faces crashed it (found by fuzzing). Skipped
+  // lines that leave every face read stay as before (assimp's OFF/invalid.off).
+  const std::string head = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  for (const std::string& faces : {std::string("x\n3 0 2 1\n"), std::string("x\na\nb\nc\n"),
+                                   std::string("10 0 1 2 0 1 2 0 1 2 0\n3 0 2 1\n"), std::string("0\n3 0 2 1\n")}) {
+    const std::string path = test::writeFile("skipped-face.off", head + faces);
+    INFO(faces);
+    CHECK(load(path, true).error == path +
+                                        ": OFF line 7: face lines whose vertex count is not 1 to 9 would drop "
+                                        "later faces (positions are read exactly, not guessed)");
+  }
+  CHECK(load(test::writeFile("two-faces.off", head + "3 0 2 1\n"), false).mesh.numTris() == 2);
+  CHECK(
+      load(test::writeFile("skipped-at-end.off", "OFF\n3 4 0\n0 0 0\n1 0 0\n0 1 0\n0\n3 0 1 2\n20\n4 0 1 2 0\n"), true)
+          .mesh.numTris() == 3);
+}
