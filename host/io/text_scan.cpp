@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <exception>
 #include <thread>
 
 namespace clr {
@@ -43,10 +44,17 @@ std::vector<TextPart> splitLines(const char* begin, const char* end, size_t part
 
 void runParts(size_t count, const std::function<void(size_t)>& job)
 {
+  // A thread that cannot start (a process limit) leaves its part, and the
+  // rest, to the caller's thread: the same work, only slower.
   std::vector<std::thread> threads;
-  threads.reserve(count > 0 ? count - 1 : 0);
-  for (size_t i = 1; i < count; ++i) threads.emplace_back(job, i);
+  size_t started = 1;
+  try {
+    threads.reserve(count > 0 ? count - 1 : 0);
+    for (; started < count; ++started) threads.emplace_back(job, started);
+  } catch (const std::exception&) {
+  }
   if (count > 0) job(0);
+  for (size_t i = started; i < count; ++i) job(i);
   for (std::thread& t : threads) t.join();
 }
 
