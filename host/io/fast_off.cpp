@@ -81,7 +81,11 @@ void parsePart(Part& part, uint64_t vertices, uint64_t maxCorners, float* positi
         q = scanUnsigned(skipBlanks(q, e), e, index);
         if (!q || index >= vertices) return;
         if (j == 0) first = index;
-        if (j >= 2) part.indices.insert(part.indices.end(), {uint32_t(first), uint32_t(previous), uint32_t(index)});
+        if (j >= 2) {
+          part.indices.push_back(uint32_t(first));
+          part.indices.push_back(uint32_t(previous));
+          part.indices.push_back(uint32_t(index));
+        }
         previous = index;
       }
     }
