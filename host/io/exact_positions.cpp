@@ -294,13 +294,25 @@ void scanOff(Rewriter& r, size_t start)
       r.vertex(wb, we);
     }
   }
-  // The faces' indices: assimp's strtoul10 reads "-2" or "x" as 0, silently another vertex.
-  for (uint64_t f = 0; f < numFaces && at(buffer) != '\0'; ++f) {
+  // The faces' indices: assimp's strtoul10 reads "-2" or "x" as 0, silently another vertex. A line whose
+  // count it reads (wrapping at 2^32) as 0 or above 9 it skips, reading on, yet counts the faces down:
+  // more such lines than the faces left unread drop the last faces, or wrap the count (a crash).
+  uint64_t read = 0, skipped = 0;
+  size_t firstSkipped = 0;
+  while (read < numFaces && at(buffer) != '\0') {
     const size_t b = buffer;
     while (!isLineEnd(at(buffer))) ++buffer;
     const size_t e = buffer;
     while (isLineEnd(at(buffer)) && at(buffer) != '\0') ++buffer;
     const auto w = words(s, b, e);
+    uint32_t corners = 0;
+    for (size_t i = w.empty() ? e : w[0].first; i < e && s[i] >= '0' && s[i] <= '9'; ++i)
+      corners = corners * 10u + uint32_t(s[i] - '0');
+    if (corners == 0 || corners > 9) {
+      if (skipped++ == 0) firstSkipped = b;
+    } else {
+      ++read;
+    }
     if (w.empty()) continue;
     const uint64_t count = std::strtoull(s.substr(w[0].first, w[0].second - w[0].first).c_str(), nullptr, 10);
     for (size_t k = 1; k <= count && k < w.size(); ++k) {
@@ -309,6 +321,8 @@ void scanOff(Rewriter& r, size_t start)
         r.fail(w[k].first, "vertex index '" + userText(index, 40) + "' is not a non-negative integer");
     }
   }
+  if (skipped > numFaces - read)
+    r.fail(firstSkipped, "face lines whose vertex count is not 1 to 9 would drop later faces");
 }
 
 // IOStreamBuffer::getNextLine over the whole text: a line end where the

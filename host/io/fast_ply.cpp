@@ -1,6 +1,8 @@
 // fast_ply.cpp — the plain binary PLY reader (see fast_ply.h).
 #include "io/fast_ply.h"
 
+#include "io/fast_off.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -19,8 +21,8 @@ struct Layout {
   size_t bodyStart = 0;
 };
 
-// The header, if it is the plain layout.
-bool plainHeader(const std::string& bytes, Layout& layout)
+// The header, if it is the plain layout in `format` (its "format" line).
+bool plainHeader(const std::string& bytes, const char* format, Layout& layout)
 {
   const size_t end = bytes.find("\nend_header\n");
   if (end == std::string::npos || end > (size_t(1) << 20)) return false;
@@ -32,14 +34,8 @@ bool plainHeader(const std::string& bytes, Layout& layout)
     if (line.rfind("comment", 0) == 0 && (line.size() == 7 || line[7] == ' ')) continue;
     lines.push_back(line);
   }
-  static const char* const kExpected[] = {"ply",
-                                          "format binary_little_endian 1.0",
-                                          nullptr,
-                                          "property float x",
-                                          "property float y",
-                                          "property float z",
-                                          nullptr,
-                                          nullptr};
+  const char* const kExpected[] = {"ply",   format, nullptr, "property float x", "property float y", "property float z",
+                                   nullptr, nullptr};
   if (lines.size() != 8) return false;
   for (size_t i = 0; i < 8; ++i)
     if (kExpected[i] && lines[i] != kExpected[i]) return false;
@@ -68,7 +64,7 @@ bool plainHeader(const std::string& bytes, Layout& layout)
 bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
 {
   Layout layout;
-  if (!plainHeader(bytes, layout)) return false;
+  if (!plainHeader(bytes, "format binary_little_endian 1.0", layout)) return false;
   const uint64_t n = layout.vertices;
   if (n > UINT32_MAX || (bytes.size() - layout.bodyStart) / 12 < n) return false;
   Mesh out;
@@ -82,6 +78,8 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
   // Step 2: faces, the body exactly as long as they need.
   const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + layout.bodyStart + 12 * n;
   const unsigned char* const end = reinterpret_cast<const unsigned char*>(bytes.data()) + bytes.size();
+  // Each face takes at least 13 bytes: the count is bounded by the body before anything is reserved.
+  if (layout.faces > uint64_t(end - p) / 13) return false;
   out.indices.reserve(3 * layout.faces);
   for (uint64_t f = 0; f < layout.faces; ++f) {
     if (p == end) return false;
@@ -98,19 +96,38 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
     }
   }
   if (p != end) return false;
-  // Step 3: what the assimp path adds for such a file.
-  out.normals.assign(3 * n, 0.0f);
-  out.uvs.assign(2 * n, 0.0f);
-  out.triMaterial.assign(out.indices.size() / 3, 0);
+  addImportDefaults(out);
+  mesh = std::move(out);
+  return true;
+}
+
+bool readPlainAsciiPly(const std::string& bytes, Mesh& mesh)
+{
+  Layout layout;
+  Mesh out;
+  // A face's count is a uchar: at most 255 corners.
+  if (!plainHeader(bytes, "format ascii 1.0", layout) ||
+      !readVertexFaceLines(bytes.data() + layout.bodyStart, bytes.data() + bytes.size(), layout.vertices, layout.faces,
+                           255, out))
+    return false;
+  addImportDefaults(out);
+  mesh = std::move(out);
+  return true;
+}
+
+void addImportDefaults(Mesh& mesh)
+{
+  const size_t n = mesh.numVerts();
+  if (mesh.normals.empty()) mesh.normals.assign(3 * n, 0.0f);
+  mesh.uvs.assign(2 * n, 0.0f);
+  mesh.triMaterial.assign(mesh.numTris(), 0);
   Material grey{};
   grey.baseColor[0] = 0.80f;
   grey.baseColor[1] = 0.78f;
   grey.baseColor[2] = 0.74f;
   grey.baseColor[3] = 1.0f;
   grey.texture = -1;
-  out.materials.push_back(grey);
-  mesh = std::move(out);
-  return true;
+  mesh.materials.assign(1, grey);
 }
 
 }  // namespace clr

@@ -7,7 +7,9 @@
 #include "base/error.h"
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
+#include "io/fast_off.h"
 #include "io/fast_ply.h"
+#include "io/fast_stl.h"
 #include "io/file_rule.h"
 #include "io/import_budget.h"
 #include "io/model_checks.h"
@@ -430,10 +432,13 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
 {
   const std::string& path = file.path;
   const AssetRoot root(path, assets);
-  // The plainest binary PLY, read directly (fast_ply.h): the same mesh.
+  // The plainest PLY, OFF and STL files, read directly (fast_ply.h, fast_off.h, fast_stl.h): the same mesh.
   Mesh direct;
-  if (file.direct && file.format == "ply" && file.byExtension && readPlainBinaryPly(*file.bytes, direct)) {
-    repairNormals(direct, path, false);
+  if (file.direct && file.byExtension &&
+      ((file.format == "ply" && (readPlainBinaryPly(*file.bytes, direct) || readPlainAsciiPly(*file.bytes, direct))) ||
+       (file.format == "off" && readPlainOff(*file.bytes, direct)) ||
+       (file.format == "stl" && readPlainStl(*file.bytes, direct)))) {
+    repairNormals(direct, path, direct.facts.normalsInFile);
     return direct;
   }
   // Step 1: import without reordering post-processing, from the bytes checked.
