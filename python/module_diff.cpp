@@ -242,6 +242,26 @@ IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
   return out;
 }
 
+// Instanced (ranges None, pos [P, V, 4]) or range mode (pos [1, V, 4], ranges
+// [N, 2]) into rast [B, H, W, 4] and db (the same, or None).
+void rasterizeBatch(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, std::optional<IntArray> ranges,
+                    FloatArray rast, std::optional<FloatArray> db)
+{
+  expectShape("pos", pos, {-1, -1, 4});
+  expectShape("tri", tri, {-1, 3});
+  expectShape("rast", rast, {ranges ? -1 : pos.shape(0), -1, -1, 4});
+  if (ranges) expectShape("ranges", *ranges, {rast.shape(0), 2});
+  if (db) expectShape("rast_db", *db, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
+  const float* p = pos.data();
+  const int32_t *t = tri.data(), *r = ranges ? ranges->data() : nullptr;
+  float *out = rast.mutable_data(), *d = db ? db->mutable_data() : nullptr;
+  const size_t v = size_t(pos.shape(1)), images = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  const size_t numRanges = ranges ? size_t(ranges->shape(0)) : 0;
+  const uint32_t w = uint32_t(rast.shape(2)), h = uint32_t(rast.shape(1));
+  py::gil_scoped_release release;  // raw pointers only from here
+  clraster::rasterizeBatch(ctx, p, v, images, t, n, r, numRanges, w, h, out, d);
+}
+
 // One peeling layer of one image: pos [V, 4], tri [T, 3], floor [H, W]:
 // (rast [H, W, 4], db [H, W, 4] or [H, W, 0], next floor [H, W]).
 py::tuple rasterizePeel(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, const FloatArray& floor,
@@ -285,6 +305,8 @@ void bindDiff(py::module_& m)
         py::arg("pos").noconvert(), py::arg("tri").noconvert(), py::arg("opp").noconvert(),
         py::arg("grad_out").noconvert(), py::arg("pos_gradient_boost"));
   m.def("antialias_topology", &antialiasTopology, py::arg("tri").noconvert(), py::arg("num_vertices"));
+  m.def("rasterize_batch", &rasterizeBatch, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
+        py::arg("ranges").noconvert(), py::arg("rast").noconvert(), py::arg("db").noconvert());
   m.def("rasterize_peel", &rasterizePeel, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
         py::arg("floor").noconvert(), py::arg("grad_db"));
 }

@@ -97,6 +97,19 @@ CLRASTER_API void antialiasGrad(Context& ctx, const float* color, uint32_t chann
 // edge, counted as a silhouette).
 CLRASTER_API std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, size_t numVertices);
 
+// nvdiffrast's instanced and range mode: a batch of images rasterized in
+// one frame (images stacked, each a tile multiple of rows apart; batches
+// beyond CLR_MAX_VIEWPORT rows, or the memory check, split into several
+// frames), each image bit for bit as rasterizeInto writes it alone.
+// Instanced (ranges null): pos posImages × numVertices × 4, every image
+// draws all of tri, ids 1..numTriangles. Range mode (posImages 1): ranges
+// numRanges (start, count) pairs, image k draws tri[start, start + count),
+// ids absolute (start + index + 1). rast, db: images × height × width × 4
+// floats (db may be null).
+CLRASTER_API void rasterizeBatch(Context& ctx, const float* pos, size_t numVertices, size_t posImages,
+                                 const int32_t* tri, size_t numTriangles, const int32_t* ranges, size_t numRanges,
+                                 uint32_t width, uint32_t height, float* rast, float* db);
+
 // One layer of depth peeling (nvdiffrast's DepthPeeler) of one image: as
 // rasterizeInto (the same coverage, ids and outputs), but each pixel takes
 // the nearest fragment strictly behind floorDepth (width·height window

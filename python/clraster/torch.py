@@ -137,24 +137,19 @@ def _encode_ids(ids):
 
 
 def _rasterize_forward(glctx, pos, tri, resolution, ranges, grad_db):
-    """(rast, db) float32 numpy [B, H, W, 4] (db [B, H, W, 0] without grad_db)."""
+    """(rast, db) float32 numpy [B, H, W, 4] (db [B, H, W, 0] without grad_db);
+    range mode in one frame for all ranges, as instanced mode."""
     height, width = resolution
     if ranges is None:
         return np_rasterize(glctx, pos, tri, (height, width), grad_db=grad_db)
-    images = []
-    dbs = []
-    for start, count in ranges:
-        sub = tri[start:start + count]
-        rast, db = np_rasterize(glctx, pos, np.ascontiguousarray(sub), (height, width), grad_db=grad_db)
-        ids = triangle_ids(rast)
-        covered = ids > 0
-        rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
-        images.append(rast)
-        dbs.append(db)
-    if not images:
-        return (np.zeros((0, height, width, 4), np.float32), np.zeros((0, height, width, 4 if grad_db else 0),
-                                                                      np.float32))
-    return np.concatenate(images), np.concatenate(dbs)
+    with glctx._lock:
+        _clraster.check_rasterize_memory(glctx._ctx, width, height, len(ranges) * height * width * (32 if grad_db else 16))
+    rast = np.empty((len(ranges), height, width, 4), np.float32)
+    db = np.empty((len(ranges), height, width, 4 if grad_db else 0), np.float32)
+    with glctx._lock:
+        _clraster.rasterize_batch(glctx._ctx, pos[None], tri, np.ascontiguousarray(ranges, np.int32), rast,
+                                  db if grad_db else None)
+    return rast, db
 
 
 class _Rasterize(torch.autograd.Function):
