@@ -7,8 +7,8 @@ namespace clr {
 
 namespace {
 
-// Pixels per work-item of interpolate_grad (DIFF_SPAN, diff.cl).
-constexpr uint64_t kInterpolateSpan = 16;
+// Pixels per work-item of rasterize_grad and interpolate_grad (DIFF_SPAN, diff.cl).
+constexpr uint64_t kPixelSpan = 16;
 
 void checkCount(uint64_t n, const char* what)
 {
@@ -85,7 +85,7 @@ void DiffKernels::rasterizeGrad(const float* pos, size_t numVertices, size_t pos
     args.rast = rastBuf, args.gradRast = gradRastBuf, args.gradDb = gradDbBuf, args.withDb = gradDb ? 1 : 0;
     args.width = batch.width, args.height = batch.height, args.numPixels = cl_uint(n), args.gradPos = out0_.get();
     setKernelArgs(rasterizeGrad_, args);
-    cl_.queue.enqueueNDRangeKernel(rasterizeGrad_, cl::NullRange, linear(n));
+    cl_.queue.enqueueNDRangeKernel(rasterizeGrad_, cl::NullRange, linear((n + kPixelSpan - 1) / kPixelSpan));
   }
   if (posFloats) cl_.queue.enqueueReadBuffer(out0_.get(), CL_TRUE, 0, posFloats * sizeof(float), gradPos);
   cl_.queue.finish();
@@ -122,8 +122,7 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
     args.pixelsPerImage = cl_uint(uint64_t(batch.width) * batch.height), args.numPixels = cl_uint(n);
     args.gradAttr = out0_.get(), args.gradRast = gradRastBuf, args.gradDb = out2_.get();
     setKernelArgs(interpolateGrad_, args);
-    cl_.queue.enqueueNDRangeKernel(interpolateGrad_, cl::NullRange,
-                                   linear((n + kInterpolateSpan - 1) / kInterpolateSpan));
+    cl_.queue.enqueueNDRangeKernel(interpolateGrad_, cl::NullRange, linear((n + kPixelSpan - 1) / kPixelSpan));
     // Mapping a caller-memory buffer makes the caller's array hold what the kernel wrote.
     void* mapped = cl_.queue.enqueueMapBuffer(gradRastBuf, CL_TRUE, CL_MAP_READ, 0, 4 * n * sizeof(float));
     cl_.queue.enqueueUnmapMemObject(gradRastBuf, mapped);
