@@ -90,6 +90,18 @@ def test_batches_beyond_one_frame_split(ctx):
         assert_bits(db[b], d1, f"image {b} rast_db")
 
 
+def test_batches_beyond_the_memory_limit_split():
+    # 8 images at 64x64: outputs 1,048,576 bytes plus one image's frame fit 1,260,000 bytes; the whole 8-image
+    # frame (1,310,720 device bytes) does not, so the batch runs as frames of 4 (one frame would be refused).
+    ctx = clraster.Context(memory_limit=1_260_000)
+    pos, tri = stacked_scene(5, 8, count=10)
+    rast, db = clraster.rasterize(ctx, pos, tri, (64, 64))
+    for b in range(8):
+        r1, d1 = one_image(ctx, pos[b], tri, 64, 64)
+        assert_bits(rast[b], r1, f"image {b} rast")
+        assert_bits(db[b], d1, f"image {b} rast_db")
+
+
 def chain(ctx, pos, tri, attr, tex, h, w, weights, ranges=None):
     """Every operation's forward on one rasterize, and a loss weighting
     antialias's, interpolate's out_da and rast's values by `weights`."""
