@@ -110,14 +110,16 @@ CLRASTER_API void rasterizeBatch(Context& ctx, const float* pos, size_t numVerti
                                  const int32_t* tri, size_t numTriangles, const int32_t* ranges, size_t numRanges,
                                  uint32_t width, uint32_t height, float* rast, float* db);
 
-// One layer of depth peeling (nvdiffrast's DepthPeeler) of one image: as
-// rasterizeInto (the same coverage, ids and outputs), but each pixel takes
-// the nearest fragment strictly behind floorDepth (width·height window
+// One layer of depth peeling (nvdiffrast's DepthPeeler) of a batch, with
+// rasterizeBatch's arguments and frames: each image as rasterizeInto writes
+// it (the same coverage, ids and outputs), but each pixel takes the nearest
+// fragment strictly behind floorDepth (images × height × width window
 // depths, z/w · 0.5 + 0.5; −inf for the first layer, which equals
 // rasterize's). nextFloor receives this layer's window depths (+inf where
 // nothing is left): the floor of the next layer. db may be null.
-CLRASTER_API void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri,
-                                size_t numTriangles, uint32_t width, uint32_t height, const float* floorDepth,
-                                float* rast, float* db, float* nextFloor);
+CLRASTER_API void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, size_t posImages,
+                                const int32_t* tri, size_t numTriangles, const int32_t* ranges, size_t numRanges,
+                                uint32_t width, uint32_t height, const float* floorDepth, float* rast, float* db,
+                                float* nextFloor);
 
 }  // namespace clraster

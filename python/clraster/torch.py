@@ -246,29 +246,17 @@ class DepthPeeler:
                                 self)
 
     def _next(self, pos_np):
+        """The next layer of every image, in one frame for the batch (as rasterize)."""
         height, width = self._resolution
-        if self._ranges is None:
-            images = [(p, self._tri, 0) for p in (pos_np if pos_np.ndim == 3 else pos_np[None])]
-        else:
-            images = [(pos_np, np.ascontiguousarray(self._tri[a:a + n]), a) for a, n in self._ranges]
+        pos = pos_np if pos_np.ndim == 3 else pos_np[None]
+        images = len(pos) if self._ranges is None else len(self._ranges)
         if self._floors is None:
-            self._floors = [np.full((height, width), -np.inf, np.float32) for _ in images]
-        rasts, dbs = [], []
+            self._floors = np.full((images, height, width), -np.inf, np.float32)
+        ranges = None if self._ranges is None else np.ascontiguousarray(self._ranges, np.int32)
         with self._glctx._lock:
-            for i, (p, tri, start) in enumerate(images):
-                rast, db, self._floors[i] = _clraster.rasterize_peel(self._glctx._ctx, np.ascontiguousarray(p), tri,
-                                                                     self._floors[i], self._grad_db)
-                if start:
-                    ids = triangle_ids(rast[None])[0]
-                    covered = ids > 0
-                    rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
-                rasts.append(rast)
-                dbs.append(db)
-        if not rasts:
-            return (np.zeros((0, height, width, 4), np.float32),
-                    np.zeros((0, height, width, 4 if self._grad_db else 0), np.float32))
-        return np.stack(rasts), np.stack(dbs)
-
+            rast, db, self._floors = _clraster.rasterize_peel(self._glctx._ctx, np.ascontiguousarray(pos), self._tri,
+                                                              ranges, self._floors, self._grad_db)
+        return rast, db
 
 
 class _Interpolate(torch.autograd.Function):

@@ -6,7 +6,7 @@ calls'. The scenes hold triangles far beyond the image's top and bottom
 (reaching the neighbours' rows if setup's clamp to the image were gone),
 clipped by the near plane and the guard band (binned by bin_pixel_bounds),
 behind the eye, heights that are not a tile multiple, and ranges that
-overlap, differ in length or are empty."""
+overlap, differ in length or are empty. DepthPeeler's batches the same."""
 import numpy as np
 import pytest
 import torch
@@ -100,6 +100,32 @@ def test_batches_beyond_the_memory_limit_split():
         r1, d1 = one_image(ctx, pos[b], tri, 64, 64)
         assert_bits(rast[b], r1, f"image {b} rast")
         assert_bits(db[b], d1, f"image {b} rast_db")
+
+
+@pytest.mark.parametrize("ranged", [False, True])
+def test_depth_peeler_batches_equal_each_image_alone(ctx, ranged):
+    # Every layer of the batch equals the image peeled alone (a batch of one); layer 0 equals rasterize_into.
+    h, w = 21, 19
+    pos, tri = stacked_scene(9, 1 if ranged else 4, count=20)
+    ranges = np.array([[0, 21], [5, 10], [20, 1], [2, 0]], np.int32) if ranged else None
+    batch = torch.from_numpy(pos[0] if ranged else pos)
+    images = len(ranges) if ranged else len(pos)
+    alone = [dr.DepthPeeler(ctx, batch if ranged else batch[b:b + 1], torch.from_numpy(tri), (h, w),
+                            ranges=ranges[b:b + 1] if ranged else None) for b in range(images)]
+    with dr.DepthPeeler(ctx, batch, torch.from_numpy(tri), (h, w), ranges=ranges) as peeler:
+        for layer in range(3):
+            rast, db = peeler.rasterize_next_layer()
+            for b in range(images):
+                r1, d1 = alone[b].rasterize_next_layer()
+                assert_bits(rast[b].numpy(), r1[0].numpy(), f"layer {layer} image {b} rast")
+                assert_bits(db[b].numpy(), d1[0].numpy(), f"layer {layer} image {b} rast_db")
+                if layer == 0:
+                    start, count = ranges[b] if ranged else (0, len(tri))
+                    r0, _ = one_image(ctx, pos[0 if ranged else b], tri[start:start + count], h, w)
+                    ids = clraster.triangle_ids(r0[None])[0]
+                    r0[..., 3] = np.where(ids > 0, dr._encode_ids(ids + start), 0)
+                    assert_bits(rast[b].numpy(), r0, f"layer 0 image {b} against rasterize_into")
+            assert layer == 0 or (rast[..., 3] > 0).any()  # later layers hold fragments too
 
 
 def chain(ctx, pos, tri, attr, tex, h, w, weights, ranges=None):
