@@ -337,12 +337,18 @@ Batch planBatch(const float* pos, size_t numVertices, size_t posImages, const in
   return b;
 }
 
-// Images per frame: the frame's rows within the viewport, its indices and vertices in 32 bits (uploadClipScene),
-// its device memory within the device and the Context's limit (halved until it fits; one image that does not is
-// the Error).
+// Pixels a batched frame holds at most (several images each when they are small): beyond this its per-pixel
+// buffers outgrow a CPU core's caches between one stage and the next, which costs more per pixel than the
+// launches of a further frame.
+constexpr size_t kBatchFramePixels = size_t(1) << 19;
+
+// Images per frame: the frame's rows within the viewport, its pixels within kBatchFramePixels, its indices and
+// vertices in 32 bits (uploadClipScene), its device memory within the device and the Context's limit (halved
+// until it fits; one image that does not is the Error).
 size_t imagesPerFrame(Context& ctx, const Batch& b)
 {
   size_t perFrame = std::min<size_t>(b.images, CLR_MAX_VIEWPORT / b.rows);
+  perFrame = std::min(perFrame, std::max<size_t>(1, kBatchFramePixels / (size_t(b.width) * b.rows)));
   perFrame = std::min(perFrame, std::max<size_t>(1, UINT32_MAX / CLR_MAX_SUBTRIS / b.imageTris));
   if (!b.ranges) perFrame = std::min(perFrame, std::max<size_t>(1, UINT32_MAX / 4 / b.numVertices));
   for (perFrame = std::max<size_t>(perFrame, 1);; perFrame = (perFrame + 1) / 2) {

@@ -80,12 +80,15 @@ def test_range_mode_equals_each_range_alone(ctx):
     assert (clraster.triangle_ids(rast[4:5]) == 31).any()  # the tall triangle, alone in range 4
 
 
-def test_batches_beyond_one_frame_split(ctx):
-    # 48 rows a 40-row image: 16384 / 48 = 341 images a frame, so 345 take two frames.
-    pos, tri = stacked_scene(3, 345, count=4)
-    rast, db = clraster.rasterize(ctx, pos, tri, (40, 8))
-    for b in (0, 340, 341, 344):
-        r1, d1 = one_image(ctx, pos[b], tri, 40, 8)
+@pytest.mark.parametrize("images,h,w,checked", [
+    (345, 40, 8, (0, 340, 341, 344)),  # 48 rows an image: 16384 / 48 = 341 images a frame, so two frames
+    (3, 300, 600, (0, 1, 2)),  # 304 · 600 pixels an image: one a frame (kBatchFramePixels, 2^19)
+])
+def test_batches_beyond_one_frame_split(ctx, images, h, w, checked):
+    pos, tri = stacked_scene(3, images, count=4)
+    rast, db = clraster.rasterize(ctx, pos, tri, (h, w))
+    for b in checked:
+        r1, d1 = one_image(ctx, pos[b], tri, h, w)
         assert_bits(rast[b], r1, f"image {b} rast")
         assert_bits(db[b], d1, f"image {b} rast_db")
 
