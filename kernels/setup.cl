@@ -393,8 +393,8 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     return;
   }
   SetupBatch b;
-  int rows[CLR_LANES];
-  for (uint lane = 0; lane < CLR_LANES; ++lane) rows[lane] = clr_image_row(params, tri[lane]);
+  int rows[CLR_LANES] = {0};  // each lane's image row (clr_image_row), all 0 unless batched
+  for (uint lane = 0; params->imageTris && lane < CLR_LANES; ++lane) rows[lane] = clr_image_row(params, tri[lane]);
   const intL made = setup_make(&c, params, &b, !emit, CLR_LOAD_LANES(rows));  // emit's sources passed pass 1's test
   const intL simple = made & (kind == CLR_SETUP_SIMPLE);
   if (!emit && !CLR_ANY(simple | (kind == CLR_SETUP_CLIP))) {
