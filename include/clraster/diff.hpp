@@ -99,8 +99,9 @@ CLRASTER_API std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t n
 
 // nvdiffrast's instanced and range mode: a batch of images rasterized in
 // one frame (images stacked, each a tile multiple of rows apart; batches
-// beyond CLR_MAX_VIEWPORT rows, or the memory check, split into several
-// frames), each image bit for bit as rasterizeInto writes it alone.
+// beyond CLR_MAX_VIEWPORT rows or 2^19 pixels, or the memory check, split
+// into several frames), each image bit for bit as rasterizeInto writes it
+// alone.
 // Instanced (ranges null): pos posImages × numVertices × 4, every image
 // draws all of tri, ids 1..numTriangles. Range mode (posImages 1): ranges
 // numRanges (start, count) pairs, image k draws tri[start, start + count),
