@@ -1,7 +1,7 @@
 """diff_bench.py — forward and backward time per iteration of the
 clraster.torch examples (examples/pose.py, cube.py, earth.py) at given
-resolutions, split per operation, and instanced rasterize of 8 views
-against one (bench/diff.sh runs it).
+resolutions, split per operation, and rasterize of 8 views (instanced
+and range mode) against one (bench/diff.sh runs it).
 
 Each case builds one iteration's graph (the example's render and its
 mean squared loss against a fixed target) `--iterations` times after one
@@ -90,6 +90,8 @@ def bench(name, render, params, iterations):
 
 
 def instanced(resolution, iterations):
+    """Rasterize of 8 views (instanced, and range mode over 8 copies of the
+    mesh) against one view, per image: medians of single calls."""
     glctx = dr.RasterizeCudaContext()
     pos, tri, _ = pose.cube_mesh()
     rng = np.random.default_rng(1)
@@ -98,25 +100,37 @@ def instanced(resolution, iterations):
         world = pos @ pose.quat_to_matrix(pose.random_quat(rng)).T + torch.tensor([0.0, 0.0, -3.0])
         clips.append(torch.cat([world, torch.ones(len(world), 1)], 1) @ pose.projection().T)
     views = torch.stack(clips)
+    n_v, n_t = views.shape[1], len(tri)
+    flat = views.reshape(-1, 4)  # range mode: image k draws copy k of the mesh
+    tris = torch.cat([tri + k * n_v for k in range(8)])
+    ranges = torch.tensor([[k * n_t, n_t] for k in range(8)], dtype=torch.int32)
+    calls = {"1 view": lambda: dr.rasterize(glctx, views[:1], tri, [resolution, resolution]),
+             "8 instanced": lambda: dr.rasterize(glctx, views, tri, [resolution, resolution]),
+             "8 ranges": lambda: dr.rasterize(glctx, flat, tris, [resolution, resolution], ranges=ranges)}
     per_image = {}
-    for n in (1, 8):
-        dr.rasterize(glctx, views[:n], tri, [resolution, resolution])
-        start = time.perf_counter()
-        for _ in range(iterations):
-            dr.rasterize(glctx, views[:n], tri, [resolution, resolution])
-        per_image[n] = (time.perf_counter() - start) / iterations / n * 1000  # a mean: one call is short
-    print(f"instanced rasterize: {per_image[1]:.2f} ms per image for 1 view, {per_image[8]:.2f} ms per image for 8"
-          f" (ratio {per_image[8] / per_image[1]:.2f})")
+    for name, call in calls.items():
+        call()
+        times = []
+        for _ in range(max(iterations, 20)):
+            start = time.perf_counter()
+            call()
+            times.append(time.perf_counter() - start)
+        per_image[name] = float(np.median(times)) * 1000 / (1 if name == "1 view" else 8)
+    one = per_image["1 view"]
+    print(f"rasterize per image (median ms): 1 view {one:.3f}, 8 instanced {per_image['8 instanced']:.3f} "
+          f"(x{per_image['8 instanced'] / one:.2f}), 8 ranges {per_image['8 ranges']:.3f} "
+          f"(x{per_image['8 ranges'] / one:.2f})")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--resolutions", type=int, nargs="+", default=[256, 512])
     parser.add_argument("--iterations", type=int, default=10)
+    parser.add_argument("--batch-only", action="store_true", help="only the 8-views-against-one rasterize line")
     args = parser.parse_args()
     for r in args.resolutions:
         print(f"-- {r}x{r}, {args.iterations} iterations")
-        for name, (render, params) in cases(r).items():
+        for name, (render, params) in ([] if args.batch_only else cases(r).items()):
             bench(name, render, params, args.iterations)
         instanced(r, args.iterations)
 

@@ -21,6 +21,7 @@ __kernel void bin_fill_clipped(__constant FrameParams* params, __global const Tr
   source[s] = CLR_SOURCE_CLIPPED | i;
   if (clipBary[i].flags & CLR_FLAG_DEAD) return;
   const TriSetup t = setup[s];
-  bin_fill_tiles(&t, bin_tile_range(&t, params), s, params, tileOffset, tileCursor, binEntries);
+  const int row = clr_image_row(params, clipBary[i].triId);
+  bin_fill_tiles(&t, bin_tile_range(&t, params, row), s, params, tileOffset, tileCursor, binEntries);
 }
 #endif

@@ -23,16 +23,17 @@ CLR_INLINE int fixed_ceil(int a)
   return (a + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS;
 }
 
-/* Inclusive pixel range, clamped to the viewport, that can hold a sample (at i·ONE + HALF + offset, offset in
- * [sampleMin, sampleMax]); empty when x0 > x1 or y0 > y1. setup_make computes the same in lane types. */
-CLR_INLINE int4 bin_pixel_bounds(const TriSetup* t, __constant FrameParams* params)
+/* Inclusive pixel range, clamped to the viewport (the image from `row`, clr_image_row), that can hold a sample (at
+ * i·ONE + HALF + offset, offset in [sampleMin, sampleMax]); empty when x0 > x1 or y0 > y1. setup_make computes the
+ * same in lane types. */
+CLR_INLINE int4 bin_pixel_bounds(const TriSetup* t, __constant FrameParams* params, int row)
 {
   const int4 b = CLR_RECORD_BOUNDS(*t);
   int4 r;
   r.x = max(0, fixed_ceil(b.x - CLR_FIXED_HALF - params->sampleMaxX));
-  r.y = max(0, fixed_ceil(b.y - CLR_FIXED_HALF - params->sampleMaxY));
+  r.y = max(row, fixed_ceil(b.y - CLR_FIXED_HALF - params->sampleMaxY));
   r.z = min((int)params->width - 1, fixed_floor(b.z - CLR_FIXED_HALF - params->sampleMinX));
-  r.w = min((int)params->height - 1, fixed_floor(b.w - CLR_FIXED_HALF - params->sampleMinY));
+  r.w = min(row + (int)params->imageHeight - 1, fixed_floor(b.w - CLR_FIXED_HALF - params->sampleMinY));
   return r;
 }
 
@@ -64,9 +65,9 @@ CLR_INLINE int bin_tile_class(const TriSetup* t, __constant FrameParams* params,
 }
 
 /* Tiles touched by a triangle's pixel bounds. */
-CLR_INLINE int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params)
+CLR_INLINE int4 bin_tile_range(const TriSetup* t, __constant FrameParams* params, int row)
 {
-  return bin_pixel_bounds(t, params) / CLR_TILE_SIZE;
+  return bin_pixel_bounds(t, params, row) / CLR_TILE_SIZE;
 }
 
 /* True when hierarchical traversal tests triangle tiles of range r. */

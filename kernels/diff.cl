@@ -1,11 +1,12 @@
 /* diff.cl — the backward passes of the library's differentiable calls
  * (host/pipeline/diff.cpp; python/clraster/torch.py's autograd Functions).
  *
- * One work-item per pixel of a batch of images (B · H · W, image-major,
- * row 0 at the bottom). Each reads the pixel's rast (u, v, z/w, id in
- * nvdiffrast's encoding) and the incoming gradients, and adds its share to
- * the per-vertex gradients with float atomics (the order of the sums is
- * unspecified, so results vary in the last bits between runs).
+ * DIFF_SPAN consecutive pixels per work-item over a batch of images
+ * (B · H · W, image-major, row 0 at the bottom). Each reads its pixels'
+ * rast (u, v, z/w, id in nvdiffrast's encoding) and the incoming gradients,
+ * sums the per-vertex gradients of each run of one triangle in private and
+ * adds them with float atomics (the order of the sums is unspecified, so
+ * results vary in the last bits between runs).
  *
  *  rasterize_grad: d rast / d pos through u, v, z/w and rast_db, all
  *    evaluated analytically at the pixel centre s = (x_ndc, y_ndc, 1) with
@@ -43,29 +44,29 @@ CLR_INLINE void diff_atomic_add(volatile __global float* p, float v)
   } while (seen != expected);
 }
 
-__kernel void rasterize_grad(__global const float* pos,  // posImages · numVertices · 4
-                             uint posStride,             // floats per image of pos; 0: shared
-                             __global const int* tri, uint numTriangles, uint numVertices,
-                             __global const float4* rast,      // numPixels
-                             __global const float4* gradRast,  // numPixels
-                             __global const float4* gradDb,    // numPixels, when withDb
-                             uint withDb, uint width, uint height, uint numPixels,
-                             __global float* gradPos)  // pos's layout
+/* Pixels per work-item of rasterize_grad and interpolate_grad, and the channels interpolate_grad sums in private at
+ * a time. */
+#define DIFF_SPAN 16u
+#define DIFF_CHUNK 8u
+
+/* Pixel p's share of d L / d pos: gv[j], the gradient of its triangle's vertex j (x, y, z, w), at pos offset vi[j];
+ * false where p adds nothing (no triangle, zero upstream gradient, a degenerate triangle). */
+CLR_INLINE bool diff_rasterize_pixel(__global const float* pos, uint posStride, __global const int* tri,
+                                     uint numTriangles, uint numVertices, __global const float4* rast,
+                                     __global const float4* gradRast, __global const float4* gradDb, uint withDb,
+                                     uint width, uint height, uint p, uint* vi, float4* gv)
 {
-  const uint p = get_global_id(0);
-  if (p >= numPixels) return;
   const uint id = diff_decode_id(rast[p].w);
-  if (id == 0u || id > numTriangles) return;
+  if (id == 0u || id > numTriangles) return false;
   const float4 g = gradRast[p];
   const float4 gd = withDb ? gradDb[p] : (float4)(0.0f);
-  if (all(g.xyz == (float3)(0.0f)) && all(gd == (float4)(0.0f))) return;
+  if (all(g.xyz == (float3)(0.0f)) && all(gd == (float4)(0.0f))) return false;
   // Step 1: the triangle's clip vertices and the pixel centre.
   const uint image = p / (width * height), pixel = p % (width * height);
   const uint px = pixel % width, py = pixel / width;
-  uint vi[3];
   for (int j = 0; j < 3; ++j) {
     const int v = tri[3 * (id - 1u) + j];
-    if (v < 0 || (uint)v >= numVertices) return;
+    if (v < 0 || (uint)v >= numVertices) return false;
     vi[j] = (uint)v * 4u + image * posStride;
   }
   float3 P[3];
@@ -82,7 +83,7 @@ __kernel void rasterize_grad(__global const float* pos,  // posImages · numVert
   const float k[3] = {dot(r[0], s), dot(r[1], s), dot(r[2], s)};
   const float S = k[0] + k[1] + k[2];
   const float D = k[0] * P[0].z + k[1] * P[1].z + k[2] * P[2].z;
-  if (S == 0.0f || D == 0.0f) return;
+  if (S == 0.0f || D == 0.0f) return false;
   const float l0 = k[0] / S, l1 = k[1] / S;
   const float zw = (k[0] * z[0] + k[1] * z[1] + k[2] * z[2]) / D;
   const float a0 = (r[0].x - l0 * R.x) / S, b0 = (r[0].y - l0 * R.y) / S;
@@ -108,17 +109,53 @@ __kernel void rasterize_grad(__global const float* pos,  // posImages · numVert
   for (int i = 0; i < 3; ++i) gr[i] += gk[i] * s + gR;
   float3 gP[3] = {cross(P[1], gr[2]) + cross(gr[1], P[2]), cross(P[2], gr[0]) + cross(gr[2], P[0]),
                   cross(P[0], gr[1]) + cross(gr[0], P[1])};
-  for (int j = 0; j < 3; ++j) {
-    diff_atomic_add(gradPos + vi[j], gP[j].x);
-    diff_atomic_add(gradPos + vi[j] + 1u, gP[j].y);
-    diff_atomic_add(gradPos + vi[j] + 2u, gz[j]);
-    diff_atomic_add(gradPos + vi[j] + 3u, gP[j].z + gw[j]);
-  }
+  for (int j = 0; j < 3; ++j) gv[j] = (float4)(gP[j].x, gP[j].y, gz[j], gP[j].z + gw[j]);
+  return true;
 }
 
-/* Pixels per work-item of interpolate_grad, and the channels it sums in private at a time. */
-#define DIFF_SPAN 16u
-#define DIFF_CHUNK 8u
+/* DIFF_SPAN consecutive pixels per work-item; each run of pixels of one triangle sums its vertex gradients in
+ * private and adds them with one atomic add per value. */
+__kernel void rasterize_grad(__global const float* pos,  // posImages · numVertices · 4
+                             uint posStride,             // floats per image of pos; 0: shared
+                             __global const int* tri, uint numTriangles, uint numVertices,
+                             __global const float4* rast,      // numPixels
+                             __global const float4* gradRast,  // numPixels
+                             __global const float4* gradDb,    // numPixels, when withDb
+                             uint withDb, uint width, uint height, uint numPixels,
+                             __global float* gradPos)  // pos's layout
+{
+  const uint first = get_global_id(0) * DIFF_SPAN;
+  if (first >= numPixels) return;
+  const uint end = min(first + DIFF_SPAN, numPixels);
+  uint cur[3] = {0u, 0u, 0u};
+  float4 acc[3] = {(float4)(0.0f), (float4)(0.0f), (float4)(0.0f)};
+  bool have = false;
+  for (uint p = first; p <= end; ++p) {
+    uint vi[3] = {0u, 0u, 0u};
+    float4 gv[3];
+    const bool ok = p < end && diff_rasterize_pixel(pos, posStride, tri, numTriangles, numVertices, rast, gradRast,
+                                                    gradDb, withDb, width, height, p, vi, gv);
+    const bool same = ok && have && vi[0] == cur[0] && vi[1] == cur[1] && vi[2] == cur[2];
+    if (have && !same) {
+      for (int j = 0; j < 3; ++j) {
+        diff_atomic_add(gradPos + cur[j], acc[j].x);
+        diff_atomic_add(gradPos + cur[j] + 1u, acc[j].y);
+        diff_atomic_add(gradPos + cur[j] + 2u, acc[j].z);
+        diff_atomic_add(gradPos + cur[j] + 3u, acc[j].w);
+      }
+      have = false;
+    }
+    if (!ok) continue;
+    if (!have) {
+      for (int j = 0; j < 3; ++j) {
+        cur[j] = vi[j];
+        acc[j] = (float4)(0.0f);
+      }
+      have = true;
+    }
+    for (int j = 0; j < 3; ++j) acc[j] += gv[j];
+  }
+}
 
 /* The attr offsets of pixel p's triangle's vertices (in its image), or false where p names none. */
 CLR_INLINE bool diff_attr_vertices(__global const float4* rast, __global const int* tri, uint numTriangles,

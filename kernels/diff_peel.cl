@@ -8,8 +8,9 @@
  * the lower record) but takes only fragments strictly behind floorDepth,
  * the window depth of the pixel's previous layer (−inf for the first, which
  * is then raster's own choice). It writes rast and rast_db as
- * rast_outputs.cl does, and the layer's depth into nextFloor (+inf where
- * nothing is left, so later layers stay empty).
+ * rast_outputs.cl does (per image in a batched frame), and the layer's
+ * depth into nextFloor (+inf where nothing is left, so later layers stay
+ * empty).
  */
 #pragma OPENCL FP_CONTRACT OFF
 #include "rast_pixel.h"
@@ -68,7 +69,9 @@ __kernel void peel_layer(__constant FrameParams* params, __global const TriSetup
   // Step 2: rast_outputs.cl's outputs for that fragment.
   const uint from = source[bestS], triId = clr_source_triangle(from, clipBary);
   const float2 uv = rast_pixel_uv(params, positions, indices, clipBary, from, b1, b2);
-  rast[p] = (float4)(uv.x, uv.y, 2.0f * best - 1.0f, rast_id_float(triId + 1u));
-  if (withDb) db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);
+  const uint row = (uint)clr_image_row(params, triId);  // a batched frame's ids and rows are its image's
+  const uint id = params->imageTris ? triId - row / params->imageRows * params->imageTris : triId;
+  rast[p] = (float4)(uv.x, uv.y, 2.0f * best - 1.0f, rast_id_float(id + 1u));
+  if (withDb) db[p] = rast_pixel_db(indices, positions, triId, px, py - row, params->width, params->imageHeight);
 }
 #endif

@@ -14,7 +14,8 @@
  *    CLR_RAST_OUT_IDS;
  *  db float4 (du/dX, du/dY, dv/dX, dv/dY) per pixel, when `outputs` has
  *    CLR_RAST_OUT_DB (the only output that reads the positions; rast_pixel.h).
- * Background: all zero.
+ * Background: all zero. A batched frame (FrameParams.imageTris) stacks its
+ * images' rows; each pixel's id and db are those of its image alone.
  */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vis.h"
@@ -57,10 +58,12 @@ __kernel void rast_outputs(__constant FrameParams* params,
   // Step 2: perspective-correct weights of the input vertices (rast_pixel.h).
   const float2 uv =
       rast_pixel_uv(params, positions, indices, clipBary, from, visAttr[visPlane + v], visAttr[2 * visPlane + v]);
-  // Step 3: the outputs.
-  rast[p] = (float4)(uv.x, uv.y, 2.0f * visAttr[v] - 1.0f, rast_id_float(triId + 1u));
-  if (outputs & CLR_RAST_OUT_IDS) ids[p] = triId + 1u;
+  // Step 3: the outputs; a batched frame's ids and pixel rows are its image's (clr_image_row).
+  const uint row = (uint)clr_image_row(params, triId);
+  const uint id = params->imageTris ? triId - row / params->imageRows * params->imageTris : triId;
+  rast[p] = (float4)(uv.x, uv.y, 2.0f * visAttr[v] - 1.0f, rast_id_float(id + 1u));
+  if (outputs & CLR_RAST_OUT_IDS) ids[p] = id + 1u;
   if (!(outputs & CLR_RAST_OUT_DB)) return;
-  db[p] = rast_pixel_db(indices, positions, triId, px, py, params->width, params->height);
+  db[p] = rast_pixel_db(indices, positions, triId, px, py - row, params->width, params->imageHeight);
 }
 #endif

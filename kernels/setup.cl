@@ -187,7 +187,8 @@ CLR_CALLED intL setup_covers_a_sample(const SetupBatch* t, intL minX, intL maxX,
 
 /* Each lane's screen triangle: viewport, snap, exact doubled area, orientation, pixel bounds. Returns the survivors
  * (w > 0, non-zero area, not back-face culled, a centre in the bounds, with testCoverage setup_covers_a_sample). */
-CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out, bool testCoverage)
+CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, SetupBatch* out, bool testCoverage,
+                           intL row)
 {
   // Step 1: viewport and snapping. Window depth z_ndc/2 + 1/2 (GL), or z_ndc when reversed (clip z spans [0, w]).
   intL valid = (c->w[0] > 0.0f) & (c->w[1] > 0.0f) & (c->w[2] > 0.0f);
@@ -198,7 +199,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
     const floatL ys = c->y[v] * invW * params->halfHeight + params->halfHeight;
     out->z[v] = reversed ? c->z[v] * invW : c->z[v] * invW * 0.5f + 0.5f;
     out->x[v] = convert_intL(clr_rint(xs * (float)CLR_FIXED_ONE));  // = convert_intL_rte, cheaper (lanes.h)
-    out->y[v] = convert_intL(clr_rint(ys * (float)CLR_FIXED_ONE));
+    out->y[v] = convert_intL(clr_rint(ys * (float)CLR_FIXED_ONE)) + row * CLR_FIXED_ONE;  // row: clr_image_row
   }
   // Step 2: exact doubled signed area; cull zero and (optionally) back faces.
   const longL area2 = clr_area2L(out->x[0], out->y[0], out->x[1], out->y[1], out->x[2], out->y[2]);
@@ -218,11 +219,11 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   const intL minX = min(out->x[0], min(out->x[1], out->x[2])), maxX = max(out->x[0], max(out->x[1], out->x[2]));
   const intL minY = min(out->y[0], min(out->y[1], out->y[2])), maxY = max(out->y[0], max(out->y[1], out->y[2]));
   const intL x0 = max((minX - (CLR_FIXED_HALF + params->sampleMaxX) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
-  const intL y0 = max((minY - (CLR_FIXED_HALF + params->sampleMaxY) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, (intL)0);
+  const intL y0 = max((minY - (CLR_FIXED_HALF + params->sampleMaxY) + CLR_FIXED_ONE - 1) >> CLR_SUBPIXEL_BITS, row);
   const intL xEnd =
       min((maxX - (CLR_FIXED_HALF + params->sampleMinX)) >> CLR_SUBPIXEL_BITS, (intL)((int)params->width - 1));
   const intL yEnd =
-      min((maxY - (CLR_FIXED_HALF + params->sampleMinY)) >> CLR_SUBPIXEL_BITS, (intL)((int)params->height - 1));
+      min((maxY - (CLR_FIXED_HALF + params->sampleMinY)) >> CLR_SUBPIXEL_BITS, row + (int)params->imageHeight - 1);
   valid = valid & (x0 <= xEnd) & (y0 <= yEnd);
   out->tileX0 = x0 / CLR_TILE_SIZE;
   out->tileY0 = y0 / CLR_TILE_SIZE;
@@ -392,7 +393,9 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     return;
   }
   SetupBatch b;
-  const intL made = setup_make(&c, params, &b, !emit);  // emit's sources passed the test in pass 1
+  int rows[CLR_LANES] = {0};  // each lane's image row (clr_image_row), all 0 unless batched
+  for (uint lane = 0; params->imageTris && lane < CLR_LANES; ++lane) rows[lane] = clr_image_row(params, tri[lane]);
+  const intL made = setup_make(&c, params, &b, !emit, CLR_LOAD_LANES(rows));  // emit's sources passed pass 1's test
   const intL simple = made & (kind == CLR_SETUP_SIMPLE);
   if (!emit && !CLR_ANY(simple | (kind == CLR_SETUP_CLIP))) {
     setup_count_none(params, first, triCount);
@@ -516,7 +519,7 @@ __kernel void setup_clip(__constant FrameParams* params,
     setup_broadcast(sc, &batch);
     SetupBatch b;
     int made[CLR_LANES];
-    CLR_STORE_LANES(setup_make(&batch, params, &b, true), made);
+    CLR_STORE_LANES(setup_make(&batch, params, &b, true, (intL)clr_image_row(params, tri)), made);
     if (!made[0]) continue;
     SetupLanes l;
     setup_unpack(&b, &l);
@@ -533,7 +536,7 @@ __kernel void setup_clip(__constant FrameParams* params,
     TriSetup t;
     setup_lane(&l, 0, &t);
     setup[base + count++] = t;
-    bin_count_tiles(&t, bin_tile_range(&t, params), params, tileCount);
+    bin_count_tiles(&t, bin_tile_range(&t, params, clr_image_row(params, tri)), params, tileCount);
   }
   // Step 3: flag the reservation's unused slots, whose records binning skips.
   for (uint k = count; k < CLR_MAX_SUBTRIS; ++k) {

@@ -242,7 +242,18 @@ typedef struct FrameParams {
   /* 1: the scene's triangles lie in the file's order (host layout.h), so
    * fileTri is the identity and not bound: readers take the index itself. */
   uint fileOrder;
+  /* Batched clip-input frames (api_diff.cpp): image k's imageTris input triangles draw into rows k·imageRows ..
+   * + imageHeight − 1 (imageRows a tile multiple); imageTris 0: one image, imageHeight = height. */
+  uint imageTris, imageRows, imageHeight;
 } FrameParams;
+
+/* The first row of input triangle tri's image (0 unless batched); offsets stay below CLR_MAX_VIEWPORT (fixed.h). */
+#ifdef __OPENCL_VERSION__
+CLR_INLINE int clr_image_row(__constant FrameParams* params, uint tri)
+{
+  return params->imageTris ? (int)(tri / params->imageTris * params->imageRows) : 0;
+}
+#endif
 
 /* The image pixel (x, y) of screen space (y up, (0, 0) bottom left); image is stored top row first. */
 #ifdef __OPENCL_VERSION__
@@ -443,7 +454,7 @@ typedef struct LineParams {
 #define CLR_AOV_CHANNELS 10
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(FrameParams) == 376, "FrameParams layout must match the kernels");
+static_assert(sizeof(FrameParams) == 388, "FrameParams layout must match the kernels");
 static_assert(sizeof(TriSetup) == 36, "TriSetup layout must match the kernels");
 static_assert(sizeof(ClipBary) == 56, "ClipBary layout must match the kernels");
 static_assert(sizeof(VisSample) == 16, "VisSample layout must match the kernels");

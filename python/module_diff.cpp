@@ -242,23 +242,46 @@ IntArray antialiasTopology(const IntArray& tri, size_t numVertices)
   return out;
 }
 
-// One peeling layer of one image: pos [V, 4], tri [T, 3], floor [H, W]:
-// (rast [H, W, 4], db [H, W, 4] or [H, W, 0], next floor [H, W]).
-py::tuple rasterizePeel(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, const FloatArray& floor,
-                        bool withDb)
+// Instanced (ranges None, pos [P, V, 4]) or range mode (pos [1, V, 4], ranges
+// [N, 2]) into rast [B, H, W, 4] and db (the same, or None).
+void rasterizeBatch(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri, std::optional<IntArray> ranges,
+                    FloatArray rast, std::optional<FloatArray> db)
 {
-  expectShape("pos", pos, {-1, 4});
+  expectShape("pos", pos, {-1, -1, 4});
   expectShape("tri", tri, {-1, 3});
-  expectShape("floor", floor, {-1, -1});
-  const py::ssize_t h = floor.shape(0), w = floor.shape(1);
-  FloatArray rast({h, w, py::ssize_t(4)}), db({h, w, py::ssize_t(withDb ? 4 : 0)}), next({h, w});
+  expectShape("rast", rast, {ranges ? -1 : pos.shape(0), -1, -1, 4});
+  if (ranges) expectShape("ranges", *ranges, {rast.shape(0), 2});
+  if (db) expectShape("rast_db", *db, {rast.shape(0), rast.shape(1), rast.shape(2), 4});
+  const float* p = pos.data();
+  const int32_t *t = tri.data(), *r = ranges ? ranges->data() : nullptr;
+  float *out = rast.mutable_data(), *d = db ? db->mutable_data() : nullptr;
+  const size_t v = size_t(pos.shape(1)), images = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  const size_t numRanges = ranges ? size_t(ranges->shape(0)) : 0;
+  const uint32_t w = uint32_t(rast.shape(2)), h = uint32_t(rast.shape(1));
+  py::gil_scoped_release release;  // raw pointers only from here
+  clraster::rasterizeBatch(ctx, p, v, images, t, n, r, numRanges, w, h, out, d);
+}
+
+// One peeling layer of a batch, rasterize_batch's arguments and floor
+// [B, H, W]: (rast [B, H, W, 4], db [B, H, W, 4] or [B, H, W, 0], next
+// floor [B, H, W]).
+py::tuple rasterizePeel(clraster::Context& ctx, const FloatArray& pos, const IntArray& tri,
+                        std::optional<IntArray> ranges, const FloatArray& floor, bool withDb)
+{
+  expectShape("pos", pos, {-1, -1, 4});
+  expectShape("tri", tri, {-1, 3});
+  expectShape("floor", floor, {ranges ? -1 : pos.shape(0), -1, -1});
+  if (ranges) expectShape("ranges", *ranges, {floor.shape(0), 2});
+  const py::ssize_t b = floor.shape(0), h = floor.shape(1), w = floor.shape(2);
+  FloatArray rast({b, h, w, py::ssize_t(4)}), db({b, h, w, py::ssize_t(withDb ? 4 : 0)}), next({b, h, w});
   const float *p = pos.data(), *f = floor.data();
-  const int32_t* t = tri.data();
-  float *r = rast.mutable_data(), *d = withDb ? db.mutable_data() : nullptr, *nx = next.mutable_data();
-  const size_t v = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  const int32_t *t = tri.data(), *r = ranges ? ranges->data() : nullptr;
+  float *out = rast.mutable_data(), *d = withDb ? db.mutable_data() : nullptr, *nx = next.mutable_data();
+  const size_t v = size_t(pos.shape(1)), images = size_t(pos.shape(0)), n = size_t(tri.shape(0));
+  const size_t numRanges = ranges ? size_t(ranges->shape(0)) : 0;
   {
     py::gil_scoped_release release;
-    clraster::rasterizePeel(ctx, p, v, t, n, uint32_t(w), uint32_t(h), f, r, d, nx);
+    clraster::rasterizePeel(ctx, p, v, images, t, n, r, numRanges, uint32_t(w), uint32_t(h), f, out, d, nx);
   }
   return py::make_tuple(rast, db, next);
 }
@@ -285,6 +308,8 @@ void bindDiff(py::module_& m)
         py::arg("pos").noconvert(), py::arg("tri").noconvert(), py::arg("opp").noconvert(),
         py::arg("grad_out").noconvert(), py::arg("pos_gradient_boost"));
   m.def("antialias_topology", &antialiasTopology, py::arg("tri").noconvert(), py::arg("num_vertices"));
+  m.def("rasterize_batch", &rasterizeBatch, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
+        py::arg("ranges").noconvert(), py::arg("rast").noconvert(), py::arg("db").noconvert());
   m.def("rasterize_peel", &rasterizePeel, py::arg("ctx"), py::arg("pos").noconvert(), py::arg("tri").noconvert(),
-        py::arg("floor").noconvert(), py::arg("grad_db"));
+        py::arg("ranges").noconvert(), py::arg("floor").noconvert(), py::arg("grad_db"));
 }

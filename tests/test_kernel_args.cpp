@@ -69,4 +69,12 @@ TEST_CASE("each kernel's argument struct matches its parameters", "[device]")
   checkArgs<clr::AovArgs>(programs, {"aov"});
   checkArgs<clr::RastOutputsArgs>(programs, {"rast_outputs"});
   checkArgs<clr::PeelArgs>(programs, {"peel_layer"});
+  checkArgs<clr::RasterizeGradArgs>(programs, {"rasterize_grad"});
+  checkArgs<clr::InterpolateGradArgs>(programs, {"interpolate_grad"});
+  checkArgs<clr::TextureFwdArgs>(programs, {"texture_fwd"});
+  checkArgs<clr::TextureGradArgs>(programs, {"texture_grad"});
+  checkArgs<clr::MipBuildArgs>(programs, {"mip_build"});
+  checkArgs<clr::MipGradDownArgs>(programs, {"mip_grad_down"});
+  checkArgs<clr::AntialiasFwdArgs>(programs, {"antialias_fwd"});
+  checkArgs<clr::AntialiasGradArgs>(programs, {"antialias_grad"});
 }

@@ -293,33 +293,166 @@ std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, 
   });
 }
 
-void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri, size_t numTriangles,
-                   uint32_t width, uint32_t height, const float* floorDepth, float* rast, float* db, float* nextFloor)
+namespace {
+
+// A batch of images in instanced or range mode, as stacked frames (diff.hpp, rasterizeBatch).
+struct Batch {
+  const float* pos = nullptr;
+  size_t numVertices = 0;
+  const int32_t* tri = nullptr;
+  size_t numTriangles = 0;
+  const int32_t* ranges = nullptr;  // null: instanced
+  size_t images = 0;
+  size_t imageTris = 0;  // triangles per image (range images padded to the longest range)
+  uint32_t width = 0, height = 0;
+  uint32_t rows = 0;  // per image in a frame: height rounded up to the tile size
+  size_t pixels() const { return size_t(width) * height; }
+};
+
+// The arguments checked (an Error naming the bad one) and the batch's layout.
+Batch planBatch(const float* pos, size_t numVertices, size_t posImages, const int32_t* tri, size_t numTriangles,
+                const int32_t* ranges, size_t numRanges, uint32_t width, uint32_t height)
 {
-  guarded([&] {
-    checkBatch({1, width, height}, "rasterize");
-    checkTri(tri, numTriangles, numVertices);
-    need(pos, numVertices != 0, "pos");
-    need(floorDepth, true, "floor");
-    need(rast, true, "rast");
-    need(nextFloor, true, "next_floor");
-    const size_t pixels = size_t(width) * height;
-    if (numTriangles == 0) {
-      std::fill(rast, rast + 4 * pixels, 0.0f);
-      if (db) std::fill(db, db + 4 * pixels, 0.0f);
-      std::fill(nextFloor, nextFloor + pixels, INFINITY);
-      return;
+  checkBatch({1, width, height}, "rasterize");
+  checkTri(tri, numTriangles, numVertices);
+  if (ranges && posImages != 1) throw Error("ranges: range mode takes one pos array");
+  need(pos, numVertices != 0, "pos");
+  Batch b{pos,
+          numVertices,
+          tri,
+          numTriangles,
+          ranges,
+          ranges ? numRanges : posImages,
+          ranges ? 0 : numTriangles,
+          width,
+          height,
+          (height + CLR_TILE_SIZE - 1) / CLR_TILE_SIZE * CLR_TILE_SIZE};
+  for (size_t k = 0; ranges && k < numRanges; ++k) {
+    const int64_t start = ranges[2 * k], count = ranges[2 * k + 1];
+    if (start < 0 || count < 0 || uint64_t(start + count) > numTriangles)
+      throw Error("ranges: range " + std::to_string(k) + " (" + std::to_string(start) + ", " + std::to_string(count) +
+                  ") outside the " + std::to_string(numTriangles) + " triangles");
+    b.imageTris = std::max(b.imageTris, size_t(count));
+  }
+  return b;
+}
+
+// Pixels a batched frame holds at most (several images each when they are small): beyond this its per-pixel
+// buffers outgrow a CPU core's caches between one stage and the next, which costs more per pixel than the
+// launches of a further frame.
+constexpr size_t kBatchFramePixels = size_t(1) << 19;
+
+// Images per frame: the frame's rows within the viewport, its pixels within kBatchFramePixels, its indices and
+// vertices in 32 bits (uploadClipScene), its device memory within the device and the Context's limit (halved
+// until it fits; one image that does not is the Error).
+size_t imagesPerFrame(Context& ctx, const Batch& b)
+{
+  size_t perFrame = std::min<size_t>(b.images, CLR_MAX_VIEWPORT / b.rows);
+  perFrame = std::min(perFrame, std::max<size_t>(1, kBatchFramePixels / (size_t(b.width) * b.rows)));
+  perFrame = std::min(perFrame, std::max<size_t>(1, UINT32_MAX / CLR_MAX_SUBTRIS / b.imageTris));
+  if (!b.ranges) perFrame = std::min(perFrame, std::max<size_t>(1, UINT32_MAX / 4 / b.numVertices));
+  for (perFrame = std::max<size_t>(perFrame, 1);; perFrame = (perFrame + 1) / 2) {
+    try {
+      checkRasterizeMemory(ctx, b.width, uint32_t(perFrame * b.rows), 0);
+      return perFrame;
+    } catch (const Error&) {
+      if (perFrame == 1) throw;
     }
-    clr::Pipeline& pipeline = ctx.impl().rasterPipeline();
-    pipeline.uploadClipScene(pos, numVertices, reinterpret_cast<const uint32_t*>(tri), numTriangles);
-    clr::FrameSettings settings;  // as rasterizeInto's frame, without raster
-    settings.width = width;
-    settings.height = height;
+  }
+}
+
+// Each frame of the batch through setup and bin, then stage(pipeline, first image, images). Setup adds each
+// image's row offset in fixed point and clamps its bounds to the image's rows (clr_image_row, shared.h).
+template <typename Stage>
+void runFrames(Context& ctx, const Batch& b, bool keepVisAttributes, Stage&& stage)
+{
+  const size_t perFrame = imagesPerFrame(ctx, b);
+  clr::Pipeline& pipeline = ctx.impl().rasterPipeline();
+  std::vector<int32_t> frameTri;
+  for (size_t first = 0; first < b.images; first += perFrame) {
+    const size_t count = std::min(perFrame, b.images - first);
+    frameTri.assign(3 * count * b.imageTris, 0);
+    for (size_t k = 0; k < count; ++k) {
+      const int32_t* from = b.ranges ? b.tri + 3 * size_t(b.ranges[2 * (first + k)]) : b.tri;
+      const size_t n = b.ranges ? size_t(b.ranges[2 * (first + k) + 1]) : b.numTriangles;
+      int32_t* to = frameTri.data() + 3 * k * b.imageTris;
+      const int32_t offset = b.ranges ? 0 : int32_t(k * b.numVertices);
+      for (size_t i = 0; i < 3 * n; ++i) to[i] = from[i] + offset;
+    }
+    const float* framePos = b.ranges ? b.pos : b.pos + 4 * first * b.numVertices;
+    pipeline.uploadClipScene(framePos, b.ranges ? b.numVertices : count * b.numVertices,
+                             reinterpret_cast<const uint32_t*>(frameTri.data()), count * b.imageTris);
+    clr::FrameSettings settings;  // as rasterizeInto's frame, images stacked
+    settings.width = b.width;
+    settings.height = uint32_t(count * b.rows);
     settings.shadeMode = CLR_SHADE_ID;
+    settings.keepVisAttributes = keepVisAttributes;
+    settings.imageTris = uint32_t(b.imageTris);
+    settings.imageRows = b.rows;
+    settings.imageHeight = b.height;
     pipeline.beginFrame(settings);
     pipeline.setup();
     pipeline.setupEmit();
-    pipeline.peelLayer(floorDepth, rast, db, nextFloor);
+    stage(pipeline, first, count);
+  }
+}
+
+// Range mode's ids count from the start of tri (the frames write them per range).
+void rangeIds(const Batch& b, float* rast)
+{
+  for (size_t k = 0; b.ranges && k < b.images; ++k) {
+    const uint32_t start = uint32_t(b.ranges[2 * k]);
+    float* id = rast + 4 * k * b.pixels() + 3;
+    for (size_t p = 0; start && p < b.pixels(); ++p)
+      if (id[4 * p] != 0.0f) id[4 * p] = encodeTriangleId(decodeTriangleId(id[4 * p]) + start);
+  }
+}
+
+}  // namespace
+
+void rasterizeBatch(Context& ctx, const float* pos, size_t numVertices, size_t posImages, const int32_t* tri,
+                    size_t numTriangles, const int32_t* ranges, size_t numRanges, uint32_t width, uint32_t height,
+                    float* rast, float* db)
+{
+  guarded([&] {
+    const Batch b = planBatch(pos, numVertices, posImages, tri, numTriangles, ranges, numRanges, width, height);
+    need(rast, b.images != 0, "rast");
+    const size_t values = 4 * b.images * b.pixels();
+    if (b.images && b.imageTris == 0) {  // nothing to draw: every output is background
+      std::fill(rast, rast + values, 0.0f);
+      if (db) std::fill(db, db + values, 0.0f);
+    }
+    if (b.images == 0 || b.imageTris == 0) return;
+    runFrames(ctx, b, true, [&](clr::Pipeline& pipeline, size_t first, size_t) {
+      pipeline.raster();
+      pipeline.rastOutputs(false, db != nullptr);  // per-image ids and derivatives
+      pipeline.readRastOutputs(rast + 4 * first * b.pixels(), nullptr, db ? db + 4 * first * b.pixels() : nullptr);
+    });
+    rangeIds(b, rast);
+  });
+}
+
+void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, size_t posImages, const int32_t* tri,
+                   size_t numTriangles, const int32_t* ranges, size_t numRanges, uint32_t width, uint32_t height,
+                   const float* floorDepth, float* rast, float* db, float* nextFloor)
+{
+  guarded([&] {
+    const Batch b = planBatch(pos, numVertices, posImages, tri, numTriangles, ranges, numRanges, width, height);
+    need(floorDepth, b.images != 0, "floor");
+    need(rast, b.images != 0, "rast");
+    need(nextFloor, b.images != 0, "next_floor");
+    const size_t pixels = b.images * b.pixels();
+    if (b.images && b.imageTris == 0) {
+      std::fill(rast, rast + 4 * pixels, 0.0f);
+      if (db) std::fill(db, db + 4 * pixels, 0.0f);
+      std::fill(nextFloor, nextFloor + pixels, INFINITY);
+    }
+    if (b.images == 0 || b.imageTris == 0) return;
+    runFrames(ctx, b, false, [&](clr::Pipeline& pipeline, size_t first, size_t) {
+      const size_t at = first * b.pixels();
+      pipeline.peelLayer(floorDepth + at, rast + 4 * at, db ? db + 4 * at : nullptr, nextFloor + at);
+    });
+    rangeIds(b, rast);
   });
 }
 

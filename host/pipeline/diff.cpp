@@ -1,13 +1,14 @@
-// diff.cpp — host side of kernels/diff.cl (see diff.h): uploads, one launch
-// per call over every pixel of the batch, blocking reads of the gradients.
+// diff.cpp — host side of kernels/diff*.cl (see diff.h): uploads, one launch
+// per call over every pixel of the batch (arguments set from their
+// kernel_args.h structs), blocking reads of the gradients.
 #include "pipeline/diff.h"
 
 namespace clr {
 
 namespace {
 
-// Pixels per work-item of interpolate_grad (DIFF_SPAN, diff.cl).
-constexpr uint64_t kInterpolateSpan = 16;
+// Pixels per work-item of rasterize_grad and interpolate_grad (DIFF_SPAN, diff.cl).
+constexpr uint64_t kPixelSpan = 16;
 
 void checkCount(uint64_t n, const char* what)
 {
@@ -78,22 +79,13 @@ void DiffKernels::rasterizeGrad(const float* pos, size_t numVertices, size_t pos
   out0_.zero(posFloats);
   if (n && numTriangles) {
     if (!rasterizeGrad_()) rasterizeGrad_ = cl::Kernel(cl_.extras(), "rasterize_grad");
-    cl::Kernel& k = rasterizeGrad_;
-    cl_uint a = 0;
-    k.setArg(a++, in0_.get());
-    k.setArg(a++, cl_uint(posImages > 1 ? numVertices * 4 : 0));
-    k.setArg(a++, tri_.get());
-    k.setArg(a++, cl_uint(numTriangles));
-    k.setArg(a++, cl_uint(numVertices));
-    k.setArg(a++, rastBuf);
-    k.setArg(a++, gradRastBuf);
-    k.setArg(a++, gradDbBuf);
-    k.setArg(a++, cl_uint(gradDb ? 1 : 0));
-    k.setArg(a++, cl_uint(batch.width));
-    k.setArg(a++, cl_uint(batch.height));
-    k.setArg(a++, cl_uint(n));
-    k.setArg(a++, out0_.get());
-    cl_.queue.enqueueNDRangeKernel(k, cl::NullRange, linear(n));
+    RasterizeGradArgs args;
+    args.pos = in0_.get(), args.posStride = cl_uint(posImages > 1 ? numVertices * 4 : 0), args.tri = tri_.get();
+    args.numTriangles = cl_uint(numTriangles), args.numVertices = cl_uint(numVertices);
+    args.rast = rastBuf, args.gradRast = gradRastBuf, args.gradDb = gradDbBuf, args.withDb = gradDb ? 1 : 0;
+    args.width = batch.width, args.height = batch.height, args.numPixels = cl_uint(n), args.gradPos = out0_.get();
+    setKernelArgs(rasterizeGrad_, args);
+    cl_.queue.enqueueNDRangeKernel(rasterizeGrad_, cl::NullRange, linear((n + kPixelSpan - 1) / kPixelSpan));
   }
   if (posFloats) cl_.queue.enqueueReadBuffer(out0_.get(), CL_TRUE, 0, posFloats * sizeof(float), gradPos);
   cl_.queue.finish();
@@ -122,26 +114,15 @@ void DiffKernels::interpolateGrad(const float* attr, size_t numVertices, size_t 
   out2_.reserve(diff.empty() ? 0 : 4 * n);
   if (n) {
     if (!interpolateGrad_()) interpolateGrad_ = cl::Kernel(cl_.extras(), "interpolate_grad");
-    cl::Kernel& k = interpolateGrad_;
-    cl_uint a = 0;
-    k.setArg(a++, in0_.get());
-    k.setArg(a++, cl_uint(attrImages > 1 ? numVertices * numAttrs : 0));
-    k.setArg(a++, cl_uint(numVertices));
-    k.setArg(a++, cl_uint(numAttrs));
-    k.setArg(a++, rastBuf);
-    k.setArg(a++, tri_.get());
-    k.setArg(a++, cl_uint(numTriangles));
-    k.setArg(a++, gradOutBuf);
-    k.setArg(a++, in3_.get());
-    k.setArg(a++, in4_.get());
-    k.setArg(a++, list_.get());
-    k.setArg(a++, cl_uint(diff.size()));
-    k.setArg(a++, cl_uint(uint64_t(batch.width) * batch.height));
-    k.setArg(a++, cl_uint(n));
-    k.setArg(a++, out0_.get());
-    k.setArg(a++, gradRastBuf);
-    k.setArg(a++, out2_.get());
-    cl_.queue.enqueueNDRangeKernel(k, cl::NullRange, linear((n + kInterpolateSpan - 1) / kInterpolateSpan));
+    InterpolateGradArgs args;
+    args.attr = in0_.get(), args.attrStride = cl_uint(attrImages > 1 ? numVertices * numAttrs : 0);
+    args.numVertices = cl_uint(numVertices), args.numAttrs = cl_uint(numAttrs), args.rast = rastBuf;
+    args.tri = tri_.get(), args.numTriangles = cl_uint(numTriangles), args.gradOut = gradOutBuf, args.db = in3_.get();
+    args.gradDa = in4_.get(), args.diff = list_.get(), args.numDiff = cl_uint(diff.size());
+    args.pixelsPerImage = cl_uint(uint64_t(batch.width) * batch.height), args.numPixels = cl_uint(n);
+    args.gradAttr = out0_.get(), args.gradRast = gradRastBuf, args.gradDb = out2_.get();
+    setKernelArgs(interpolateGrad_, args);
+    cl_.queue.enqueueNDRangeKernel(interpolateGrad_, cl::NullRange, linear((n + kPixelSpan - 1) / kPixelSpan));
     // Mapping a caller-memory buffer makes the caller's array hold what the kernel wrote.
     void* mapped = cl_.queue.enqueueMapBuffer(gradRastBuf, CL_TRUE, CL_MAP_READ, 0, 4 * n * sizeof(float));
     cl_.queue.enqueueUnmapMemObject(gradRastBuf, mapped);
@@ -191,38 +172,23 @@ void DiffKernels::uploadPyramid(const TextureCall& call, const float* tex, const
   if (!mipBuild_()) mipBuild_ = cl::Kernel(cl_.extras(), "mip_build");
   for (uint32_t k = 1; k <= call.maxLevel; ++k) {
     const uint64_t n = uint64_t(sizes[2 * k]) * sizes[2 * k + 1] * call.texImages;
-    mipBuild_.setArg(0, pyramid_.get());
-    mipBuild_.setArg(1, levelInfo_.get());
-    mipBuild_.setArg(2, cl_uint(k));
-    mipBuild_.setArg(3, cl_uint(call.channels));
-    mipBuild_.setArg(4, cl_uint(call.texImages));
+    MipBuildArgs args;
+    args.tex = pyramid_.get(), args.levelInfo = levelInfo_.get(), args.level = k, args.channels = call.channels;
+    args.texImages = cl_uint(call.texImages);
+    setKernelArgs(mipBuild_, args);
     cl_.queue.enqueueNDRangeKernel(mipBuild_, cl::NullRange, linear(n));
   }
 }
 
-void DiffKernels::setTextureArgs(cl::Kernel& kernel, const TextureCall& call)
+TexParams DiffKernels::texParams(const TextureCall& call) const
 {
   const uint64_t n = call.batch.pixels();
   checkCount(n * std::max<uint64_t>(call.channels, 4), "pixel values");
-  const cl_uint params[12] = {call.filter,
-                              call.boundary,
-                              call.channels,
-                              cl_uint(call.texImages),
-                              call.batch.width,
-                              call.batch.height,
-                              cl_uint(n),
-                              call.maxLevel,
-                              call.hasUvDa,
-                              call.hasBias,
-                              0,
-                              0};
-  cl_uint a = 0;
-  kernel.setArg(a++, sizeof params, params);
-  kernel.setArg(a++, pyramid_.get());
-  kernel.setArg(a++, levelInfo_.get());
-  kernel.setArg(a++, in0_.get());
-  kernel.setArg(a++, in1_.get());
-  kernel.setArg(a++, in2_.get());
+  TexParams p;
+  p.filter = call.filter, p.boundary = call.boundary, p.channels = call.channels;
+  p.texImages = cl_uint(call.texImages), p.width = call.batch.width, p.height = call.batch.height;
+  p.numPixels = cl_uint(n), p.maxLevel = call.maxLevel, p.hasUvDa = call.hasUvDa, p.hasBias = call.hasBias;
+  return p;
 }
 
 void DiffKernels::buildMips(const TextureCall& call, const float* tex, float* mips)
@@ -245,8 +211,10 @@ void DiffKernels::textureForward(const TextureCall& call, const float* tex, cons
   out0_.reserve(n * call.channels);
   if (n && call.channels) {
     if (!textureFwd_()) textureFwd_ = cl::Kernel(cl_.extras(), "texture_fwd");
-    setTextureArgs(textureFwd_, call);
-    textureFwd_.setArg(6, out0_.get());
+    TextureFwdArgs args;
+    args.params = texParams(call), args.tex = pyramid_.get(), args.levelInfo = levelInfo_.get();
+    args.uv = in0_.get(), args.uvDa = in1_.get(), args.bias = in2_.get(), args.out = out0_.get();
+    setKernelArgs(textureFwd_, args);
     cl_.queue.enqueueNDRangeKernel(textureFwd_, cl::NullRange, linear(n));
     cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * call.channels * sizeof(float), out);
   }
@@ -270,13 +238,12 @@ void DiffKernels::textureGrad(const TextureCall& call, const float* tex, const f
   out2_.reserve(call.hasBias ? n : 0);
   if (n && call.channels) {
     if (!textureGrad_()) textureGrad_ = cl::Kernel(cl_.extras(), "texture_grad");
-    setTextureArgs(textureGrad_, call);
-    cl_uint a = 6;
-    textureGrad_.setArg(a++, in3_.get());
-    textureGrad_.setArg(a++, gradPyramid_.get());
-    textureGrad_.setArg(a++, out0_.get());
-    textureGrad_.setArg(a++, out1_.get());
-    textureGrad_.setArg(a++, out2_.get());
+    TextureGradArgs args;
+    args.params = texParams(call), args.tex = pyramid_.get(), args.levelInfo = levelInfo_.get();
+    args.uv = in0_.get(), args.uvDa = in1_.get(), args.bias = in2_.get(), args.gradOut = in3_.get();
+    args.gradTex = gradPyramid_.get(), args.gradUv = out0_.get(), args.gradUvDa = out1_.get();
+    args.gradBias = out2_.get();
+    setKernelArgs(textureGrad_, args);
     cl_.queue.enqueueNDRangeKernel(textureGrad_, cl::NullRange, linear(n));
   }
   // Every level's gradient down to level 0, deepest first (not through a caller's levels).
@@ -285,11 +252,10 @@ void DiffKernels::textureGrad(const TextureCall& call, const float* tex, const f
     if (!mipGradDown_()) mipGradDown_ = cl::Kernel(cl_.extras(), "mip_grad_down");
     for (uint32_t k = call.maxLevel; k >= 1; --k) {
       const uint64_t m = uint64_t(sizes[2 * k - 2]) * sizes[2 * k - 1] * call.texImages;
-      mipGradDown_.setArg(0, gradPyramid_.get());
-      mipGradDown_.setArg(1, levelInfo_.get());
-      mipGradDown_.setArg(2, cl_uint(k));
-      mipGradDown_.setArg(3, cl_uint(call.channels));
-      mipGradDown_.setArg(4, cl_uint(call.texImages));
+      MipGradDownArgs args;
+      args.grad = gradPyramid_.get(), args.levelInfo = levelInfo_.get(), args.level = k;
+      args.channels = call.channels, args.texImages = cl_uint(call.texImages);
+      setKernelArgs(mipGradDown_, args);
       cl_.queue.enqueueNDRangeKernel(mipGradDown_, cl::NullRange, linear(m));
     }
   }
@@ -302,9 +268,10 @@ void DiffKernels::textureGrad(const TextureCall& call, const float* tex, const f
   cl_.queue.finish();
 }
 
-void DiffKernels::antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels,
-                                 const float* rast, const DiffImages& batch, const float* pos, size_t numVertices,
-                                 size_t posImages, const int32_t* tri, const int32_t* opp, size_t numTriangles)
+AntialiasArgs DiffKernels::antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels,
+                                          const float* rast, const DiffImages& batch, const float* pos,
+                                          size_t numVertices, size_t posImages, const int32_t* tri, const int32_t* opp,
+                                          size_t numTriangles)
 {
   const uint64_t n = batch.pixels(), posFloats = uint64_t(posImages) * numVertices * 4;
   checkCount(n * std::max<uint32_t>(channels, 4), "pixel values");
@@ -316,18 +283,12 @@ void DiffKernels::antialiasSetup(cl::Kernel& kernel, const char* name, const flo
   upload(tri_, tri, 3 * uint64_t(numTriangles));
   upload(opp_, opp, 3 * uint64_t(numTriangles));
   if (!kernel()) kernel = cl::Kernel(cl_.extras(), name);
-  cl_uint a = 0;
-  kernel.setArg(a++, in0_.get());
-  kernel.setArg(a++, in1_.get());
-  kernel.setArg(a++, in2_.get());
-  kernel.setArg(a++, cl_uint(posImages > 1 ? numVertices * 4 : 0));
-  kernel.setArg(a++, tri_.get());
-  kernel.setArg(a++, opp_.get());
-  kernel.setArg(a++, cl_uint(numTriangles));
-  kernel.setArg(a++, cl_uint(batch.width));
-  kernel.setArg(a++, cl_uint(batch.height));
-  kernel.setArg(a++, cl_uint(n));
-  kernel.setArg(a++, cl_uint(channels));
+  AntialiasArgs a;
+  a.color = in0_.get(), a.rast = in1_.get(), a.pos = in2_.get();
+  a.posStride = cl_uint(posImages > 1 ? numVertices * 4 : 0), a.tri = tri_.get(), a.opp = opp_.get();
+  a.numTriangles = cl_uint(numTriangles), a.width = batch.width, a.height = batch.height, a.numPixels = cl_uint(n);
+  a.channels = channels;
+  return a;
 }
 
 void DiffKernels::antialiasForward(const float* color, uint32_t channels, const float* rast, const DiffImages& batch,
@@ -335,11 +296,13 @@ void DiffKernels::antialiasForward(const float* color, uint32_t channels, const 
                                    const int32_t* opp, size_t numTriangles, float* out)
 {
   const uint64_t n = batch.pixels();
-  antialiasSetup(aaFwd_, "antialias_fwd", color, channels, rast, batch, pos, numVertices, posImages, tri, opp,
-                 numTriangles);
+  AntialiasFwdArgs args;
+  args.head = antialiasSetup(aaFwd_, "antialias_fwd", color, channels, rast, batch, pos, numVertices, posImages, tri,
+                             opp, numTriangles);
   upload(out0_, color, n * channels);
   if (n && channels) {
-    aaFwd_.setArg(11, out0_.get());
+    args.out = out0_.get();
+    setKernelArgs(aaFwd_, args);
     cl_.queue.enqueueNDRangeKernel(aaFwd_, cl::NullRange, linear(n));
     cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * channels * sizeof(float), out);
   }
@@ -352,16 +315,15 @@ void DiffKernels::antialiasGrad(const float* color, uint32_t channels, const flo
                                 float* gradColor, float* gradPos)
 {
   const uint64_t n = batch.pixels(), posFloats = uint64_t(posImages) * numVertices * 4;
-  antialiasSetup(aaGrad_, "antialias_grad", color, channels, rast, batch, pos, numVertices, posImages, tri, opp,
-                 numTriangles);
+  AntialiasGradArgs args;
+  args.head = antialiasSetup(aaGrad_, "antialias_grad", color, channels, rast, batch, pos, numVertices, posImages, tri,
+                             opp, numTriangles);
   upload(in3_, gradOut, n * channels);
   upload(out0_, gradOut, n * channels);
   out1_.zero(posFloats);
   if (n && channels) {
-    aaGrad_.setArg(11, in3_.get());
-    aaGrad_.setArg(12, posBoost);
-    aaGrad_.setArg(13, out0_.get());
-    aaGrad_.setArg(14, out1_.get());
+    args.gradOut = in3_.get(), args.posBoost = posBoost, args.gradColor = out0_.get(), args.gradPos = out1_.get();
+    setKernelArgs(aaGrad_, args);
     cl_.queue.enqueueNDRangeKernel(aaGrad_, cl::NullRange, linear(n));
     cl_.queue.enqueueReadBuffer(out0_.get(), CL_FALSE, 0, n * channels * sizeof(float), gradColor);
   }

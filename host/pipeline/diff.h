@@ -8,6 +8,7 @@
 
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
+#include "pipeline/kernel_args.h"
 
 #include <cstdint>
 #include <vector>
@@ -85,13 +86,14 @@ class DiffKernels {
                      size_t numTriangles, const float* gradOut, float posBoost, float* gradColor, float* gradPos);
 
  private:
-  // Uploads colour, rast, pos, tri and opp, and sets the antialias kernels' common arguments 0..10.
-  void antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels, const float* rast,
-                      const DiffImages& batch, const float* pos, size_t numVertices, size_t posImages,
-                      const int32_t* tri, const int32_t* opp, size_t numTriangles);
+  // Uploads colour, rast, pos, tri and opp, builds the kernel if needed,
+  // and returns the antialias kernels' common arguments.
+  AntialiasArgs antialiasSetup(cl::Kernel& kernel, const char* name, const float* color, uint32_t channels,
+                               const float* rast, const DiffImages& batch, const float* pos, size_t numVertices,
+                               size_t posImages, const int32_t* tri, const int32_t* opp, size_t numTriangles);
   // Uploads tex and its levels into pyramid_ (building those not given).
   void uploadPyramid(const TextureCall& call, const float* tex, const float* mips);
-  void setTextureArgs(cl::Kernel& kernel, const TextureCall& call);
+  TexParams texParams(const TextureCall& call) const;
   // Non-blocking: data must live until the call's closing finish().
   template <typename T>
   void upload(DeviceBuffer<T>& buffer, const T* data, uint64_t n);

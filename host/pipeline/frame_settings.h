@@ -56,6 +56,11 @@ struct FrameSettings {
   // FrameParams.cullSampleFree); tests turn it off to show that the pixels
   // do not change.
   bool cullSampleFree = true;
+  // A batch of clip-input images in one frame (the library's batched
+  // rasterize, api_diff.cpp): image k is triangles k·imageTris onwards,
+  // viewport imageHeight rows from row k·imageRows (a tile multiple), and
+  // height = images·imageRows. 0: one image of height rows.
+  uint32_t imageTris = 0, imageRows = 0, imageHeight = 0;
 };
 
 }  // namespace clr

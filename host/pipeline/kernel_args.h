@@ -224,4 +224,132 @@ struct PeelArgs {
   }
 };
 
+// rasterize_grad (diff.cl).
+struct RasterizeGradArgs {
+  cl::Buffer pos;
+  cl_uint posStride = 0;  // floats per image of pos; 0: shared
+  cl::Buffer tri;
+  cl_uint numTriangles = 0, numVertices = 0;
+  cl::Buffer rast, gradRast, gradDb;
+  cl_uint withDb = 0, width = 0, height = 0, numPixels = 0;
+  cl::Buffer gradPos;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("pos", pos), v("posStride", posStride), v("tri", tri), v("numTriangles", numTriangles);
+    v("numVertices", numVertices), v("rast", rast), v("gradRast", gradRast), v("gradDb", gradDb);
+    v("withDb", withDb), v("width", width), v("height", height), v("numPixels", numPixels), v("gradPos", gradPos);
+  }
+};
+
+// interpolate_grad (diff.cl).
+struct InterpolateGradArgs {
+  cl::Buffer attr;
+  cl_uint attrStride = 0, numVertices = 0, numAttrs = 0;  // attrStride: floats per image of attr; 0: shared
+  cl::Buffer rast, tri;
+  cl_uint numTriangles = 0;
+  cl::Buffer gradOut, db, gradDa, diff;
+  cl_uint numDiff = 0, pixelsPerImage = 0, numPixels = 0;
+  cl::Buffer gradAttr, gradRast, gradDb;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("attr", attr), v("attrStride", attrStride), v("numVertices", numVertices), v("numAttrs", numAttrs);
+    v("rast", rast), v("tri", tri), v("numTriangles", numTriangles), v("gradOut", gradOut), v("db", db);
+    v("gradDa", gradDa), v("diff", diff), v("numDiff", numDiff), v("pixelsPerImage", pixelsPerImage);
+    v("numPixels", numPixels), v("gradAttr", gradAttr), v("gradRast", gradRast), v("gradDb", gradDb);
+  }
+};
+
+// TexParams of diff_texture.cl, passed by value.
+struct TexParams {
+  cl_uint filter = 0, boundary = 0, channels = 0, texImages = 0;
+  cl_uint width = 0, height = 0, numPixels = 0, maxLevel = 0;  // output image size, B·H·W, deepest level used
+  cl_uint hasUvDa = 0, hasBias = 0, pad0 = 0, pad1 = 0;
+};
+
+static_assert(sizeof(TexParams) == 48, "TexParams must match diff_texture.cl");
+
+// texture_fwd (diff_texture.cl).
+struct TextureFwdArgs {
+  TexParams params;
+  cl::Buffer tex, levelInfo, uv, uvDa, bias, out;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("params", params), v("tex", tex), v("levelInfo", levelInfo), v("uv", uv), v("uvDa", uvDa), v("bias", bias);
+    v("out", out);
+  }
+};
+
+// texture_grad (diff_texture.cl).
+struct TextureGradArgs {
+  TexParams params;
+  cl::Buffer tex, levelInfo, uv, uvDa, bias, gradOut, gradTex, gradUv, gradUvDa, gradBias;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("params", params), v("tex", tex), v("levelInfo", levelInfo), v("uv", uv), v("uvDa", uvDa), v("bias", bias);
+    v("gradOut", gradOut), v("gradTex", gradTex), v("gradUv", gradUv), v("gradUvDa", gradUvDa);
+    v("gradBias", gradBias);
+  }
+};
+
+// mip_build (diff_texture.cl): level `level` of the pyramid from level - 1.
+struct MipBuildArgs {
+  cl::Buffer tex, levelInfo;
+  cl_uint level = 0, channels = 0, texImages = 0;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("tex", tex), v("levelInfo", levelInfo), v("level", level), v("channels", channels), v("texImages", texImages);
+  }
+};
+
+// mip_grad_down (diff_texture.cl): level `level`'s gradient into level - 1.
+struct MipGradDownArgs {
+  cl::Buffer grad, levelInfo;
+  cl_uint level = 0, channels = 0, texImages = 0;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("grad", grad), v("levelInfo", levelInfo), v("level", level), v("channels", channels), v("texImages", texImages);
+  }
+};
+
+// antialias_fwd and antialias_grad (diff_antialias.cl): the shared head; the rest by kernel.
+struct AntialiasArgs {
+  cl::Buffer color, rast, pos;
+  cl_uint posStride = 0;  // floats per image of pos; 0: shared
+  cl::Buffer tri, opp;
+  cl_uint numTriangles = 0, width = 0, height = 0, numPixels = 0, channels = 0;
+  template <typename V>
+  void visit(V&& v) const
+  {
+    v("color", color), v("rast", rast), v("pos", pos), v("posStride", posStride), v("tri", tri), v("opp", opp);
+    v("numTriangles", numTriangles), v("width", width), v("height", height), v("numPixels", numPixels);
+    v("channels", channels);
+  }
+};
+struct AntialiasFwdArgs {
+  AntialiasArgs head;
+  cl::Buffer out;  // a copy of color on entry
+  template <typename V>
+  void visit(V&& v) const
+  {
+    head.visit(v), v("out", out);
+  }
+};
+struct AntialiasGradArgs {
+  AntialiasArgs head;
+  cl::Buffer gradOut;
+  cl_float posBoost = 1.0f;
+  cl::Buffer gradColor, gradPos;  // gradColor a copy of gradOut on entry; gradPos zeroed
+  template <typename V>
+  void visit(V&& v) const
+  {
+    head.visit(v), v("gradOut", gradOut), v("posBoost", posBoost), v("gradColor", gradColor), v("gradPos", gradPos);
+  }
+};
+
 }  // namespace clr

@@ -30,9 +30,16 @@ FrameParams makeFrameParams(const FrameSettings& s, size_t numVerts, size_t numT
   p.lightDir[2] = light.z;
   // Guard band: |x_s| <= CLR_GUARD_BAND_PIXELS (derivation in fixed.h).
   p.guardX = 2.0f * CLR_GUARD_BAND_PIXELS / float(s.width) - 1.0f;
-  p.guardY = 2.0f * CLR_GUARD_BAND_PIXELS / float(s.height) - 1.0f;
+  if (s.imageTris && (s.imageRows % CLR_TILE_SIZE || s.imageHeight == 0 || s.imageHeight > s.imageRows))
+    throw Error("batched frame: image rows " + std::to_string(s.imageRows) + " not a tile multiple holding " +
+                std::to_string(s.imageHeight));
+  const uint32_t viewHeight = s.imageTris ? s.imageHeight : s.height;  // one image's viewport
+  p.imageTris = s.imageTris;
+  p.imageRows = s.imageTris ? s.imageRows : 0;
+  p.imageHeight = viewHeight;
+  p.guardY = 2.0f * CLR_GUARD_BAND_PIXELS / float(viewHeight) - 1.0f;
   p.halfWidth = 0.5f * float(s.width);
-  p.halfHeight = 0.5f * float(s.height);
+  p.halfHeight = 0.5f * float(viewHeight);
   p.zNear = s.zNear;
   p.zFar = s.zFar;
   p.width = s.width;

@@ -167,7 +167,8 @@ class Pipeline : public DeviceScene {
   // rasterize outputs (rast_outputs.cl: rast always, the exact ids and the
   // derivatives when asked), then their read into the caller's arrays of
   // width·height float4s (rast, db) and uint32s (ids), bottom row first;
-  // null skips one.
+  // null skips one. A batched frame (FrameSettings::imageTris) reads its
+  // images one after another, each width·imageHeight, padding rows left out.
   void rastOutputs(bool ids, bool derivatives);
   void readRastOutputs(float* rast, uint32_t* ids, float* db) const;
   // After setup and bin of a clip-input frame: one depth-peeling layer

@@ -43,13 +43,23 @@ void Pipeline::rastOutputs(bool ids, bool derivatives)
 
 void Pipeline::readRastOutputs(float* rast, uint32_t* ids, float* db) const
 {
-  const uint64_t n = uint64_t(params_.width) * params_.height;
   if ((db && !rastDbWritten_) || (ids && !rastIdsWritten_))
     throw Error("readRastOutputs: the frame did not write the ids or derivatives asked for");
-  // Non-blocking reads, then one wait: the in-order queue runs them after the kernel.
-  if (rast) cl_.queue.enqueueReadBuffer(rastOut_.get(), CL_FALSE, 0, n * sizeof(cl_float4), rast);
-  if (ids) cl_.queue.enqueueReadBuffer(rastIds_.get(), CL_FALSE, 0, n * sizeof(uint32_t), ids);
-  if (db) cl_.queue.enqueueReadBuffer(rastDb_.get(), CL_FALSE, 0, n * sizeof(cl_float4), db);
+  // Each image's rows (a batched frame's padding rows stay behind). Non-blocking reads, then one wait: the in-order
+  // queue runs them after the kernel.
+  const uint64_t rows = params_.imageTris ? params_.imageRows : params_.height;
+  const uint64_t n = uint64_t(params_.width) * params_.imageHeight, stride = uint64_t(params_.width) * rows;
+  for (uint64_t k = 0; k < params_.height / rows; ++k) {
+    if (rast)
+      cl_.queue.enqueueReadBuffer(rastOut_.get(), CL_FALSE, k * stride * sizeof(cl_float4), n * sizeof(cl_float4),
+                                  rast + 4 * k * n);
+    if (ids)
+      cl_.queue.enqueueReadBuffer(rastIds_.get(), CL_FALSE, k * stride * sizeof(uint32_t), n * sizeof(uint32_t),
+                                  ids + k * n);
+    if (db)
+      cl_.queue.enqueueReadBuffer(rastDb_.get(), CL_FALSE, k * stride * sizeof(cl_float4), n * sizeof(cl_float4),
+                                  db + 4 * k * n);
+  }
   cl_.queue.finish();
 }
 

@@ -97,14 +97,30 @@ CLRASTER_API void antialiasGrad(Context& ctx, const float* color, uint32_t chann
 // edge, counted as a silhouette).
 CLRASTER_API std::vector<int32_t> antialiasTopology(const int32_t* tri, size_t numTriangles, size_t numVertices);
 
-// One layer of depth peeling (nvdiffrast's DepthPeeler) of one image: as
-// rasterizeInto (the same coverage, ids and outputs), but each pixel takes
-// the nearest fragment strictly behind floorDepth (width·height window
+// nvdiffrast's instanced and range mode: a batch of images rasterized in
+// one frame (images stacked, each a tile multiple of rows apart; batches
+// beyond CLR_MAX_VIEWPORT rows or 2^19 pixels, or the memory check, split
+// into several frames), each image bit for bit as rasterizeInto writes it
+// alone.
+// Instanced (ranges null): pos posImages × numVertices × 4, every image
+// draws all of tri, ids 1..numTriangles. Range mode (posImages 1): ranges
+// numRanges (start, count) pairs, image k draws tri[start, start + count),
+// ids absolute (start + index + 1). rast, db: images × height × width × 4
+// floats (db may be null).
+CLRASTER_API void rasterizeBatch(Context& ctx, const float* pos, size_t numVertices, size_t posImages,
+                                 const int32_t* tri, size_t numTriangles, const int32_t* ranges, size_t numRanges,
+                                 uint32_t width, uint32_t height, float* rast, float* db);
+
+// One layer of depth peeling (nvdiffrast's DepthPeeler) of a batch, with
+// rasterizeBatch's arguments and frames: each image as rasterizeInto writes
+// it (the same coverage, ids and outputs), but each pixel takes the nearest
+// fragment strictly behind floorDepth (images × height × width window
 // depths, z/w · 0.5 + 0.5; −inf for the first layer, which equals
 // rasterize's). nextFloor receives this layer's window depths (+inf where
 // nothing is left): the floor of the next layer. db may be null.
-CLRASTER_API void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, const int32_t* tri,
-                                size_t numTriangles, uint32_t width, uint32_t height, const float* floorDepth,
-                                float* rast, float* db, float* nextFloor);
+CLRASTER_API void rasterizePeel(Context& ctx, const float* pos, size_t numVertices, size_t posImages,
+                                const int32_t* tri, size_t numTriangles, const int32_t* ranges, size_t numRanges,
+                                uint32_t width, uint32_t height, const float* floorDepth, float* rast, float* db,
+                                float* nextFloor);
 
 }  // namespace clraster

@@ -203,9 +203,8 @@ def rasterize(glctx, pos, tri, resolution, ranges=None, grad_db=True, *, out=Non
         _clraster.check_rasterize_memory(glctx._ctx, width, height,
                                          batch.shape[0] * height * width * (32 if grad_db else 16))
     rast, db = _outputs(out, [(batch.shape[0], height, width, 4), (batch.shape[0], height, width, 4 if grad_db else 0)])
-    with glctx._lock:
-        for b in range(batch.shape[0]):
-            _clraster.rasterize_into(glctx._ctx, batch[b], tri, rast[b], db[b] if grad_db else None)
+    with glctx._lock:  # one frame for the whole batch (images stacked)
+        _clraster.rasterize_batch(glctx._ctx, batch, tri, None, rast, db if grad_db else None)
     return rast, db
 
 

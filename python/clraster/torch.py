@@ -137,24 +137,19 @@ def _encode_ids(ids):
 
 
 def _rasterize_forward(glctx, pos, tri, resolution, ranges, grad_db):
-    """(rast, db) float32 numpy [B, H, W, 4] (db [B, H, W, 0] without grad_db)."""
+    """(rast, db) float32 numpy [B, H, W, 4] (db [B, H, W, 0] without grad_db);
+    range mode in one frame for all ranges, as instanced mode."""
     height, width = resolution
     if ranges is None:
         return np_rasterize(glctx, pos, tri, (height, width), grad_db=grad_db)
-    images = []
-    dbs = []
-    for start, count in ranges:
-        sub = tri[start:start + count]
-        rast, db = np_rasterize(glctx, pos, np.ascontiguousarray(sub), (height, width), grad_db=grad_db)
-        ids = triangle_ids(rast)
-        covered = ids > 0
-        rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
-        images.append(rast)
-        dbs.append(db)
-    if not images:
-        return (np.zeros((0, height, width, 4), np.float32), np.zeros((0, height, width, 4 if grad_db else 0),
-                                                                      np.float32))
-    return np.concatenate(images), np.concatenate(dbs)
+    with glctx._lock:
+        _clraster.check_rasterize_memory(glctx._ctx, width, height, len(ranges) * height * width * (32 if grad_db else 16))
+    rast = np.empty((len(ranges), height, width, 4), np.float32)
+    db = np.empty((len(ranges), height, width, 4 if grad_db else 0), np.float32)
+    with glctx._lock:
+        _clraster.rasterize_batch(glctx._ctx, pos[None], tri, np.ascontiguousarray(ranges, np.int32), rast,
+                                  db if grad_db else None)
+    return rast, db
 
 
 class _Rasterize(torch.autograd.Function):
@@ -251,29 +246,17 @@ class DepthPeeler:
                                 self)
 
     def _next(self, pos_np):
+        """The next layer of every image, in one frame for the batch (as rasterize)."""
         height, width = self._resolution
-        if self._ranges is None:
-            images = [(p, self._tri, 0) for p in (pos_np if pos_np.ndim == 3 else pos_np[None])]
-        else:
-            images = [(pos_np, np.ascontiguousarray(self._tri[a:a + n]), a) for a, n in self._ranges]
+        pos = pos_np if pos_np.ndim == 3 else pos_np[None]
+        images = len(pos) if self._ranges is None else len(self._ranges)
         if self._floors is None:
-            self._floors = [np.full((height, width), -np.inf, np.float32) for _ in images]
-        rasts, dbs = [], []
+            self._floors = np.full((images, height, width), -np.inf, np.float32)
+        ranges = None if self._ranges is None else np.ascontiguousarray(self._ranges, np.int32)
         with self._glctx._lock:
-            for i, (p, tri, start) in enumerate(images):
-                rast, db, self._floors[i] = _clraster.rasterize_peel(self._glctx._ctx, np.ascontiguousarray(p), tri,
-                                                                     self._floors[i], self._grad_db)
-                if start:
-                    ids = triangle_ids(rast[None])[0]
-                    covered = ids > 0
-                    rast[..., 3] = np.where(covered, _encode_ids(np.where(covered, ids + start, 0)), 0)
-                rasts.append(rast)
-                dbs.append(db)
-        if not rasts:
-            return (np.zeros((0, height, width, 4), np.float32),
-                    np.zeros((0, height, width, 4 if self._grad_db else 0), np.float32))
-        return np.stack(rasts), np.stack(dbs)
-
+            rast, db, self._floors = _clraster.rasterize_peel(self._glctx._ctx, np.ascontiguousarray(pos), self._tri,
+                                                              ranges, self._floors, self._grad_db)
+        return rast, db
 
 
 class _Interpolate(torch.autograd.Function):
@@ -402,23 +385,107 @@ class _Texture(torch.autograd.Function):
         return out[0], out[1], out[2], out[3], None, None, None, None
 
 
+def _cube_face(d):
+    """nvdiffrast's cube-map lookup of directions d [..., 3] (torch or numpy,
+    float): (face 0..5 = +x, -x, +y, -y, +z, -z, s, t in [0, 1]); s, t are
+    NaN where d picks no face (zero or non-finite)."""
+    lib = torch if isinstance(d, torch.Tensor) else np
+    x, y, z = d[..., 0], d[..., 1], d[..., 2]
+    ax, ay, az = abs(x), abs(y), abs(z)
+    zmaj = az > lib.maximum(ax, ay)
+    ymaj = ~zmaj & (ay > ax)
+    c = lib.where(zmaj, z, lib.where(ymaj, y, x))
+    face = lib.where(zmaj, 4, lib.where(ymaj, 2, 0)) + (c < 0) * 1
+    a = lib.where(zmaj | ymaj, x, z)  # the numerators of s and t
+    b = lib.where(ymaj, z, y)
+    valid = c != 0
+    m = 0.5 / abs(lib.where(valid, c, 1.0 + 0.0 * c))
+    s = a * lib.where((face == 0) | (face == 5), -m, m) + 0.5
+    t = b * lib.where(face == 2, m, -m) + 0.5
+    valid = valid & lib.isfinite(s) & lib.isfinite(t)
+    nan = float("nan")
+    s = lib.where(valid, lib.clip(s, 0.0, 1.0) if lib is np else s.clamp(0.0, 1.0), nan)
+    t = lib.where(valid, lib.clip(t, 0.0, 1.0) if lib is np else t.clamp(0.0, 1.0), nan)
+    return face, s, t
+
+
+_CUBE_ATLAS = {}
+
+
+def _cube_atlas_sources(n):
+    """The cube atlas of faces n × n: 6 faces of (n + 2)², each face's
+    texels framed by the neighbouring faces' edge texels (found by mapping
+    the framing texel's centre direction back onto the cube), the corners by
+    the mean of the other three texels of their 2×2 quad (nvdiffrast's rule).
+    Returns (src [6 (n + 2)², 3] texel indices face·n² + row·n + column,
+    weight [6 (n + 2)², 3])."""
+    if n in _CUBE_ATLAS:
+        return _CUBE_ATLAS[n]
+    face, row, col = np.meshgrid(np.arange(6), np.arange(-1, n + 1), np.arange(-1, n + 1), indexing="ij")
+    a, b = 2 * (col + 0.5) / n - 1, 2 * (row + 0.5) / n - 1  # s and t at the texel centres, as -1..1
+    one = np.ones_like(a)
+    axes = [(one, -b, -a), (-one, -b, a), (a, one, b), (a, -one, -b), (a, -b, one), (-a, -b, -one)]
+    d = np.zeros(face.shape + (3,))
+    for f, (x, y, z) in enumerate(axes):
+        d[face == f] = np.stack([x, y, z], -1)[face == f]
+    f2, s2, t2 = _cube_face(d)
+    nearest = f2 * n * n + np.minimum((t2 * n).astype(np.int64), n - 1) * n + np.minimum((s2 * n).astype(np.int64),
+                                                                                         n - 1)
+    src = np.repeat(nearest.reshape(-1, 1), 3, 1)
+    weight = np.tile([1.0, 0.0, 0.0], (src.shape[0], 1))
+    p = n + 2
+    for r, c in [(0, 0), (0, p - 1), (p - 1, 0), (p - 1, p - 1)]:  # corners: the other three of the quad
+        dr_, dc = (1 if r == 0 else -1), (1 if c == 0 else -1)
+        for f in range(6):
+            k = (f * p + r) * p + c
+            src[k] = [nearest[f, r + dr_, c + dc], nearest[f, r, c + dc], nearest[f, r + dr_, c]]
+            weight[k] = 1.0 / 3.0
+    _CUBE_ATLAS[n] = (torch.from_numpy(src), torch.from_numpy(weight.astype(np.float32)))
+    return _CUBE_ATLAS[n]
+
+
+def _texture_cube(tex, uv, filter_mode):
+    """Cube-map texture(): tex [B or 1, 6, n, n, C] sampled at directions uv
+    [B, h, w, 3], as a 2D texture() of the framed faces stacked (clamp
+    boundary: a sample never leaves its face's frame); torch autograd carries
+    the gradients through the framing and the face coordinates."""
+    if tex.dim() != 5 or tex.shape[1] != 6 or tex.shape[2] != tex.shape[3]:
+        raise ValueError(f"tex: cube maps take shape [B, 6, n, n, C], got {list(tex.shape)}")
+    if uv.dim() != 4 or uv.shape[-1] != 3:
+        raise ValueError(f"uv: cube maps take directions of shape [B, H, W, 3], got {list(uv.shape)}")
+    if tex.shape[0] not in (1, uv.shape[0]):
+        raise ValueError(f"tex: {tex.shape[0]} textures for {uv.shape[0]} images in uv")
+    n, p = tex.shape[2], tex.shape[2] + 2
+    src, weight = _cube_atlas_sources(n)
+    flat = tex.reshape(tex.shape[0], 6 * n * n, tex.shape[4]).float()
+    atlas = (flat[:, src] * weight[None, :, :, None]).sum(2).reshape(tex.shape[0], 6 * p, p, tex.shape[4])
+    face, s, t = _cube_face(uv.float())
+    if filter_mode == "nearest":  # s = 1 reads the face's last texel, not its frame
+        s, t = s.clamp(max=(n - 0.5) / n), t.clamp(max=(n - 0.5) / n)
+    uv2 = torch.stack([(s * n + 1) / p, (face * p + t * n + 1) / (6 * p)], -1)
+    return _Texture.apply(atlas, uv2.contiguous(), None, None, None, _FILTERS[filter_mode], _BOUNDARIES["clamp"], 0)
+
+
 def texture(tex, uv, uv_da=None, mip_level_bias=None, mip=None, filter_mode="auto", boundary_mode="wrap",
             max_mip_level=None):
     """nvdiffrast's texture: tex [B or 1, H, W, C] sampled at uv [B, h, w, 2]
     (u along W, v along H, texel centres at (i + 0.5) / size) into
     [B, h, w, C]. filter_mode 'nearest', 'linear', 'linear-mipmap-nearest',
     'linear-mipmap-linear' or 'auto' (the last with uv_da or
-    mip_level_bias, else 'linear'); boundary_mode 'wrap', 'clamp' or 'zero'
-    (no cube maps). uv_da [B, h, w, 4] = (du/dX, du/dY, dv/dX, dv/dY) and
+    mip_level_bias, else 'linear'); boundary_mode 'wrap', 'clamp', 'zero' or
+    'cube' (tex [B, 6, n, n, C], uv directions [B, h, w, 3]; 'nearest' and
+    'linear' filters only). uv_da [B, h, w, 4] = (du/dX, du/dY, dv/dX, dv/dY) and
     mip_level_bias [B, h, w] pick the mip level. Differentiable in tex, uv,
     uv_da and mip_level_bias."""
     if filter_mode == "auto":
         filter_mode = "linear-mipmap-linear" if uv_da is not None or mip_level_bias is not None else "linear"
     if filter_mode not in _FILTERS:
         raise ValueError(f"filter_mode: expected one of {', '.join(['auto'] + list(_FILTERS))}, got {filter_mode!r}")
+    if boundary_mode == "cube":
+        if filter_mode not in ("nearest", "linear"):
+            raise ValueError(f"filter_mode: cube maps take 'nearest' or 'linear' here, got {filter_mode!r}")
+        return _texture_cube(_to_tensor("tex", tex), _to_tensor("uv", uv), filter_mode)
     if boundary_mode not in _BOUNDARIES:
-        if boundary_mode == "cube":
-            raise ValueError("boundary_mode: cube maps are not supported")
         raise ValueError(f"boundary_mode: expected one of {', '.join(_BOUNDARIES)}, got {boundary_mode!r}")
     level = _max_level(max_mip_level)
     tex, uv = _to_tensor("tex", tex), _to_tensor("uv", uv)

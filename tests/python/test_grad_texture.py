@@ -189,3 +189,95 @@ def test_non_finite_and_huge_uv_read_within_the_texture(ctx, boundary):
         assert torch.isfinite(out).all()
         out.sum().backward()
         assert torch.isfinite(tex.grad).all() and torch.isfinite(uv.grad[0, 0, 2:]).all()
+
+
+def ref_cube_face(d):
+    """Face and (s, t) of one direction, nvdiffrast's cube convention
+    written out per face (face 0..5 = +x, -x, +y, -y, +z, -z)."""
+    x, y, z = d
+    if abs(z) > max(abs(x), abs(y)):
+        return (4, x / (2 * z) + 0.5, -y / (2 * z) + 0.5) if z > 0 else (5, x / (2 * z) + 0.5, y / (2 * z) + 0.5)
+    if abs(y) > abs(x):
+        return (2, x / (2 * y) + 0.5, z / (2 * y) + 0.5) if y > 0 else (3, -x / (2 * y) + 0.5, z / (2 * y) + 0.5)
+    return (0, -z / (2 * x) + 0.5, -y / (2 * x) + 0.5) if x > 0 else (1, -z / (2 * x) + 0.5, y / (2 * x) + 0.5)
+
+
+def ref_cube_texel(tex, f, i, j):
+    """Texel (row i, column j) of face f, continued across the face's edges
+    onto the neighbouring face (through the texel centre's direction), a
+    corner beyond both edges the mean of the other three of its quad."""
+    n = tex.shape[1]
+    out_i, out_j = not 0 <= i < n, not 0 <= j < n
+    if not out_i and not out_j:
+        return tex[f, i, j]
+    if out_i and out_j:
+        i1, j1 = min(max(i, 0), n - 1), min(max(j, 0), n - 1)
+        return (ref_cube_texel(tex, f, i1, j1) + ref_cube_texel(tex, f, i, j1) + ref_cube_texel(tex, f, i1, j)) / 3
+    a, b = 2 * (j + 0.5) / n - 1, 2 * (i + 0.5) / n - 1
+    d = [(1, -b, -a), (-1, -b, a), (a, 1, b), (a, -1, -b), (a, -b, 1), (-a, -b, -1)][f]
+    f2, s, t = ref_cube_face(d)
+    return tex[f2, min(int(t * n), n - 1), min(int(s * n), n - 1)]
+
+
+def ref_cube(tex, dirs, filter_mode):
+    """tex [6, n, n, C], dirs [N, 3], float64: [N, C]."""
+    n = tex.shape[1]
+    out = np.zeros((len(dirs), tex.shape[3]))
+    for k, d in enumerate(dirs):
+        f, s, t = ref_cube_face(d)
+        s, t = min(max(s, 0.0), 1.0), min(max(t, 0.0), 1.0)
+        if filter_mode == "nearest":
+            out[k] = tex[f, min(int(np.floor(t * n)), n - 1), min(int(np.floor(s * n)), n - 1)]
+            continue
+        u, v = s * n - 0.5, t * n - 0.5
+        j, i = int(np.floor(u)), int(np.floor(v))
+        fu, fv = u - j, v - i
+        q = [ref_cube_texel(tex, f, i + di, j + dj) for di in (0, 1) for dj in (0, 1)]
+        out[k] = (q[0] * (1 - fu) + q[1] * fu) * (1 - fv) + (q[2] * (1 - fu) + q[3] * fu) * fv
+    return out
+
+
+@pytest.mark.parametrize("filter_mode", ["nearest", "linear"])
+def test_cube_map_forward_and_gradients(filter_mode):
+    # Directions of every face, many within a texel of an edge or a corner (where the neighbouring faces' texels
+    # are read); tex and uv gradients against central differences of the float64 reference.
+    rng = np.random.default_rng(4)
+    n, channels = 4, 2
+    tex = rng.uniform(0, 1, (6, n, n, channels))
+    dirs = rng.standard_normal((60, 3))
+    near_edge = rng.standard_normal((60, 3))
+    near_edge[:, 0] = np.sign(near_edge[:, 0]) * np.abs(near_edge).max(1) * rng.uniform(0.9, 0.999, 60)
+    dirs = np.vstack([dirs, near_edge, [[1, 1, 0.999], [-1, 0.999, -1], [0.5, -0.5, 0.5]]])
+    weights = rng.standard_normal((len(dirs), channels))
+    t_tex = torch.tensor(tex[None].astype(np.float32), requires_grad=True)
+    t_uv = torch.tensor(dirs.reshape(1, 1, -1, 3).astype(np.float32), requires_grad=True)
+    out = dr.texture(t_tex, t_uv, filter_mode=filter_mode, boundary_mode="cube")
+    (out[0, 0] * torch.from_numpy(weights).float()).sum().backward()
+    dirs32 = dirs.astype(np.float32).astype(np.float64)
+    want = ref_cube(tex, dirs32, filter_mode)
+    assert np.abs(out.detach().numpy()[0, 0] - want).max() < 1e-5
+    # tex: the loss is linear in tex; central differences of the reference.
+    g_tex = central_differences(lambda t: (ref_cube(t, dirs32, filter_mode) * weights).sum(), tex.copy(), 1e-3)
+    assert_close(t_tex.grad.numpy()[0], g_tex, REL, "tex")
+    if filter_mode == "nearest":
+        assert np.abs(t_uv.grad.numpy()).max() == 0  # piecewise constant
+        return
+    # uv: per direction and component (each output reads its own direction only).
+    eps = 1e-6
+    g_uv = np.zeros_like(dirs32)
+    for c in range(3):
+        up, down = dirs32.copy(), dirs32.copy()
+        up[:, c] += eps
+        down[:, c] -= eps
+        g_uv[:, c] = ((ref_cube(tex, up, filter_mode) - ref_cube(tex, down, filter_mode)) * weights).sum(1) / (2 * eps)
+    assert_close(t_uv.grad.numpy()[0, 0], g_uv, REL, "uv")
+
+
+def test_cube_map_refuses_mipmaps_and_wrong_shapes():
+    tex, uv = torch.zeros(1, 6, 4, 4, 3), torch.ones(1, 2, 2, 3)
+    with pytest.raises(ValueError, match="filter_mode"):
+        dr.texture(tex, uv, uv_da=torch.zeros(1, 2, 2, 6), boundary_mode="cube")
+    with pytest.raises(ValueError, match="tex"):
+        dr.texture(torch.zeros(1, 6, 4, 5, 3), uv, filter_mode="linear", boundary_mode="cube")
+    with pytest.raises(ValueError, match="uv"):
+        dr.texture(tex, torch.ones(1, 2, 2, 2), filter_mode="linear", boundary_mode="cube")

@@ -71,7 +71,8 @@ UV = torch.zeros(1, 4, 4, 2)
     ("mip_level_bias", dict(mip_level_bias=torch.zeros(1, 4, 5))),
     ("max_mip_level", dict(uv_da=torch.zeros(1, 4, 4, 4), max_mip_level=-1)),
     ("filter_mode", dict(filter_mode="cubic")),
-    ("boundary_mode", dict(boundary_mode="cube")),
+    ("boundary_mode", dict(boundary_mode="mirror")),
+    ("tex", dict(boundary_mode="cube")),  # a 2D texture for cube mode
     ("mip", dict(uv_da=torch.zeros(1, 4, 4, 4), mip="mip")),
 ])
 def test_texture_rejects(glctx, name, kwargs):
@@ -97,7 +98,7 @@ def test_antialias_rejects(rast, name, kwargs):
         dr.antialias(**args)
 
 
-def test_cube_maps_are_refused_by_name():
+def test_cube_mip_pyramids_are_refused_by_name():
     with pytest.raises(ValueError, match="^cube_mode: "):
         dr.texture_construct_mip(TEX, cube_mode=True)
     assert np.isfinite(dr.texture(TEX, UV).numpy()).all()
