@@ -347,8 +347,8 @@ TEST_CASE("cli: files assimp would misread are read right or refused", "[cli]")
 {
   // OBJ: ".5" is a number (assimp skipped the line, shifting every later index); an alpha is dropped.
   const std::string out = tmpDir() + "/misread.png";
-  for (const std::string& obj : {"v 0 0 0\nv .5 .5 0\nv 1 0 0\nv 0 7 0\nf 1 2 3\n",
-                                 "v 0 0 0\nv .5 .5 0 1 0 .5 1\nv 1 0 0\nv 0 7 0\nf 1 2 3\n"}) {
+  for (const char* obj : {"v 0 0 0\nv .5 .5 0\nv 1 0 0\nv 0 7 0\nf 1 2 3\n",
+                          "v 0 0 0\nv .5 .5 0 1 0 .5 1\nv 1 0 0\nv 0 7 0\nf 1 2 3\n"}) {
     const Run r = run("info '" + writeFile("misread.obj", obj) + "' --json");
     INFO(r.err);
     REQUIRE(r.status == 0);

@@ -149,7 +149,9 @@ glm::dvec3 expectedColour(const Scene& s, uint32_t mode, bool pointLight, glm::d
       out = albedo * (kAmbient + kDiffuse * d) + kSpecular * sp;
       break;
     }
-    default: FAIL("shading mode " << clr::kShadeModeNames[mode] << " has no host formula in test_shading.cpp");
+    default:
+      FAIL("shading mode " << (mode < CLR_NUM_SHADE_MODES ? clr::kShadeModeNames[mode] : "?")
+                           << " has no host formula in test_shading.cpp");
   }
   return glm::clamp(out, 0.0, 1.0) * 255.0;
 }
