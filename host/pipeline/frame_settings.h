@@ -56,6 +56,9 @@ struct FrameSettings {
   // FrameParams.cullSampleFree); tests turn it off to show that the pixels
   // do not change.
   bool cullSampleFree = true;
+  // The micro path's size limit in pixel positions (kernels/micro.h): -1
+  // the device's default (Pipeline::microMaxFor), 0 off; tests compare the two.
+  int32_t microMax = -1;
 };
 
 }  // namespace clr
