@@ -100,23 +100,47 @@ CLR_INLINE bool micro_sample(const TriSetup* t, int sx, int sy, uint depthMode, 
 
 #if CLR_MICRO_ATOMICS
 /* Emit: the fragments of record t (tie order `order`) at every sample of pixel bounds b, in the micro slot of its
- * one tile (tileMicro word `word`); a key at or beyond the clear key is no fragment (raster_write_row). */
+ * one tile (tileMicro word `word`); a key at or beyond the clear key is no fragment (raster_write_row). Blocks of
+ * 2×2 pixels in vectors, so that coverage takes no branch: micro_sample's integers and float steps, lane by lane. */
 CLR_INLINE void micro_emit(__constant FrameParams* params, const TriSetup* t, uint order, int4 b, uint word,
                            __global ulong* microKey)
 {
-  const uint depthMode = params->depthMode;
+  const uint depthMode = params->depthMode, samples = params->samples;
   const float clearKey = depthMode == CLR_DEPTH_UNORM24    ? CLR_DEPTH_UNORM24_MAX
                          : depthMode == CLR_DEPTH_REVERSED ? -0.0f
                                                            : 1.0f;
-  for (uint k = 0; k < params->samples; ++k)
-    for (int y = b.y; y <= b.w; ++y)
-      for (int x = b.x; x <= b.z; ++x) {
-        float key, b1, b2;
-        const int sx = x * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleX[k];
-        const int sy = y * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
-        if (!micro_sample(t, sx, sy, depthMode, &key, &b1, &b2) || !(key < clearKey)) continue;
-        const ulong fragment = (ulong)micro_key_bits(key) << 32 | order;
-        atom_min(&microKey[micro_address(word, params->samples, k, (uint)x, (uint)y)], fragment);
+  const long dx0 = t->x[2] - t->x[1], dy0 = t->y[2] - t->y[1], dx1 = t->x[0] - t->x[2], dy1 = t->y[0] - t->y[2];
+  const long dx2 = t->x[1] - t->x[0], dy2 = t->y[1] - t->y[0];
+  const long low0 = CLR_EDGE_HOLDS_SAMPLES(t->x[1], t->y[1], t->x[2], t->y[2]) ? -1 : 0;
+  const long low1 = CLR_EDGE_HOLDS_SAMPLES(t->x[2], t->y[2], t->x[0], t->y[0]) ? -1 : 0;
+  const long low2 = CLR_EDGE_HOLDS_SAMPLES(t->x[0], t->y[0], t->x[1], t->y[1]) ? -1 : 0;
+  const float invArea2 = CLR_RECORD_INV_AREA2(*t);
+  const float4 dz1 = t->z[1] - t->z[0], dz2 = t->z[2] - t->z[0];
+  const int4 cx = (int4)(0, 1, 0, 1), cy = (int4)(0, 0, 1, 1);
+  for (uint k = 0; k < samples; ++k)
+    for (int y = b.y; y <= b.w; y += 2)
+      for (int x = b.x; x <= b.z; x += 2) {
+        const int4 px = x + cx, py = y + cy;
+        const int4 sx = px * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleX[k]);
+        const int4 sy = py * CLR_FIXED_ONE + (CLR_FIXED_HALF + params->sampleY[k]);
+        const long4 e0 = dx0 * convert_long4(sy - t->y[1]) - dy0 * convert_long4(sx - t->x[1]);
+        const long4 e1 = dx1 * convert_long4(sy - t->y[2]) - dy1 * convert_long4(sx - t->x[2]);
+        const long4 e2 = dx2 * convert_long4(sy - t->y[0]) - dy2 * convert_long4(sx - t->x[0]);
+        const int4 inside = convert_int4((e0 > low0) & (e1 > low1) & (e2 > low2)) & (px <= b.z) & (py <= b.w);
+        if (!any(inside)) continue;
+        const float4 b1 = convert_float4(e1) * invArea2, b2 = convert_float4(e2) * invArea2;
+        const float4 z = t->z[0] + b1 * dz1 + b2 * dz2;
+        const float4 key = depthMode == CLR_DEPTH_UNORM24    ? rint(clamp(z, 0.0f, 1.0f) * CLR_DEPTH_UNORM24_MAX)
+                           : depthMode == CLR_DEPTH_REVERSED ? -z
+                                                             : z;
+        int lanes[4];
+        float keys[4];
+        vstore4(inside & (key < clearKey), 0, lanes);
+        vstore4(key, 0, keys);
+        for (int lane = 0; lane < 4; ++lane)
+          if (lanes[lane])
+            atom_min(&microKey[micro_address(word, samples, k, (uint)(x + (lane & 1)), (uint)(y + (lane >> 1)))],
+                     (ulong)micro_key_bits(keys[lane]) << 32 | order);
       }
 }
 #endif

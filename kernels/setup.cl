@@ -286,14 +286,16 @@ typedef struct SetupMicro {
   __global ulong* microKey;        // emit: all CLR_MICRO_CLEAR
   __global uint* microRecord;      // emit: the setup index of each paint rank (not in the file's order)
   __global const uint* paintRank;  // emit: each triangle's rank in the file (not in the file's order)
+  uint lastTile;                   // count: the work-item's last claimed tile and its outcome (micro_claim_tile)
+  bool lastSlotted;
 } SetupMicro;
 
 /* Pass 1 for CLR_LANES triangles from `first`: screen triangles each yields (triCount) and the unclipped ones'
  * tiles (one- and two-tile ones tallied by bin_tally). Returns clipped lanes as bits of *clipMask. Culls are not
  * counted here: the host derives them from the scan total, sparing a shared atomic counter. */
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
-                                  __global uchar* triCount, __global uint* tileCount, uint* clipMask,
-                                  const SetupMicro* micro, __global uint* counters)
+                                  __global uchar* triCount, __global uint* tileCount, uint* clipMask, SetupMicro* micro,
+                                  __global uint* counters)
 {
   // Step 1: the counts, branch-free, and the mask of unclipped survivors.
   uint survivors = 0;
@@ -306,15 +308,14 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
   BinTally tally;
   bin_tally_init(&tally);
   int4 rangeRun = (int4)(0);
-  uint rangeRunLength = 0, microTile = CLR_NONE;
-  bool microSlotted = false;
+  uint rangeRunLength = 0;
   while (survivors) {
     const uint lane = 31 - clz(survivors & (0u - survivors));  // the lowest set bit
     survivors &= survivors - 1;
     const int4 r = setup_lane_tiles(l, lane);
     if (micro_lane(micro->microMax, r, l->pixels[lane]) &&
-        micro_claim_tile(r.y * params->tilesX + r.x, &microTile, &microSlotted, micro->microCap, micro->tileMicro,
-                         tileCount, counters))
+        micro_claim_tile(r.y * params->tilesX + r.x, &micro->lastTile, &micro->lastSlotted, micro->microCap,
+                         micro->tileMicro, tileCount, counters))
       continue;
     const bool one = r.x == r.z && r.y == r.w;
     if (one || bin_two_tiles(params, r)) {
@@ -396,7 +397,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
-                                          const SetupMicro* micro, uint item)
+                                          SetupMicro* micro, uint item)
 {
   // Step 1: pass 1 input triangles from `first`; pass 2 the sources of records from `first` (lanes of clipped
   // records and past the end are not written).
@@ -475,7 +476,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     uint microMax, uint microCap, __global uint* tileMicro, __global ulong* microKey, __global uint* microRecord,
     __global const uint* paintRank)  // SetupMicro
 {
-  const SetupMicro micro = {microMax, microCap, tileMicro, microKey, microRecord, paintRank};
+  SetupMicro micro = {microMax, microCap, tileMicro, microKey, microRecord, paintRank, CLR_NONE, false};
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
   // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded,
   // its total 0 and its bytes unwritten. The cluster's total is its bytes' sum.
