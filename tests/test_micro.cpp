@@ -42,7 +42,8 @@ Frame renderFrame(const clr::Mesh& mesh, clr::FrameSettings settings, int32_t mi
 // modes and depth formats given, with and without the depth and barycentric
 // planes, and requires the same bytes.
 void compareMicro(const clr::Mesh& mesh, const glm::mat4& mvp, uint32_t width, uint32_t height,
-                  std::initializer_list<uint32_t> shadeModes, std::initializer_list<uint32_t> depthModes)
+                  std::initializer_list<uint32_t> shadeModes, std::initializer_list<uint32_t> depthModes,
+                  uint32_t traversal = CLR_TRAVERSAL_BBOX)
 {
   for (uint32_t samples : {1u, 4u, 16u})
     for (uint32_t shade : shadeModes)
@@ -53,7 +54,10 @@ void compareMicro(const clr::Mesh& mesh, const glm::mat4& mvp, uint32_t width, u
           s.shadeMode = shade;
           s.depthMode = depth;
           s.keepVisAttributes = keepVis;
-          INFO("samples " << samples << ", shade " << shade << ", depth " << depth << ", planes " << keepVis);
+          s.traversal = traversal;
+          INFO("traversal " << traversal << ", "
+                            << "samples " << samples << ", shade " << shade << ", depth " << depth << ", planes "
+                            << keepVis);
           const Frame off = renderFrame(mesh, s, 0);
           const Frame on = renderFrame(mesh, s, CLR_TILE_SIZE * CLR_TILE_SIZE);
           CHECK(on.binEntries < off.binEntries);  // the path took triangles
@@ -124,7 +128,9 @@ TEST_CASE("micro: a jittered pixel-centre grid matches the binned path", "[micro
   // many edges run through centres, where only the fill rule decides.
   test::Geometry g;
   addGrid(g, 128, 128, 84, 0.25f, 5);
-  compareMicro(g.mesh(), glm::mat4(1.0f), 128, 128, {CLR_SHADE_ID, CLR_SHADE_DEPTH}, {CLR_DEPTH_FLOAT32});
+  // Every exact traversal merges the path's fragments (raster.cl's variants).
+  const uint32_t traversal = GENERATE(CLR_TRAVERSAL_BBOX, CLR_TRAVERSAL_HIERARCHICAL, CLR_TRAVERSAL_SPANS);
+  compareMicro(g.mesh(), glm::mat4(1.0f), 128, 128, {CLR_SHADE_ID, CLR_SHADE_DEPTH}, {CLR_DEPTH_FLOAT32}, traversal);
 }
 
 TEST_CASE("micro: depth ties go to the earlier triangle in the file", "[micro][depth]")
