@@ -19,6 +19,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "bin.h"
 #include "vis.h"
+#include "micro.h"
 
 #if CLR_TILE_SIZE % CLR_LANES != 0
 #error "CLR_LANES must divide CLR_TILE_SIZE"
@@ -465,6 +466,48 @@ CLR_INLINE void raster_write_row(__constant FrameParams* params, uint visPlane, 
   CLR_STORE_LANES(best->b2, &visAttr[(3 * k + 2) * visPlane + a]);
 }
 
+/* Merges the micro path's fragments (micro.h) of one row segment, lanes from entry a of microKey, samples (sx, sy),
+ * into *best, and clears those entries. A micro fragment's key is exact but for −0 (micro_key_bits), so a kept
+ * depth plane takes the key recomputed from its record. */
+CLR_INLINE void raster_merge_micro(__global ulong* microKey, uint a, intL sx, int sy, RowBest* best,
+                                   const DepthRule* rule, __global const TriSetup* setup,
+                                   __global const uint* microRecord)
+{
+  ulong m[CLR_LANES];
+  bool any = false;
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
+    m[lane] = microKey[a + lane];
+    any |= m[lane] != CLR_MICRO_CLEAR;
+  }
+  if (!any) return;
+  uint index[CLR_LANES];
+  int sxs[CLR_LANES];
+  float depth[CLR_LANES], b1[CLR_LANES], b2[CLR_LANES];
+  CLR_STORE_LANES(best->index, index);
+  CLR_STORE_LANES(best->depth, depth);
+  CLR_STORE_LANES(best->b1, b1);
+  CLR_STORE_LANES(best->b2, b2);
+  CLR_STORE_LANES(sx, sxs);
+  for (int lane = 0; lane < CLR_LANES; ++lane) {
+    if (m[lane] == CLR_MICRO_CLEAR) continue;
+    microKey[a + lane] = CLR_MICRO_CLEAR;
+    uint s;
+    if (!micro_take(m[lane], index[lane], depth[lane], rule->fileOrder, microRecord, rule->source, rule->clipBary,
+                    rule->fileRank, &s))
+      continue;
+    index[lane] = s;
+    depth[lane] = micro_bits_key((uint)(m[lane] >> 32));
+    if (rule->barycentrics) {
+      const TriSetup t = setup[s];
+      micro_sample(&t, sxs[lane], sy, rule->depthMode, &depth[lane], &b1[lane], &b2[lane]);
+    }
+  }
+  best->index = CLR_LOAD_LANES(index);
+  best->depth = CLR_LOAD_LANES(depth);
+  best->b1 = CLR_LOAD_LANES(b1);
+  best->b2 = CLR_LOAD_LANES(b2);
+}
+
 /* The nearest key a triangle's fragments can have, for the skip of hidden
  * triangles (z-buffer, exact coverage): the CPU shape skips an entry beyond
  * the farthest key its tile keeps (raster_tile_far, refreshed every
@@ -493,14 +536,16 @@ CLR_INLINE float raster_nearest_key(float z0, float z1, float z2, uint depthMode
  *   visIndex (samples · visPlane), visAttr (3 · samples · visPlane),
  *   paintRank (numTris: each input triangle's paint rank with the
  *   painter's algorithm, else its index in the file), tileSlot
- *   (tiles + 1: each non-empty tile's slot) and visPlane (slots · tile²). */
+ *   (tiles + 1: each non-empty tile's slot), visPlane (slots · tile²), and the micro path's tileMicro (tiles: a
+ *   slotted tile's last bin entry is a hole), microKey and microRecord (micro.h). */
 #define CLR_RASTER_PARAMS                                                                                              \
   __constant FrameParams *params, __global const TriSetup *setup, __global const uint *source,                         \
       __global const ClipBary *clipBary, __global const uint *tileOffset, __global const uint *binEntries,             \
       __global uint *visIndex, __global float *visAttr, __global const uint *paintRank, __global const uint *tileSlot, \
-      uint visPlane
-#define CLR_RASTER_ARGS \
-  params, setup, source, clipBary, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot, visPlane
+      uint visPlane, __global const uint *tileMicro, __global ulong *microKey, __global const uint *microRecord
+#define CLR_RASTER_ARGS                                                                                      \
+  params, setup, source, clipBary, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot, visPlane, \
+      tileMicro, microKey, microRecord
 
 /* The methods are separate kernels, each with its method a compile-time
  * constant, so a device compiles only the variant a frame launches: the
@@ -527,8 +572,12 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
   const uint item = get_local_id(1) * CLR_TILE_SIZE + get_local_id(0);
   const int sx = (int)px * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleX[k];
   const int sy = (int)py * CLR_FIXED_ONE + CLR_FIXED_HALF + params->sampleY[k];
-  const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
+  const uint begin = tileOffset[tile];
+  uint end = tileOffset[tile + 1];
   if (begin == end) return;  // the whole group
+  const uint microWord = tileMicro[tile];
+  const bool micro = micro_slotted(microWord);
+  if (micro) --end;  // the hole (micro.h)
   const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   const bool skipHidden = !painter && CLR_EXACT_COVERAGE(edgeMode, traversal);
@@ -553,7 +602,11 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
       raster_row(&records[n], indices[n], sx, sy, (int)get_local_id(1), &best, &rule, ranks[n], edgeMode, traversal);
     }
   }
-  raster_write_row(params, visPlane, k, vis_address(tileSlot[tile], px, py), &best, visIndex, visAttr);
+  const uint a = vis_address(tileSlot[tile], px, py);
+  if (micro)
+    raster_merge_micro(microKey, micro_address(microWord, params->samples, k, px, py), sx, sy, &best, &rule, setup,
+                       microRecord);
+  raster_write_row(params, visPlane, k, a, &best, visIndex, visAttr);
 }
 
 /* Local memory is declared at kernel scope (OpenCL 1.2): 256 records of 36
@@ -604,8 +657,12 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
 {
   const uint tile = tileY * params->tilesX + tileX;
   const int firstY = (int)tileY * CLR_TILE_SIZE;
-  const uint begin = tileOffset[tile], end = tileOffset[tile + 1];
+  const uint begin = tileOffset[tile];
+  uint end = tileOffset[tile + 1];
   if (begin == end) return;
+  const uint microWord = tileMicro[tile];
+  const bool micro = micro_slotted(microWord);
+  if (micro) --end;  // the hole (micro.h)
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
   const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
@@ -672,6 +729,12 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     }
   }
   const uint slot = tileSlot[tile];
+  if (micro)
+    for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
+      for (int row = 0; row < CLR_TILE_SIZE; ++row)
+        raster_merge_micro(microKey, micro_address(microWord, params->samples, k, col * CLR_LANES, row), sx[col],
+                           (firstY + row) * CLR_FIXED_ONE + CLR_FIXED_HALF + offsetY, &best[col][row], &rule, setup,
+                           microRecord);
   for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
     for (int row = 0; row < CLR_TILE_SIZE; ++row)
       raster_write_row(params, visPlane, k, vis_address(slot, col * CLR_LANES, row), &best[col][row], visIndex,

@@ -13,6 +13,7 @@
 #include "transform.h"
 #include "clip.h"
 #include "bin.h"
+#include "micro.h"
 #if !CLR_EXTRAS /* the frame program (CLR_EXTRAS, shared.h) */
 
 /* CLR_LANES triangles' clip-space vertices, one lane per triangle. */
@@ -26,6 +27,7 @@ typedef struct SetupBatch {
   floatL z[3];
   intL back;                            // mask: wound clockwise, vertices 1 and 2 swapped
   intL tileX0, tileY0, tileX1, tileY1;  // tiles of the pixel bounds (bin_tile_range)
+  intL pixels;                          // pixel positions in the bounds, at most 64² (micro_lane)
 } SetupBatch;
 
 /* The same, unpacked to arrays so single lanes can be read. */
@@ -34,6 +36,7 @@ typedef struct SetupLanes {
   float z[3][CLR_LANES];
   int back[CLR_LANES];
   int tileX0[CLR_LANES], tileY0[CLR_LANES], tileX1[CLR_LANES], tileY1[CLR_LANES];
+  int pixels[CLR_LANES];
 } SetupLanes;
 
 /* How an input triangle is handled. */
@@ -229,6 +232,7 @@ CLR_INLINE intL setup_make(const ClipBatch* c, __constant FrameParams* params, S
   out->tileY0 = y0 / CLR_TILE_SIZE;
   out->tileX1 = xEnd / CLR_TILE_SIZE;
   out->tileY1 = yEnd / CLR_TILE_SIZE;
+  out->pixels = clamp(xEnd - x0 + 1, (intL)0, (intL)64) * clamp(yEnd - y0 + 1, (intL)0, (intL)64);
   // Step 5: a small triangle that covers none of its pixel centres.
   if (testCoverage && params->cullSampleFree)
     valid = valid & setup_covers_a_sample(out, minX, maxX, minY, maxY, x0, y0, xEnd, yEnd, params);
@@ -247,6 +251,7 @@ CLR_INLINE void setup_unpack(const SetupBatch* b, SetupLanes* l)
   CLR_STORE_LANES(b->tileY0, l->tileY0);
   CLR_STORE_LANES(b->tileX1, l->tileX1);
   CLR_STORE_LANES(b->tileY1, l->tileY1);
+  CLR_STORE_LANES(b->pixels, l->pixels);
 }
 
 /* One lane as a TriSetup, field by field into *t: a returned struct leaves a marker Oclgrind cannot run, and a
@@ -274,11 +279,24 @@ CLR_INLINE int4 setup_lane_tiles(const SetupLanes* l, int lane)
   return (int4)(l->tileX0[lane], l->tileY0[lane], l->tileX1[lane], l->tileY1[lane]);
 }
 
+/* The micro path's arguments (micro.h): microMax 0 is off. */
+typedef struct SetupMicro {
+  uint microMax;
+  uint microCap;                   // count: the micro slots microKey holds
+  __global uint* tileMicro;        // tiles, zeroed: count claims slots, emit reads them
+  __global ulong* microKey;        // emit: all CLR_MICRO_CLEAR
+  __global uint* microRecord;      // emit: the setup index of each paint rank (not in the file's order)
+  __global const uint* paintRank;  // emit: each triangle's rank in the file (not in the file's order)
+  uint lastTile;                   // count: the work-item's last claimed tile and its outcome (micro_claim_tile)
+  bool lastSlotted;
+} SetupMicro;
+
 /* Pass 1 for CLR_LANES triangles from `first`: screen triangles each yields (triCount) and the unclipped ones'
  * tiles (one- and two-tile ones tallied by bin_tally). Returns clipped lanes as bits of *clipMask. Culls are not
  * counted here: the host derives them from the scan total, sparing a shared atomic counter. */
 CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, const uint* counts, const SetupLanes* l,
-                                  __global uchar* triCount, __global uint* tileCount, uint* clipMask)
+                                  __global uchar* triCount, __global uint* tileCount, uint* clipMask, SetupMicro* micro,
+                                  __global uint* counters)
 {
   // Step 1: the counts, branch-free, and the mask of unclipped survivors.
   uint survivors = 0;
@@ -296,6 +314,10 @@ CLR_INLINE void setup_count_lanes(__constant FrameParams* params, uint first, co
     const uint lane = 31 - clz(survivors & (0u - survivors));  // the lowest set bit
     survivors &= survivors - 1;
     const int4 r = setup_lane_tiles(l, lane);
+    if (micro_lane(micro->microMax, r, l->pixels[lane]) &&
+        micro_claim_tile(r.y * params->tilesX + r.x, &micro->lastTile, &micro->lastSlotted, micro->microCap,
+                         micro->tileMicro, tileCount, counters))
+      continue;
     const bool one = r.x == r.z && r.y == r.w;
     if (one || bin_two_tiles(params, r)) {
       bin_tally_add(&tally, r.y * params->tilesX + r.x, tileCount);
@@ -330,7 +352,8 @@ CLR_INLINE void setup_count_none(__constant FrameParams* params, uint first, __g
  * entries; runs on one tile range take one atomic add per tile (BinRun, bin.h), two-tile triangles one per tile. */
 CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, const uint* tri, const int* write,
                                  const SetupLanes* l, __global TriSetup* setup, __global uint* source,
-                                 __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries)
+                                 __global const uint* tileOffset, __global uint* tileCursor, __global uint* binEntries,
+                                 const SetupMicro* micro)
 {
   BinRun oneTile, range;  // runs of one-tile triangles; of triangles on one range of several tiles
   oneTile.length = range.length = 0;
@@ -340,6 +363,19 @@ CLR_INLINE void setup_emit_lanes(__constant FrameParams* params, uint first, con
     setup_lane_store(l, lane, &setup[s]);
     source[s] = tri[lane] | (l->back[lane] ? CLR_SOURCE_BACKFACING : 0u);
     const int4 r = setup_lane_tiles(l, lane);
+#if CLR_MICRO_ATOMICS
+    const bool microLane = micro_lane(micro->microMax, r, l->pixels[lane]);
+    const uint microWord = microLane ? micro->tileMicro[r.y * params->tilesX + r.x] : 0u;
+    if (micro_slotted(microWord)) {
+      TriSetup t;
+      setup_lane(l, lane, &t);
+      const uint order = params->fileOrder ? s : micro->paintRank[tri[lane]];
+      if (!params->fileOrder) micro->microRecord[order] = s;
+      micro_emit(params, &t, order, bin_pixel_bounds(&t, params, clr_image_row(params, tri[lane])), microWord,
+                 micro->microKey);
+      continue;
+    }
+#endif
     if (bin_two_tiles(params, r)) {
       bin_fill_two_tiles(r, s, params, tileOffset, tileCursor, binEntries);
     } else if (bin_hierarchical(params, r)) {
@@ -363,7 +399,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
-                                          uint item)
+                                          SetupMicro* micro, uint item)
 {
   // Step 1: pass 1 input triangles from `first`; pass 2 the sources of records from `first` (lanes of clipped
   // records and past the end are not written).
@@ -408,14 +444,14 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     int write[CLR_LANES];
     CLR_STORE_LANES(simple, write);
     for (uint lane = 0; lane < CLR_LANES; ++lane) write[lane] = write[lane] && from[lane] < CLR_SOURCE_CLIPPED;
-    setup_emit_lanes(params, first, tri, write, &l, setup, source, tileCount, tileCursor, binEntries);
+    setup_emit_lanes(params, first, tri, write, &l, setup, source, tileCount, tileCursor, binEntries, micro);
     return;
   }
   // Step 2 (pass 1): count; then the counters and the clip list (scheduling order; its output places are not).
   const uintL count = select(select((uintL)0u, (uintL)1u, simple), (uintL)CLR_MAX_SUBTRIS, kind == CLR_SETUP_CLIP);
   uint counts[CLR_LANES], clipMask = 0;
   CLR_STORE_LANES(count, counts);
-  setup_count_lanes(params, first, counts, &l, triCount, tileCount, &clipMask);
+  setup_count_lanes(params, first, counts, &l, triCount, tileCount, &clipMask, micro, counters);
   if (!clipMask) return;
   uint slot = atomic_add(&counters[CLR_COUNTER_CLIPPED_TRIS], popcount(clipMask));
   for (uint lane = 0; lane < CLR_LANES; ++lane)
@@ -440,8 +476,11 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     __global uint* source,      // pass 2: numSetup (the scan lists them; winding added)
     uint numSetup, uint pass,
     __global const float* clusterBounds,  // pass 1, CPU work shape (a work-item per cluster): 6 · clusters
-    __global uint* clusterCount)          // pass 1, CPU work shape: clusters (the listing scans them, scan.cl)
+    __global uint* clusterCount,          // pass 1, CPU work shape: clusters (the listing scans them, scan.cl)
+    uint microMax, uint microCap, __global uint* tileMicro, __global ulong* microKey, __global uint* microRecord,
+    __global const uint* paintRank)  // SetupMicro
 {
+  SetupMicro micro = {microMax, microCap, tileMicro, microKey, microRecord, paintRank, CLR_NONE, false};
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
   // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded,
   // its total 0 and its bytes unwritten. The cluster's total is its bytes' sum.
@@ -455,7 +494,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     CLR_NO_UNROLL
     for (uint k = 0; k < CLR_CLUSTER_TRIS / CLR_LANES; ++k)
       setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
-                           tileCursor, binEntries, source, numSetup, pass,
+                           tileCursor, binEntries, source, numSetup, pass, &micro,
                            cluster * (CLR_CLUSTER_TRIS / CLR_LANES) + k);
     const uint end = min(first + CLR_CLUSTER_TRIS, params->numTris);
     uint sum = 0;
@@ -465,7 +504,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
   }
 #endif
   setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
-                       tileCursor, binEntries, source, numSetup, pass, get_global_id(0));
+                       tileCursor, binEntries, source, numSetup, pass, &micro, get_global_id(0));
 }
 
 /* The lowest s with source[s] == CLR_SOURCE_CLIPPED | tri: binary search, the listing being sorted by triangle. */

@@ -3,7 +3,7 @@
  * Compiled as C++ by the host (static_asserts pin every struct size) and as OpenCL C after fixed.h. Each buffer
  * and struct below names its writer, its readers and its size. Data flow of a frame:
  *   transform -> setup (count, with bin counts) -> scan -> [clip]
- *   -> bin (scan) -> setup emit (with bin fill) -> raster -> resolve.
+ *   -> bin (scan) -> setup emit (with bin fill; micro triangles' fragments, micro.h) -> raster -> resolve.
  */
 #ifndef CLR_SHARED_H
 #define CLR_SHARED_H
@@ -193,7 +193,8 @@ typedef uint32_t uint;
 #define CLR_COUNTER_CAP_BINS 11    /* host, speculative: binEntries' capacity */
 #define CLR_COUNTER_CAP_SLOTS 12   /* host, speculative: the tile slots of the visibility buffer's stride */
 #define CLR_COUNTER_OVERFLOW 13    /* bin_scan, speculative: 1 when the frame does not fit (scan.cl); host redoes it */
-#define CLR_NUM_COUNTERS 14
+#define CLR_COUNTER_MICRO_TILES 14 /* setup count pass: micro-path tile slots claimed (micro.h) */
+#define CLR_NUM_COUNTERS 15
 #define CLR_SCAN_NO_TOTAL 0xFFFFFFFFu /* scan_chunks' totalAt: no copy among the counters */
 
 /* FrameParams[1], 376 bytes: the host writes it per frame; every kernel reads it. */
@@ -397,6 +398,9 @@ typedef struct VisSample {
  *  tileSlot    uint[tiles + 1]              scan_chunks (last = slot count) -> raster, resolve, lines_draw, aov
  *  binEntries  uint[bin total]              emit, bin_fill_clipped -> raster
  *  scanPartials ulong[2·(chunks + 1)]       scan internals (chunks <= 4096)
+ *  tileMicro   uint[tiles]                  host zeroes; count pass claims micro slots -> emit, raster (micro.h)
+ *  microKey    ulong[micro slots·S·tile²]   emit atom_min (micro.h) -> raster, which resets it to all ones
+ *  microRecord uint[numTris]                emit: setup index by paint rank (not fileOrder) -> raster
  *  paintRank   uint[numTris]                host: painter's far-to-near rank, else fileTri -> raster (depth ties)
  *  fileTri     uint[numTris]                host: each input triangle's index in the file (layout.h; 1 unused
  *                                           element when FrameParams.fileOrder) -> resolve, aov

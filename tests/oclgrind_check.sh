@@ -15,7 +15,7 @@
 # smallest sizes that reach the same paths when the device is Oclgrind
 # (test::underOclgrind; docs/testing.md, "Oclgrind", lists them).
 #   geometry           transform, near-plane clipping, setup, the scan (and binning, LANES 16)
-#   raster             the raster kernels: fill rule, z-test, MSAA, hierarchical, float edges
+#   raster             the raster kernels: fill rule, z-test, MSAA, hierarchical, float edges, the micro path
 #   resolve            resolve and the shading modes
 #   texture_lines_aov  texture sampling, lines and wireframe, the AOV kernel
 set -euo pipefail

@@ -29,7 +29,7 @@ TEST_CASE("binning keeps every triangle, however many share a tile", "[bin]")
   g.addTriangle({-3, -3, 0.5f}, {5, -3, 0.5f}, {-3, 5, 0.5f});
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
-  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H));
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::allBinned(test::idSettings(W, H)));
   const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
   const std::vector<uint32_t> entries = pipeline.readBinEntries();
   const uint32_t tiles = pipeline.params().tilesX * pipeline.params().tilesY;
@@ -71,7 +71,7 @@ TEST_CASE("each tile's bin holds exactly the setup triangles whose pixel bounds 
     }
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
-  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::idSettings(W, H));
+  const std::vector<uint32_t> ids = test::renderTriIds(pipeline, test::allBinned(test::idSettings(W, H)));
   const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
   const std::vector<uint32_t> entries = pipeline.readBinEntries();
   const std::vector<clr::SetupRecord> setup = pipeline.readSetup();

@@ -190,7 +190,7 @@ TEST_CASE("stability: 250,000 triangles in one tile, none dropped", "[stability]
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(g.mesh());
   std::vector<uint32_t> rgba;
-  const clr::FrameStats stats = pipeline.render(test::idSettings(W, H), rgba);
+  const clr::FrameStats stats = pipeline.render(test::allBinned(test::idSettings(W, H)), rgba);
   // Every setup triangle is in the one tile's bin exactly once.
   const uint32_t tile = 1 * (W / CLR_TILE_SIZE) + 1;
   const std::vector<uint32_t> offsets = pipeline.readTileOffsets();
@@ -362,7 +362,7 @@ TEST_CASE("memory: a setup triangle costs a 36-byte record and a source word and
     auto pipeline = std::make_unique<clr::Pipeline>(test::context());
     pipeline->uploadScene(g.mesh());
     std::vector<uint32_t> rgba;
-    const clr::FrameStats stats = pipeline->render(test::idSettings(W, H), rgba);
+    const clr::FrameStats stats = pipeline->render(test::allBinned(test::idSettings(W, H)), rgba);
     CHECK(stats.setupTriangles == base + inside);
     CHECK(stats.binEntries == base + inside);
     CHECK(stats.trianglesCulled == outside);

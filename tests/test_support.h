@@ -50,6 +50,14 @@ inline clr::FrameSettings keepingVis(clr::FrameSettings s)
   return s;
 }
 
+// The settings with the micro-triangle path off (FrameSettings.microMax): for
+// tests of the bins themselves, which that path leaves out.
+inline clr::FrameSettings allBinned(clr::FrameSettings s)
+{
+  s.microMax = 0;
+  return s;
+}
+
 // Settings for an ID render of a width×height viewport.
 clr::FrameSettings idSettings(uint32_t width, uint32_t height, const glm::mat4& mvp = glm::mat4(1.0f),
                               bool cullBack = false);

@@ -61,6 +61,9 @@ struct FrameSettings {
   // viewport imageHeight rows from row k·imageRows (a tile multiple), and
   // height = images·imageRows. 0: one image of height rows.
   uint32_t imageTris = 0, imageRows = 0, imageHeight = 0;
+  // The micro path's size limit in pixel positions (kernels/micro.h): -1
+  // the device's default (Pipeline::microMaxFor), 0 off; tests compare the two.
+  int32_t microMax = -1;
 };
 
 }  // namespace clr

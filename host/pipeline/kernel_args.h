@@ -48,6 +48,8 @@ struct SetupTrianglesArgs {
   cl::Buffer tileCount, setup, tileCursor, binEntries, source;
   cl_uint numSetup = 0, pass = 0;
   cl::Buffer clusterBounds, clusterCount;
+  cl_uint microMax = 0, microCap = 0;  // the micro path (kernels/micro.h), 0 = off
+  cl::Buffer tileMicro, microKey, microRecord, paintRank;
   template <typename V>
   void visit(V&& v) const
   {
@@ -55,7 +57,8 @@ struct SetupTrianglesArgs {
     v("counters", counters), v("clipList", clipList), v("clipListCapacity", clipListCapacity);
     v("tileCount", tileCount), v("setup", setup), v("tileCursor", tileCursor), v("binEntries", binEntries);
     v("source", source), v("numSetup", numSetup), v("pass", pass), v("clusterBounds", clusterBounds);
-    v("clusterCount", clusterCount);
+    v("clusterCount", clusterCount), v("microMax", microMax), v("microCap", microCap), v("tileMicro", tileMicro);
+    v("microKey", microKey), v("microRecord", microRecord), v("paintRank", paintRank);
   }
 };
 
@@ -107,12 +110,14 @@ struct BinFillClippedArgs {
 struct RasterArgs {
   cl::Buffer params, setup, source, clipBary, tileOffset, binEntries, visIndex, visAttr, paintRank, tileSlot;
   cl_uint visPlane = 0;
+  cl::Buffer tileMicro, microKey, microRecord;  // the micro path (kernels/micro.h)
   template <typename V>
   void visit(V&& v) const
   {
     v("params", params), v("setup", setup), v("source", source), v("clipBary", clipBary);
     v("tileOffset", tileOffset), v("binEntries", binEntries), v("visIndex", visIndex), v("visAttr", visAttr);
-    v("paintRank", paintRank), v("tileSlot", tileSlot), v("visPlane", visPlane);
+    v("paintRank", paintRank), v("tileSlot", tileSlot), v("visPlane", visPlane), v("tileMicro", tileMicro);
+    v("microKey", microKey), v("microRecord", microRecord);
   }
 };
 

@@ -122,6 +122,9 @@ Pipeline::Pipeline(ClContext& cl)
       visAttr_(memory_, "visibility buffer (depth, barycentrics)"),
       image_(memory_, "image"),
       paintRank_(memory_, "paint ranks"),
+      tileMicro_(memory_, "micro-triangle tile flags"),
+      microRecord_(memory_, "micro-triangle records"),
+      microKey_(memory_, "micro-triangle fragments"),
       lineParams_(memory_, "line parameters"),
       lineSegs_(memory_, "line segments"),
       lineTileCount_(memory_, "line tile counts"),
@@ -148,6 +151,10 @@ Pipeline::Pipeline(ClContext& cl)
   paramsBuf_.reserve(1);
   counters_.reserve(CLR_NUM_COUNTERS);
   clipList_.reserve(1024);
+  tileSlot_.reserve(1);
+  microKey_.reserve(1);
+  microRecord_.reserve(1);
+  initMicro();
 }
 
 void Pipeline::uploadScene(const Mesh& fileMesh)
@@ -235,6 +242,7 @@ void Pipeline::beginFrame(const FrameSettings& settings)
   if (!scene_.lines.empty() || !scene_.points.empty()) params_.visAttributes = 1;  // their depth test reads it
   params_.clusterMargin = clusterMargin(settings.mvp);
   params_.fileOrder = fileOrder_ ? 1u : 0u;
+  microMax_ = microMaxFor(settings);
   settings_ = settings;
   events_.clear();
   numTiles_ = params_.tilesX * params_.tilesY;
@@ -278,7 +286,10 @@ bool Pipeline::speculationPays(const FrameSettings& settings)
 bool Pipeline::takeSpeculativeTotals()
 {
   const std::vector<uint32_t>& c = endCounters_;
-  if (c[CLR_COUNTER_OVERFLOW]) return false;
+  // Micro slots past microKey_'s binned their tiles' triangles (micro.h): right, but with other counts than a
+  // waiting frame's, so the frame is redone as one, sized from this count.
+  microTiles_ = c[CLR_COUNTER_MICRO_TILES];
+  if (c[CLR_COUNTER_OVERFLOW] || microTiles_ > microCap_) return false;
   const uint64_t total = counterTotal(c, CLR_COUNTER_SETUP_TOTAL);
   numSetup_ = uint32_t(total);  // (scan.cl: within specCaps_)
   numCulledUnclipped_ = uint32_t(params_.numTris - total);

@@ -347,6 +347,11 @@ class Pipeline : public DeviceScene {
   // The painter's algorithm's host-side sort (raster.cpp): fills paintOrder_
   // and uploads each triangle's rank to paintRank_.
   void sortForPainter();
+  // The micro path (micro.cpp): this frame's size limit, 0 where it is off;
+  // microKey_ sized for `slots` micro slots and all ones, and microCap_.
+  void initMicro();
+  uint32_t microMaxFor(const FrameSettings& settings) const;
+  void reserveMicroKeys(uint32_t slots);
 
   FrameParams params_{};
   FrameSettings settings_{};  // of the current frame
@@ -414,6 +419,15 @@ class Pipeline : public DeviceScene {
   DeviceBuffer<uint32_t> image_;
   void* mappedImage_ = nullptr;       // image_ mapped for an ImageView, unmapped when the next frame begins
   DeviceBuffer<uint32_t> paintRank_;  // see shared.h
+  // The micro path (kernels/micro.h): tile flags, fragments, records by rank.
+  DeviceBuffer<uint32_t> tileMicro_, microRecord_;
+  DeviceBuffer<cl_ulong> microKey_;
+  bool microAtomics_ = false;  // the device has cl_khr_int64_extended_atomics
+  int32_t microEnv_ = -1;      // CLRASTER_MICRO_MAX, -1 unset
+  uint32_t microMax_ = 0;      // this frame's limit (microMaxFor)
+  uint32_t microCap_ = 0;      // the micro slots the count pass may claim (micro.h)
+  uint32_t microTiles_ = 0;    // the slots the last counted frame claimed
+  bool microDirty_ = true;     // microKey_ may hold fragments: refill before use
   std::vector<uint32_t> paintOrder_;
   DeviceBuffer<LineParams> lineParams_;
   DeviceBuffer<LineSeg> lineSegs_;

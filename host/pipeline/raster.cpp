@@ -101,9 +101,11 @@ void Pipeline::raster()
   args.visIndex = visIndex_.get(), args.visAttr = visAttr_.get();
   args.paintRank = painter ? paintRank_.get() : fileTri_.get();
   args.tileSlot = tileSlot_.get(), args.visPlane = visPlane();
+  args.tileMicro = tileMicro_.get(), args.microKey = microKey_.get(), args.microRecord = microRecord_.get();
   setKernelArgs(*kernel, args);
   const WorkShape shape = rasterShape(cl_.lanes, params_.tilesX, params_.tilesY, params_.samples);
   launch(*kernel, shape.global, shape.local, "raster");
+  microDirty_ = false;  // raster clears the micro path's fragments (micro.h)
 }
 
 WorkShape rasterShape(int lanes, uint32_t tilesX, uint32_t tilesY, uint32_t samples)

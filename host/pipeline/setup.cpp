@@ -25,9 +25,17 @@ void Pipeline::setup()
   uint32_t clipped = 0;
   cl_ulong total = 0;
   bool scanTiles = speculate_ || !clippedLastFrame_;
+  // The micro slots: a speculative frame's are the last frame's count (its
+  // tiles past them bin their triangles, micro.h); a waiting frame's are
+  // sized from its count, read below.
+  if (speculate_)
+    reserveMicroKeys(microTiles_);
+  else
+    microCap_ = microMax_ > 0 ? UINT32_MAX : 0;
   for (;;) {
     std::vector<cl::Event> fills;
     tileCount_.zero(numTiles_ + 1, &fills);
+    tileMicro_.zero(numTiles_, &fills);  // the micro path's flags (micro.h)
     // (The emit pass's outputs are bound too; this pass does not touch them.)
     setup_.reserve(1);
     tileCursor_.reserve(1);
@@ -49,6 +57,7 @@ void Pipeline::setup()
     }
     const std::vector<uint32_t> counters = readCounters();
     clipped = counters[CLR_COUNTER_CLIPPED_TRIS];
+    microTiles_ = counters[CLR_COUNTER_MICRO_TILES];
     total = counterTotal(counters, CLR_COUNTER_SETUP_TOTAL);
     if (scanTiles) takeBinTotals(counters);
     const bool growList = clipped > clipList_.capacity(), recount = scanTiles && clipped > 0;
@@ -110,6 +119,7 @@ void Pipeline::setupEmit()
   std::vector<cl::Event> fills;
   tileCursor_.zero(numTiles_, &fills);
   const uint32_t batches = (numSetup_ + cl_.lanes - 1) / cl_.lanes;  // over the records, not the input
+  if (!speculate_) reserveMicroKeys(microTiles_);
   setKernelArgs(setupEmitKernel_, setupTrianglesArgs(numSetup_, CLR_SETUP_PASS_EMIT));
   launch(setupEmitKernel_, linear(batches), cl::NDRange(CLR_SETUP_GROUP(cl_.lanes)), "setup_emit");
   binClipped();
@@ -124,6 +134,8 @@ SetupTrianglesArgs Pipeline::setupTrianglesArgs(uint32_t numSetup, uint32_t pass
   args.setup = setup_.get(), args.tileCursor = tileCursor_.get(), args.binEntries = binEntries_.get();
   args.source = setupSource_.get(), args.numSetup = numSetup, args.pass = pass;
   args.clusterBounds = clusterBounds_.get(), args.clusterCount = clusterCount_.get();
+  args.microMax = microMax_, args.microCap = microCap_, args.tileMicro = tileMicro_.get();
+  args.microKey = microKey_.get(), args.microRecord = microRecord_.get(), args.paintRank = fileTri_.get();
   return args;
 }
 
