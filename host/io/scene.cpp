@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
+#include "io/fast_obj.h"
 #include "io/fast_ply.h"
 #include "io/file_rule.h"
 #include "io/import_budget.h"
@@ -386,6 +387,14 @@ void preparePointClouds(const std::string& path, bool ply, aiScene* scene)
 
 }  // namespace
 
+void convertMaterials(const std::string& path, const AssetRoot& root, const aiScene& scene, bool anyColors, Mesh& mesh)
+{
+  ImportState state{path, root, &scene, std::move(mesh)};
+  state.anyColors = anyColors;
+  loadMaterials(state);
+  mesh = std::move(state.mesh);
+}
+
 Mesh loadScene(const std::string& path, const std::string& assets)
 {
   return importScene(checkSceneFile(path), assets);
@@ -436,6 +445,9 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
     repairNormals(direct, path, false);
     return direct;
   }
+  // The plain OBJ, read directly (fast_obj.h): the same mesh.
+  if (file.direct && file.format == "obj" && file.byExtension && readPlainObj(path, *file.bytes, root, direct))
+    return direct;
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
   auto* io = new RuleIOSystem(path, assets);  // every file the import opens, under the file rules; the importer owns it
