@@ -31,7 +31,8 @@ packages=(cmake g++ make pkg-config
   ocl-icd-opencl-dev pocl-opencl-icd opencl-clhpp-headers
   libglm-dev catch2 libassimp-dev zlib1g-dev libstb-dev libosmesa6-dev nlohmann-json3-dev libtinyexr-dev
   assimp-testmodels clang-format oclgrind clang libclang-rt-dev gnuplot-nox
-  python3-dev pybind11-dev python3-numpy python3-pytest python3-torch libmeshoptimizer-dev libembree-dev libssl-dev)
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-torch libmeshoptimizer-dev libembree-dev libssl-dev
+  libfast-float-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
