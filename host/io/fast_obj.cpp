@@ -12,18 +12,16 @@
 #include "io/import_budget.h"
 #include "io/mtl.h"
 #include "io/normals.h"
+#include "io/text_scan.h"
 
 #include <assimp/material.h>
 #include <assimp/scene.h>
-#include <fast_float/fast_float.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <set>
-#include <thread>
 #include <unordered_map>
 
 #include <sys/stat.h>
@@ -35,7 +33,6 @@ namespace {
 constexpr float kMaxCoordinate = 1e18f;             // as scene.cpp
 constexpr uint32_t kNoMaterial = ~0u;               // ObjFile::Mesh::NoMaterial
 constexpr size_t kMaxStatements = size_t(1) << 20;  // o, g, usemtl, mtllib: more is left to assimp's budget
-constexpr size_t kChunkBytes = size_t(1) << 20;
 
 // Face corner forms: v, v/vt, v//vn, v/vt/vn.
 enum Form { kNoForm, kV, kVT, kVN, kVTN };
@@ -72,15 +69,6 @@ struct Chunk {
   bool ok = true;
 };
 
-bool isBlank(char c)
-{
-  return c == ' ' || c == '\t';
-}
-const char* skipBlanks(const char* p, const char* e)
-{
-  while (p < e && isBlank(*p)) ++p;
-  return p;
-}
 const char* wordEnd(const char* p, const char* e)
 {
   while (p < e && !isBlank(*p)) ++p;
@@ -98,10 +86,7 @@ bool plainLine(const char* b, const char* e)
 // A position coordinate, correctly rounded as exact_positions.h reads it.
 bool position(const char* b, const char* e, float& v)
 {
-  if (!plainDecimal(b, e)) return false;
-  const char* p = b + (*b == '+');
-  const auto r = fast_float::from_chars(p, e, v);
-  return r.ec == std::errc() && r.ptr == e && std::fabs(v) <= kMaxCoordinate;
+  return plainDecimal(b, e) && scanFloat(b, e, v) == e && std::fabs(v) <= kMaxCoordinate;
 }
 
 // Up to `max` words of [p, e) as numbers, positions first; the count, or -1.
@@ -266,28 +251,20 @@ void parseChunk(Chunk& c)
   }
 }
 
-// Runs f(0) ... f(n - 1) on every core; rethrows the first exception.
+// Runs f(0) ... f(n - 1) on every core (text_scan.h); false when one
+// failed (out of memory: assimp's path then reports it, or reads the file).
 template <typename F>
-void parallelFor(size_t n, F&& f)
+bool parallelFor(size_t n, F&& f)
 {
-  const size_t threads = std::min<size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
-  std::atomic<size_t> next{0};
-  std::exception_ptr failure;
   std::atomic<bool> failed{false};
-  auto work = [&] {
-    for (size_t i; (i = next++) < n;) {
-      try {
-        f(i);
-      } catch (...) {
-        if (!failed.exchange(true)) failure = std::current_exception();
-      }
+  runParts(n, [&](size_t i) {
+    try {
+      f(i);
+    } catch (...) {
+      failed = true;
     }
-  };
-  std::vector<std::thread> pool;
-  for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  });
+  return !failed;
 }
 
 // ObjFileParser's state, replayed statement by statement in file order.
@@ -431,23 +408,12 @@ class Replay {
   uint64_t faces_ = 0, referencedBytes_ = 0, libraryMaterials_ = 0;
 };
 
-// Line-aligned chunks of about kChunkBytes, at least one per core.
+// Line-aligned chunks, about one per core.
 std::vector<Chunk> split(const std::string& bytes)
 {
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
-  const size_t count = std::max<size_t>(1, std::min(bytes.size() / kChunkBytes, 4 * threads));
-  std::vector<Chunk> chunks(count);
-  const char* const begin = bytes.data();
-  const char* const end = begin + bytes.size();
-  const char* at = begin;
-  for (size_t i = 0; i < count; ++i) {
-    chunks[i].begin = at;
-    const char* target = i + 1 == count ? end : std::max(at, begin + bytes.size() / count * (i + 1));
-    const char* nl =
-        target == end ? nullptr : static_cast<const char*>(std::memchr(target, '\n', size_t(end - target)));
-    at = nl ? nl + 1 : end;
-    chunks[i].end = at;
-  }
+  const std::vector<TextPart> parts = splitLines(bytes.data(), bytes.data() + bytes.size(), textParts(bytes.size()));
+  std::vector<Chunk> chunks(parts.size());
+  for (size_t i = 0; i < parts.size(); ++i) chunks[i].begin = parts[i].begin, chunks[i].end = parts[i].end;
   return chunks;
 }
 
@@ -458,7 +424,7 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
   if (bytes.size() < 16) return false;  // assimp's "OBJ-file is too small"
   // Step 1: the chunks, parsed in parallel.
   std::vector<Chunk> chunks = split(bytes);
-  parallelFor(chunks.size(), [&](size_t i) { parseChunk(chunks[i]); });
+  if (!parallelFor(chunks.size(), [&](size_t i) { parseChunk(chunks[i]); })) return false;
   // Step 2: counts, their prefix sums, and what must agree across chunks.
   const size_t n = chunks.size();
   std::vector<uint64_t> vBase(n + 1), tBase(n + 1), nBase(n + 1), faceBase(n + 1), cornerBase(n + 1), triBase(n + 1);
@@ -499,7 +465,7 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
   if (!replay.runs(runs)) return false;
   // Step 4: the file's vertices, texture coordinates and normals, whole.
   std::vector<float> positions(3 * vBase[n]), uvs(2 * tBase[n]), normals(3 * nBase[n]), colors(3 * colored);
-  parallelFor(n, [&](size_t i) {
+  const bool gathered = parallelFor(n, [&](size_t i) {
     Chunk& c = chunks[i];
     for (size_t k = 0; k < c.positions.size(); ++k) positions[3 * vBase[i] + k] = c.positions[k] + 0.0f;
     std::copy(c.uvs.begin(), c.uvs.end(), uvs.begin() + ptrdiff_t(2 * tBase[i]));
@@ -521,7 +487,8 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
   normalMatrix.Inverse().Transpose();
   const size_t stride = strideOf(form);
   std::atomic<bool> inRange{true};
-  parallelFor(n, [&](size_t i) {
+  if (!gathered) return false;
+  const bool written = parallelFor(n, [&](size_t i) {
     const Chunk& c = chunks[i];
     uint64_t corner = cornerBase[i], tri = triBase[i], f = faceBase[i];
     size_t run = size_t(std::upper_bound(runs.begin(), runs.end(), std::make_pair(f, ~0u)) - runs.begin()) - 1;
@@ -559,7 +526,7 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
       ++f;
     }
   });
-  if (!inRange) return false;
+  if (!written || !inRange) return false;
   chunks = {};
   out.facts.uvsInFile = hasUv(form);
   // Step 6: the materials, converted as scene.cpp converts assimp's.
