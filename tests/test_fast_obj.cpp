@@ -17,6 +17,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <fstream>
+#include <iterator>
 #include <functional>
 #include <random>
 #include <string>
@@ -125,6 +126,11 @@ std::string number(std::mt19937& rng)
   if (form == 5 && s[0] != '-') s = "+" + s;
   return s;
 }
+
+// The model fuzz_load.cpp loads for an MTL seed.
+const char* const kLibraryModel =
+    "mtllib input.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3/1\n"
+    "usemtl a\nf 3/1 2/2 1/1\nusemtl z\nf 1/2 3/1 2/2\n";
 
 struct Generated {
   std::string obj, mtl;
@@ -235,6 +241,29 @@ TEST_CASE("fast obj: every file the direct reader takes loads byte for byte as t
     INFO("seed " << seed);
     taken += checkBothWays(dir + "/in.obj");
   }
+  // Step 3: the fuzz seeds of OBJ ('o') and MTL ('m'), beside fuzz_load.cpp's library and texture.
+  writeFile(dir + "/in.mtl", "newmtl m\nKd 1 0 0\nmap_Kd in.png\n");
+  writeFile(dir + "/in.png", tga(1, 1));
+  const std::string list = CLRASTER_CORPUS_LIST;
+  const std::string seeds = list.substr(0, list.rfind('/')) + "/fuzz_corpus";
+  DIR* d = opendir(seeds.c_str());
+  REQUIRE(d);
+  std::vector<std::string> names;
+  while (const dirent* e = readdir(d))
+    if (e->d_type == DT_REG) names.push_back(e->d_name);
+  closedir(d);
+  size_t seedFiles = 0;
+  for (const std::string& name : names) {
+    std::ifstream in(seeds + "/" + name, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.empty() || (bytes[0] != 'o' && bytes[0] != 'm')) continue;
+    INFO("seed " << name);
+    if (bytes[0] == 'm') writeFile(dir + "/input.mtl", bytes.substr(1));
+    writeFile(dir + "/seed.obj", bytes[0] == 'm' ? std::string(kLibraryModel) : bytes.substr(1));
+    ++seedFiles, ++files;
+    taken += checkBothWays(dir + "/seed.obj");
+  }
+  CHECK(seedFiles >= 20);
   INFO(taken << " of " << files << " files taken");
   CHECK(files > 60);
   CHECK(taken >= 60);  // every generated file, and some of assimp's
