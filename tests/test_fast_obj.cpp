@@ -6,6 +6,7 @@
 #include "io/asset_root.h"
 #include "io/fast_obj.h"
 #include "io/file_rule.h"
+#include "io/import_budget.h"
 #include "io/scene.h"
 #include "test_support.h"
 
@@ -267,4 +268,22 @@ TEST_CASE("fast obj: every file the direct reader takes loads byte for byte as t
   INFO(taken << " of " << files << " files taken");
   CHECK(files > 60);
   CHECK(taken >= 60);  // every generated file, and some of assimp's
+}
+
+TEST_CASE("fast obj: a file the direct reader takes is not held to assimp's import estimate", "[fast_obj][budget]")
+{
+  // 1.25 million groups of one face each: assimp's path is estimated at over 4 GiB and refuses the file.
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (int i = 0; i < 625000; ++i) obj += "g a\nf 1 2 3\ng b\nf 1 3 2\n";
+  const std::string path = test::tempDir() + "/fast_obj_groups.obj";
+  writeFile(path, obj);
+  REQUIRE_THROWS_WITH(clr::checkObjBudget(path, obj), Catch::Contains("1250000 groups needs about"));
+  clr::Mesh mesh;
+  const clr::AssetRoot root(path, "");
+  REQUIRE(clr::readPlainObj(path, obj, root, mesh));
+  CHECK(mesh.numTris() == 1250000);
+  CHECK(mesh.numVerts() == 3750000);
+  CHECK(mesh.indices[3 * 1249999 + 2] == 3749999);  // the last face, un-shared
+  CHECK(mesh.positions[3 * 3749999] == 1.0f);       // its third corner, vertex 2
+  CHECK(clr::loadScene(path).numTris() == 1250000);
 }
