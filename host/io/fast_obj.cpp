@@ -164,7 +164,7 @@ bool face(Chunk& c, const char* p, const char* e, const uint64_t counts[3])
     }
     ++k;
   }
-  if (k < 3) return false;
+  if (k < 3 || k > 0x7fff) return false;  // AI_MAX_FACE_INDICES: assimp refuses a larger face
   if (hasUv(c.form) && counts[1] == 0) c.uvBeforeFirstVt = true;
   c.faceSizes.push_back(k);
   c.triangles += k - 2;
