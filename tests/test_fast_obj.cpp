@@ -7,6 +7,7 @@
 #include "io/fast_obj.h"
 #include "io/file_rule.h"
 #include "io/import_budget.h"
+#include "io/mtl.h"
 #include "io/scene.h"
 #include "test_support.h"
 
@@ -272,18 +273,36 @@ TEST_CASE("fast obj: every file the direct reader takes loads byte for byte as t
 
 TEST_CASE("fast obj: a file the direct reader takes is not held to assimp's import estimate", "[fast_obj][budget]")
 {
-  // 1.25 million groups of one face each: assimp's path is estimated at over 4 GiB and refuses the file.
+  // 1,048,000 groups and 4,344,000 face corners: assimp's path is estimated at 4120 MiB and refuses the file.
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  for (int i = 0; i < 625000; ++i) obj += "g a\nf 1 2 3\ng b\nf 1 3 2\n";
+  for (int i = 0; i < 524000; ++i) obj += "g a\nf 1 2 3\ng b\nf 1 3 2\n";
+  for (int i = 0; i < 400000; ++i) obj += "f 2 3 1\n";
   const std::string path = test::tempDir() + "/fast_obj_groups.obj";
   writeFile(path, obj);
-  REQUIRE_THROWS_WITH(clr::checkObjBudget(path, obj), Catch::Contains("1250000 groups needs about"));
+  REQUIRE_THROWS_WITH(clr::checkObjBudget(path, obj), Catch::Contains("4344000 face corners and 1048000 groups"));
   clr::Mesh mesh;
   const clr::AssetRoot root(path, "");
   REQUIRE(clr::readPlainObj(path, obj, root, mesh));
-  CHECK(mesh.numTris() == 1250000);
-  CHECK(mesh.numVerts() == 3750000);
-  CHECK(mesh.indices[3 * 1249999 + 2] == 3749999);  // the last face, un-shared
-  CHECK(mesh.positions[3 * 3749999] == 1.0f);       // its third corner, vertex 2
-  CHECK(clr::loadScene(path).numTris() == 1250000);
+  CHECK(mesh.numTris() == 1448000);
+  CHECK(mesh.numVerts() == 4344000);
+  CHECK(mesh.indices.back() == 4343999);           // the last face, 2 3 1, un-shared
+  CHECK(mesh.positions[3 * 4343998 + 1] == 1.0f);  // its second corner, vertex 3
+  CHECK(clr::loadScene(path).numTris() == 1448000);
+}
+
+TEST_CASE("fast obj: a library with a texture statement before any newmtl is refused, not read", "[fast_obj]")
+{
+  // assimp 5.2 writes such a statement to a null material; the direct reader leaves the file to assimp's path.
+  const std::string dir = test::tempDir() + "/fast_obj";
+  mkdir(dir.c_str(), 0755);
+  writeFile(dir + "/early.mtl", "map_Kd in.png\nnewmtl m\nKd 1 0 0\n");
+  writeFile(dir + "/early.obj", "mtllib early.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  CHECK_FALSE(directTakes(dir + "/early.obj"));
+  const clr::Mesh mesh = clr::loadScene(dir + "/early.obj");
+  CHECK(mesh.numTris() == 1);
+  REQUIRE(mesh.warnings.lines().size() == 1);
+  CHECK_THAT(mesh.warnings.lines()[0], Catch::Contains("early.mtl: a map, bump, refl, norm, disp or anisotropy") &&
+                                           Catch::Contains("imported without it"));
+  CHECK(clr::mtlReadableByAssimp("# note\n  Kd 1 1 1\nnewmtl a\nmap_Kd a.png\n"));
+  CHECK_FALSE(clr::mtlReadableByAssimp("Ka 0 0 0\r\n\tnorm n.png\r\nnewmtl a\n"));
 }

@@ -32,7 +32,7 @@ namespace {
 
 constexpr float kMaxCoordinate = 1e18f;             // as scene.cpp
 constexpr uint32_t kNoMaterial = ~0u;               // ObjFile::Mesh::NoMaterial
-constexpr size_t kMaxStatements = size_t(4) << 20;  // o, g, usemtl, mtllib: more is left to assimp's path
+constexpr size_t kMaxStatements = size_t(1) << 20;  // o, g, usemtl, mtllib: more is left to assimp's path
 
 // Face corner forms: v, v/vt, v//vn, v/vt/vn.
 enum Form { kNoForm, kV, kVT, kVN, kVTN };

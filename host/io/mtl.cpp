@@ -181,4 +181,23 @@ bool readPlainMtl(const std::string& text, std::vector<MtlMaterial>& out)
   return true;
 }
 
+bool mtlReadableByAssimp(const std::string& text)
+{
+  // Lines as ObjFileMtlImporter::load dispatches them: by their first character after leading blanks.
+  for (size_t p = 0; p < text.size();) {
+    size_t e = p;
+    while (e < text.size() && text[e] != '\n' && text[e] != '\r' && text[e] != '\f' && text[e] != '\0') ++e;
+    size_t b = p;
+    while (b < e && isBlank(text[b])) ++b;
+    p = e + 1;
+    if (b == e) continue;
+    const char c = text[b], next = b + 1 < e ? text[b + 1] : '\0';
+    if ((c == 'n' || c == 'N') && next == 'e') return true;  // newmtl: a material from here on
+    if (c == 'm' || c == 'b' || c == 'r' || c == 'a' || ((c == 'n' || c == 'N') && next == 'o') ||
+        text.compare(b, 4, "disp") == 0)
+      return false;
+  }
+  return true;
+}
+
 }  // namespace clr

@@ -36,4 +36,10 @@ bool assimpNumber(const char* b, const char* e, float& value);
 // plain (the contents of `out` are then unspecified).
 bool readPlainMtl(const std::string& text, std::vector<MtlMaterial>& out);
 
+// false when assimp 5.2's MTL reader would write to a material that does
+// not exist, and crash: a texture statement (map_*, bump, refl, norm, disp)
+// or an anisotropy one before the library's first newmtl. Such a library is
+// refused before assimp reads it (model_io.h).
+bool mtlReadableByAssimp(const std::string& text);
+
 }  // namespace clr
