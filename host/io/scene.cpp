@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
+#include "io/fast_gltf.h"
 #include "io/fast_obj.h"
 #include "io/fast_ply.h"
 #include "io/file_rule.h"
@@ -32,6 +33,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <strings.h>
 #include <sys/stat.h>
 
 namespace clr {
@@ -445,8 +447,11 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
     repairNormals(direct, path, false);
     return direct;
   }
-  // The plain OBJ, read directly (fast_obj.h): the same mesh.
+  // The plain OBJ and GLB, read directly (fast_obj.h, fast_gltf.h): the same mesh.
   if (file.direct && file.format == "obj" && file.byExtension && readPlainObj(path, *file.bytes, root, direct))
+    return direct;
+  if (file.direct && file.format == "gltf" && path.size() > 4 &&
+      strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, direct))
     return direct;
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
