@@ -4,6 +4,7 @@
 // nodes, several primitives, u8/u16/u32 or no indices, normals, texture
 // coordinates, used and unused materials), a file the direct reader takes
 // must give a Mesh byte for byte the same as assimp's path gives.
+#include "io/asset_root.h"
 #include "io/fast_gltf.h"
 #include "io/file_rule.h"
 #include "io/scene.h"
@@ -39,10 +40,16 @@ std::string difference(const clr::Mesh& a, const clr::Mesh& b)
   if (!sameBytes(a.colors, b.colors)) return "colors";
   if (!sameBytes(a.triMaterial, b.triMaterial)) return "triMaterial";
   if (!sameBytes(a.materials, b.materials)) return "materials";
-  if (a.textures.size() != b.textures.size()) return "textures";
+  if (a.textures.size() != b.textures.size()) return "texture count";
+  for (size_t t = 0; t < a.textures.size(); ++t) {
+    const clr::Texture &x = a.textures[t], &y = b.textures[t];
+    if (x.name != y.name || x.width != y.width || x.height != y.height || x.wrapS != y.wrapS || x.wrapT != y.wrapT ||
+        !sameBytes(x.rgba, y.rgba))
+      return "texture " + std::to_string(t);
+  }
   if (a.warnings.lines() != b.warnings.lines()) return "warnings";
   if (a.facts.normalsInFile != b.facts.normalsInFile || a.facts.normalsRepaired != b.facts.normalsRepaired ||
-      a.facts.uvsInFile != b.facts.uvsInFile)
+      a.facts.uvsInFile != b.facts.uvsInFile || a.facts.missingTextures != b.facts.missingTextures)
     return "facts";
   return "";
 }
@@ -69,7 +76,8 @@ bool checkBothWays(const std::string& path)
   if (!directError.empty()) return false;
   REQUIRE(difference(direct, assimp) == "");
   clr::Mesh mesh;
-  return clr::readPlainGlb(path, clr::readInputFile(path, clr::kModelInput), mesh);
+  const clr::AssetRoot root(path, "");
+  return clr::readPlainGlb(path, clr::readInputFile(path, clr::kModelInput), root, mesh);
 }
 
 // A GLB under construction: one buffer, a tightly packed view per accessor.
@@ -111,6 +119,24 @@ std::string generate(uint32_t seed)
 {
   std::mt19937 rng(seed);
   GlbWriter w;
+  // Embedded images (uncompressed TGA), textures of them with and without samplers.
+  const int images = int(rng() % 3), textures = images ? 1 + int(rng() % 3) : 0;
+  for (int i = 0; i < images; ++i) {
+    std::string tga(18, '\0');
+    tga[2] = 2, tga[12] = char(1 + i), tga[14] = 2, tga[16] = 24;
+    for (int t = 0; t < 2 * (1 + i); ++t) tga += std::string{char(rng()), char(rng()), char(rng())};
+    w.accessor(tga.data(), tga.size(), 5121, tga.size(), "SCALAR");  // its view; the accessor stays unused
+    w.doc["images"].push_back({{"bufferView", w.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
+  }
+  for (int t = 0; t < textures; ++t) {
+    Json texture = {{"source", rng() % uint32_t(images)}};
+    if (rng() % 2) {
+      static const int kWraps[] = {33071, 33648, 10497};
+      w.doc["samplers"].push_back({{"wrapS", kWraps[rng() % 3]}, {"wrapT", kWraps[rng() % 3]}});
+      texture["sampler"] = w.doc["samplers"].size() - 1;
+    }
+    w.doc["textures"].push_back(texture);
+  }
   // Materials, some never used.
   const int materials = int(rng() % 4);
   for (int m = 0; m < materials; ++m) {
@@ -120,6 +146,8 @@ std::string generate(uint32_t seed)
           {"baseColorFactor",
            {double(rng() % 1001) / 1000, double(rng() % 1001) / 1000, double(rng() % 1001) / 1000, 1.0}},
           {"metallicFactor", 0.5}};
+    if (textures && rng() % 2)
+      mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", rng() % uint32_t(textures)}};
     w.doc["materials"].push_back(mat);
   }
   // Meshes of 1 to 3 primitives.

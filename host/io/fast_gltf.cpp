@@ -23,6 +23,16 @@ using Json = nlohmann::json;
 constexpr float kMaxCoordinate = 1e18f;  // as scene.cpp
 constexpr int kMaxDepth = 64;
 
+// `array` (of `n` pointers) one longer.
+template <typename T>
+T** grow(T** array, unsigned n)
+{
+  T** out = new T*[n + 1];
+  std::copy(array, array + n, out);
+  delete[] array;
+  return out;
+}
+
 uint32_t u32(const std::string& b, size_t at)
 {
   uint32_t v;
@@ -149,21 +159,59 @@ class Glb {
         if (!visit(r, root, out)) return false;
     }
     if (out.indices.empty()) return false;
-    // Step 3: the retrieved materials, then assimp's default one.
-    out.materials.assign(materials_.size() + 1, Material{});
+    // Step 3: the retrieved materials, then assimp's default one, as assimp's properties.
+    for (const auto& [data, length] : images_) {
+      auto* texture = new aiTexture;
+      texture->mWidth = unsigned(length);
+      texture->mHeight = 0;
+      texture->pcData = new aiTexel[(length + 3) / 4];
+      std::memcpy(texture->pcData, data, length);
+      scene_.mTextures = grow(scene_.mTextures, scene_.mNumTextures);
+      scene_.mTextures[scene_.mNumTextures++] = texture;
+    }
+    scene_.mMaterials = new aiMaterial*[materials_.size() + 1];
     for (size_t m = 0; m <= materials_.size(); ++m) {
+      auto* mat = new aiMaterial;
+      scene_.mMaterials[scene_.mNumMaterials++] = mat;
       float factor[4] = {1, 1, 1, 1};
+      const Json* pbr = nullptr;
       if (m < materials_.size()) {
-        const Json& mat = doc_["materials"][materials_[m]];
-        if (mat.contains("pbrMetallicRoughness") && !floats(mat["pbrMetallicRoughness"], "baseColorFactor", 4, factor))
-          return false;
+        const Json& material = doc_["materials"][materials_[m]];
+        if (material.contains("name") && material["name"].is_string()) {
+          const aiString name(material["name"].get<std::string>());
+          mat->AddProperty(&name, AI_MATKEY_NAME);
+        }
+        if (material.contains("pbrMetallicRoughness")) pbr = &material["pbrMetallicRoughness"];
+        if (pbr && !floats(*pbr, "baseColorFactor", 4, factor)) return false;
       }
-      std::copy(factor, factor + 4, out.materials[m].baseColor);
-      out.materials[m].texture = -1;
+      const aiColor4D colour(factor[0], factor[1], factor[2], factor[3]);
+      mat->AddProperty(&colour, 1, AI_MATKEY_COLOR_DIFFUSE);
+      mat->AddProperty(&colour, 1, AI_MATKEY_BASE_COLOR);
+      if (pbr && pbr->contains("baseColorTexture")) {
+        const Json& texture = doc_["textures"][(*pbr)["baseColorTexture"]["index"].get<size_t>()];
+        aiString uri("*" + std::to_string(imageIndex_[texture["source"].get<size_t>()]));
+        int wrap[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+        if (texture.contains("sampler")) {
+          const Json& sampler = doc_["samplers"][texture["sampler"].get<size_t>()];
+          for (int k = 0; k < 2; ++k) {
+            const int mode = sampler.value(k ? "wrapT" : "wrapS", 10497);
+            wrap[k] = mode == 33648   ? aiTextureMapMode_Mirror
+                      : mode == 33071 ? aiTextureMapMode_Clamp
+                                      : aiTextureMapMode_Wrap;
+          }
+        }
+        for (const aiTextureType type : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR}) {
+          mat->AddProperty(&uri, AI_MATKEY_TEXTURE(type, 0));
+          mat->AddProperty(&wrap[0], 1, AI_MATKEY_MAPPINGMODE_U(type, 0));
+          mat->AddProperty(&wrap[1], 1, AI_MATKEY_MAPPINGMODE_V(type, 0));
+        }
+      }
     }
     out.colors.clear();
     return true;
   }
+
+  const aiScene& scene() const { return scene_; }
 
   bool anyNormals() const { return anyNormals_; }
 
@@ -212,7 +260,8 @@ class Glb {
               return false;
             const auto pbr = doc_["materials"][mat].find("pbrMetallicRoughness");
             if (pbr != doc_["materials"][mat].end() &&
-                !only(*pbr, {"baseColorFactor", "metallicFactor", "roughnessFactor"}))
+                (!only(*pbr, {"baseColorFactor", "metallicFactor", "roughnessFactor", "baseColorTexture"}) ||
+                 (pbr->contains("baseColorTexture") && !retrieveTexture((*pbr)["baseColorTexture"]))))
               return false;
             materialIndex_[mat] = long(materials_.size());
             materials_.push_back(mat);
@@ -221,6 +270,36 @@ class Glb {
       }
     }
     nodeState_[n] = 2;
+    return true;
+  }
+
+  // A baseColorTexture: its image, embedded in the buffer, in assimp's order.
+  bool retrieveTexture(const Json& info)
+  {
+    size_t t = 0, image = 0, sampler = 0;
+    if (!only(info, {"index", "texCoord"}) || !index(info, "index", count("textures"), t)) return false;
+    const Json& texture = doc_["textures"][t];
+    if (!only(texture, {"source", "sampler", "name"}) || !index(texture, "source", count("images"), image) ||
+        (texture.contains("sampler") && !index(texture, "sampler", count("samplers"), sampler)))
+      return false;
+    if (texture.contains("sampler") &&
+        !only(doc_["samplers"][sampler], {"wrapS", "wrapT", "magFilter", "minFilter", "name"}))
+      return false;
+    if (imageIndex_.size() < count("images")) imageIndex_.assign(count("images"), -1);
+    if (imageIndex_[image] >= 0) return true;
+    const Json& img = doc_["images"][image];
+    size_t view = 0;
+    if (!only(img, {"bufferView", "mimeType", "name"}) || !index(img, "bufferView", count("bufferViews"), view) ||
+        !img.contains("mimeType") || !img["mimeType"].is_string())
+      return false;
+    const Json& bv = doc_["bufferViews"][view];
+    if (!only(bv, {"buffer", "byteOffset", "byteLength", "name"}) || bv.value("buffer", 1) != 0 ||
+        !bv.contains("byteLength") || !bv["byteLength"].is_number_unsigned())
+      return false;
+    const uint64_t offset = bv.value("byteOffset", uint64_t(0)), length = bv["byteLength"].get<uint64_t>();
+    if (length == 0 || offset > bufferLength_ || bufferLength_ - offset < length) return false;
+    imageIndex_[image] = long(images_.size());
+    images_.emplace_back(bin_ + offset, size_t(length));
     return true;
   }
 
@@ -392,12 +471,15 @@ class Glb {
   std::vector<bool> meshRead_;
   std::vector<long> materialIndex_;  // file index: assimp's index, -1 unused
   std::vector<size_t> materials_;    // assimp's order: file indices
+  std::vector<long> imageIndex_;     // file index: assimp's embedded texture index, -1 unused
+  std::vector<std::pair<const char*, size_t>> images_;
+  aiScene scene_;  // the materials and textures as assimp's importer makes them
   bool anyNormals_ = false;
 };
 
 }  // namespace
 
-bool readPlainGlb(const std::string& path, const std::string& bytes, Mesh& mesh)
+bool readPlainGlb(const std::string& path, const std::string& bytes, const AssetRoot& root, Mesh& mesh)
 {
   // Step 1: the container: header, JSON chunk, BIN chunk, nothing else.
   if (bytes.size() < 28 || bytes.compare(0, 4, "glTF") != 0 || u32(bytes, 4) != 2 || u32(bytes, 8) != bytes.size())
@@ -423,8 +505,8 @@ bool readPlainGlb(const std::string& path, const std::string& bytes, Mesh& mesh)
   } catch (const Json::exception&) {
     return false;
   }
-  if (repeated ||
-      !only(doc, {"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews", "buffers", "materials"}))
+  if (repeated || !only(doc, {"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews", "buffers",
+                              "materials", "textures", "images", "samplers"}))
     return false;
   if (!doc.contains("asset") || !only(doc["asset"], {"version", "generator", "copyright"}) ||
       doc["asset"].value("version", "") != "2.0")
@@ -442,6 +524,7 @@ bool readPlainGlb(const std::string& path, const std::string& bytes, Mesh& mesh)
   } catch (const Json::exception&) {
     return false;
   }
+  convertMaterials(path, root, glb.scene(), false, out);
   repairNormals(out, path, glb.anyNormals());
   mesh = std::move(out);
   return true;

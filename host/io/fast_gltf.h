@@ -12,13 +12,15 @@
 // Accepted: one binary buffer in the BIN chunk; float POSITION, NORMAL and
 // TEXCOORD_0 accessors, tightly packed; u8, u16 or u32 indices, or none;
 // triangle primitives; nodes with a mesh, children and a transform;
-// materials without textures. Any other file (images, skins, morph
+// materials with a baseColorFactor and a baseColorTexture embedded in the
+// buffer (its sampler's wrap modes). Any other file (external images, skins, morph
 // targets, cameras, extensions, interleaved or sparse accessors, a JSON
 // number assimp's parser could round otherwise, an index out of range)
 // returns false without a word: assimp reads it, so every refusal keeps its
 // wording.
 #pragma once
 
+#include "io/asset_root.h"
 #include "io/scene.h"
 
 #include <string>
@@ -26,8 +28,9 @@
 namespace clr {
 
 // Reads `bytes`, the whole GLB file at `path`, into `mesh` (empty on
-// entry); normals repaired (normals.h). false: not read here, `mesh` left
+// entry), its embedded textures decoded as scene.cpp decodes them under
+// `root`; normals repaired (normals.h). false: not read here, `mesh` left
 // empty.
-bool readPlainGlb(const std::string& path, const std::string& bytes, Mesh& mesh);
+bool readPlainGlb(const std::string& path, const std::string& bytes, const AssetRoot& root, Mesh& mesh);
 
 }  // namespace clr

@@ -451,7 +451,7 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
   if (file.direct && file.format == "obj" && file.byExtension && readPlainObj(path, *file.bytes, root, direct))
     return direct;
   if (file.direct && file.format == "gltf" && path.size() > 4 &&
-      strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, direct))
+      strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, root, direct))
     return direct;
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
