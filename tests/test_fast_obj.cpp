@@ -290,7 +290,7 @@ TEST_CASE("fast obj: a file the direct reader takes is not held to assimp's impo
   CHECK(clr::loadScene(path).numTris() == 1448000);
 }
 
-TEST_CASE("fast obj: a library with a texture statement before any newmtl is refused, not read", "[fast_obj]")
+TEST_CASE("fast obj: a library with a texture statement before any newmtl is refused and not read", "[fast_obj]")
 {
   // assimp 5.2 writes such a statement to a null material; the direct reader leaves the file to assimp's path.
   const std::string dir = test::tempDir() + "/fast_obj";

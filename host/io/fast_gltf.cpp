@@ -127,6 +127,74 @@ bool floats(const Json& object, const char* key, size_t n, float* out)
   return true;
 }
 
+// GetNodeTransform of assimp's glTF2 importer.
+bool nodeTransform(const Json& node, aiMatrix4x4& matrix)
+{
+  matrix = aiMatrix4x4();
+  if (node.contains("matrix")) {
+    float v[16];
+    if (!floats(node, "matrix", 16, v)) return false;
+    matrix = aiMatrix4x4(v[0], v[4], v[8], v[12], v[1], v[5], v[9], v[13], v[2], v[6], v[10], v[14], v[3], v[7], v[11],
+                         v[15]);
+    return true;
+  }
+  if (node.contains("translation")) {
+    float t[3];
+    if (!floats(node, "translation", 3, t)) return false;
+    aiMatrix4x4 m;
+    aiMatrix4x4::Translation(aiVector3D(t[0], t[1], t[2]), m);
+    matrix = matrix * m;
+  }
+  if (node.contains("rotation")) {
+    float r[4];
+    if (!floats(node, "rotation", 4, r)) return false;
+    const aiQuaternion q(r[3], r[0], r[1], r[2]);
+    matrix = matrix * aiMatrix4x4(q.GetMatrix());
+  }
+  if (node.contains("scale")) {
+    float s[3];
+    if (!floats(node, "scale", 3, s)) return false;
+    aiMatrix4x4 m;
+    aiMatrix4x4::Scaling(aiVector3D(s[0], s[1], s[2]), m);
+    matrix = matrix * m;
+  }
+  return true;
+}
+
+size_t count(const Json& doc, const char* key)
+{
+  const auto found = doc.find(key);
+  return found != doc.end() && found->is_array() ? found->size() : 0;
+}
+
+// A tightly packed float or index accessor: its elements, `size` bytes each.
+const char* accessor(const Json& doc, const char* bin, uint64_t bufferLength, size_t a, int componentType,
+                     const char* type, size_t size, size_t& n)
+{
+  const Json& acc = doc["accessors"][a];
+  size_t view = 0;
+  if (!only(acc, {"bufferView", "byteOffset", "componentType", "count", "type", "min", "max", "name", "normalized"}) ||
+      !index(acc, "bufferView", count(doc, "bufferViews"), view) || acc.value("normalized", false) ||
+      acc.value("componentType", 0) != componentType || acc.value("type", "") != std::string(type) ||
+      !acc.contains("count") || !acc["count"].is_number_unsigned())
+    return nullptr;
+  const uint64_t offset = acc.contains("byteOffset") && acc["byteOffset"].is_number_unsigned()
+                              ? acc["byteOffset"].get<uint64_t>()
+                              : (acc.contains("byteOffset") ? UINT64_MAX : 0);
+  n = acc["count"].get<size_t>();
+  const Json& bv = doc["bufferViews"][view];
+  if (!only(bv, {"buffer", "byteOffset", "byteLength", "byteStride", "target", "name"}) || bv.value("buffer", 1) != 0 ||
+      !bv.contains("byteLength") || !bv["byteLength"].is_number_unsigned())
+    return nullptr;
+  if (bv.contains("byteStride") && !(bv["byteStride"].is_number_unsigned() && bv["byteStride"].get<uint64_t>() == size))
+    return nullptr;
+  const uint64_t viewOffset = bv.value("byteOffset", uint64_t(0)), viewLength = bv["byteLength"].get<uint64_t>();
+  if (n == 0 || n > UINT32_MAX || offset > viewLength || (viewLength - offset) / size < n ||
+      viewOffset > bufferLength || bufferLength - viewOffset < viewLength)
+    return nullptr;
+  return bin + viewOffset + offset;
+}
+
 class Glb {
  public:
   Glb(const Json& doc, const char* bin, uint64_t bufferLength) : doc_(doc), bin_(bin), bufferLength_(bufferLength) {}
@@ -303,74 +371,11 @@ class Glb {
     return true;
   }
 
-  // GetNodeTransform of assimp's glTF2 importer.
-  bool transform(const Json& node, aiMatrix4x4& matrix) const
-  {
-    matrix = aiMatrix4x4();
-    if (node.contains("matrix")) {
-      float v[16];
-      if (!floats(node, "matrix", 16, v)) return false;
-      matrix = aiMatrix4x4(v[0], v[4], v[8], v[12], v[1], v[5], v[9], v[13], v[2], v[6], v[10], v[14], v[3], v[7],
-                           v[11], v[15]);
-      return true;
-    }
-    if (node.contains("translation")) {
-      float t[3];
-      if (!floats(node, "translation", 3, t)) return false;
-      aiMatrix4x4 m;
-      aiMatrix4x4::Translation(aiVector3D(t[0], t[1], t[2]), m);
-      matrix = matrix * m;
-    }
-    if (node.contains("rotation")) {
-      float r[4];
-      if (!floats(node, "rotation", 4, r)) return false;
-      const aiQuaternion q(r[3], r[0], r[1], r[2]);
-      matrix = matrix * aiMatrix4x4(q.GetMatrix());
-    }
-    if (node.contains("scale")) {
-      float s[3];
-      if (!floats(node, "scale", 3, s)) return false;
-      aiMatrix4x4 m;
-      aiMatrix4x4::Scaling(aiVector3D(s[0], s[1], s[2]), m);
-      matrix = matrix * m;
-    }
-    return true;
-  }
-
-  // A tightly packed float or index accessor: its elements, `size` bytes each.
-  const char* accessor(size_t a, int componentType, const char* type, size_t size, size_t& n) const
-  {
-    const Json& acc = doc_["accessors"][a];
-    size_t view = 0;
-    if (!only(acc,
-              {"bufferView", "byteOffset", "componentType", "count", "type", "min", "max", "name", "normalized"}) ||
-        !index(acc, "bufferView", count("bufferViews"), view) || acc.value("normalized", false) ||
-        acc.value("componentType", 0) != componentType || acc.value("type", "") != std::string(type) ||
-        !acc.contains("count") || !acc["count"].is_number_unsigned())
-      return nullptr;
-    const uint64_t offset = acc.contains("byteOffset") && acc["byteOffset"].is_number_unsigned()
-                                ? acc["byteOffset"].get<uint64_t>()
-                                : (acc.contains("byteOffset") ? UINT64_MAX : 0);
-    n = acc["count"].get<size_t>();
-    const Json& bv = doc_["bufferViews"][view];
-    if (!only(bv, {"buffer", "byteOffset", "byteLength", "byteStride", "target", "name"}) ||
-        bv.value("buffer", 1) != 0 || !bv.contains("byteLength") || !bv["byteLength"].is_number_unsigned())
-      return nullptr;
-    if (bv.contains("byteStride") &&
-        !(bv["byteStride"].is_number_unsigned() && bv["byteStride"].get<uint64_t>() == size))
-      return nullptr;
-    const uint64_t viewOffset = bv.value("byteOffset", uint64_t(0)), viewLength = bv["byteLength"].get<uint64_t>();
-    if (n == 0 || n > UINT32_MAX || offset > viewLength || (viewLength - offset) / size < n ||
-        viewOffset > bufferLength_ || bufferLength_ - viewOffset < viewLength)
-      return nullptr;
-    return bin_ + viewOffset + offset;
-  }
-
   bool visit(size_t n, const aiMatrix4x4& parent, Mesh& out)
   {
     const Json& node = doc_["nodes"][n];
     aiMatrix4x4 own;
-    if (!transform(node, own)) return false;
+    if (!nodeTransform(node, own)) return false;
     const aiMatrix4x4 matrix = parent * own;
     if (node.contains("mesh"))
       for (const Json& p : doc_["meshes"][node["mesh"].get<size_t>()]["primitives"])
@@ -389,18 +394,18 @@ class Glb {
     const Json& attributes = *found;
     size_t a = 0, nv = 0, nn = 0, nt = 0;
     if (!index(attributes, "POSITION", count("accessors"), a)) return false;
-    const char* positions = accessor(a, 5126, "VEC3", 12, nv);
+    const char* positions = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nv);
     const char* normals = nullptr;
     const char* uvs = nullptr;
     if (!positions) return false;
     if (attributes.contains("NORMAL")) {
-      if (!index(attributes, "NORMAL", count("accessors"), a) || !(normals = accessor(a, 5126, "VEC3", 12, nn)) ||
-          nn != nv)
+      if (!index(attributes, "NORMAL", count("accessors"), a) ||
+          !(normals = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nn)) || nn != nv)
         return false;
     }
     if (attributes.contains("TEXCOORD_0")) {
-      if (!index(attributes, "TEXCOORD_0", count("accessors"), a) || !(uvs = accessor(a, 5126, "VEC2", 8, nt)) ||
-          nt != nv)
+      if (!index(attributes, "TEXCOORD_0", count("accessors"), a) ||
+          !(uvs = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC2", 8, nt)) || nt != nv)
         return false;
     }
     const uint64_t base = out.numVerts();
@@ -445,7 +450,7 @@ class Glb {
       if (!index(p, "indices", count("accessors"), a)) return false;
       for (const auto& [type, w] : {std::pair<int, int>{5121, 1}, {5123, 2}, {5125, 4}})
         if (!indices && doc_["accessors"][a].value("componentType", 0) == type)
-          indices = accessor(a, type, "SCALAR", size_t(w), ni), width = w;
+          indices = accessor(doc_, bin_, bufferLength_, a, type, "SCALAR", size_t(w), ni), width = w;
       if (!indices) return false;
     }
     if (ni % 3 != 0) return false;
