@@ -97,6 +97,30 @@ struct GlbWriter {
     return doc["accessors"].size() - 1;
   }
 
+  // Position, normal and texture coordinates interleaved in one view: their three accessors.
+  std::vector<size_t> interleaved(const std::vector<float>& pos, const std::vector<float>& nor,
+                                  const std::vector<float>& uv, size_t n)
+  {
+    while (bin.size() % 4) bin += '\0';
+    const size_t at = bin.size();
+    for (size_t v = 0; v < n; ++v) {
+      bin.append(reinterpret_cast<const char*>(&pos[3 * v]), 12);
+      bin.append(reinterpret_cast<const char*>(&nor[3 * v]), 12);
+      bin.append(reinterpret_cast<const char*>(&uv[2 * v]), 8);
+    }
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 32 * n}, {"byteStride", 32}});
+    std::vector<size_t> out;
+    for (const auto& [offset, type] : {std::pair<int, const char*>{0, "VEC3"}, {12, "VEC3"}, {24, "VEC2"}}) {
+      doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                                  {"byteOffset", offset},
+                                  {"componentType", 5126},
+                                  {"count", n},
+                                  {"type", type}});
+      out.push_back(doc["accessors"].size() - 1);
+    }
+    return out;
+  }
+
   std::string finish()
   {
     while (bin.size() % 4) bin += '\0';
@@ -163,9 +187,15 @@ std::string generate(uint32_t seed)
         for (int k = 0; k < 3; ++k) nor.push_back(float(shortNumber(rng, 1)));
         for (int k = 0; k < 2; ++k) uv.push_back(float(shortNumber(rng, 2)));
       }
-      Json prim = {{"attributes", {{"POSITION", w.accessor(pos.data(), 4 * pos.size(), 5126, nv, "VEC3")}}}};
-      if (rng() % 2) prim["attributes"]["NORMAL"] = w.accessor(nor.data(), 4 * nor.size(), 5126, nv, "VEC3");
-      if (rng() % 2) prim["attributes"]["TEXCOORD_0"] = w.accessor(uv.data(), 4 * uv.size(), 5126, nv, "VEC2");
+      Json prim;
+      if (rng() % 3 == 0) {
+        const std::vector<size_t> a = w.interleaved(pos, nor, uv, nv);
+        prim = {{"attributes", {{"POSITION", a[0]}, {"NORMAL", a[1]}, {"TEXCOORD_0", a[2]}}}};
+      } else {
+        prim = {{"attributes", {{"POSITION", w.accessor(pos.data(), 4 * pos.size(), 5126, nv, "VEC3")}}}};
+        if (rng() % 2) prim["attributes"]["NORMAL"] = w.accessor(nor.data(), 4 * nor.size(), 5126, nv, "VEC3");
+        if (rng() % 2) prim["attributes"]["TEXCOORD_0"] = w.accessor(uv.data(), 4 * uv.size(), 5126, nv, "VEC2");
+      }
       const int width = int(rng() % 4);  // none, u8, u16, u32
       if (width) {
         const size_t ni = 3 * (1 + rng() % 20);

@@ -167,9 +167,10 @@ size_t count(const Json& doc, const char* key)
   return found != doc.end() && found->is_array() ? found->size() : 0;
 }
 
-// A tightly packed float or index accessor: its elements, `size` bytes each.
+// A float or index accessor: its elements, `size` bytes each, `stride`
+// bytes apart (interleaved only where `strided`: attributes).
 const char* accessor(const Json& doc, const char* bin, uint64_t bufferLength, size_t a, int componentType,
-                     const char* type, size_t size, size_t& n)
+                     const char* type, size_t size, size_t& n, size_t& stride, bool strided = false)
 {
   const Json& acc = doc["accessors"][a];
   size_t view = 0;
@@ -186,11 +187,17 @@ const char* accessor(const Json& doc, const char* bin, uint64_t bufferLength, si
   if (!only(bv, {"buffer", "byteOffset", "byteLength", "byteStride", "target", "name"}) || bv.value("buffer", 1) != 0 ||
       !bv.contains("byteLength") || !bv["byteLength"].is_number_unsigned())
     return nullptr;
-  if (bv.contains("byteStride") && !(bv["byteStride"].is_number_unsigned() && bv["byteStride"].get<uint64_t>() == size))
-    return nullptr;
+  stride = size;
+  if (bv.contains("byteStride")) {
+    if (!bv["byteStride"].is_number_unsigned()) return nullptr;
+    stride = bv["byteStride"].get<size_t>();
+    if ((!strided && stride != size) || stride < size || stride % 4 || stride > 252) return nullptr;
+  }
   const uint64_t viewOffset = bv.value("byteOffset", uint64_t(0)), viewLength = bv["byteLength"].get<uint64_t>();
-  if (n == 0 || n > UINT32_MAX || offset > viewLength || (viewLength - offset) / size < n ||
-      viewOffset > bufferLength || bufferLength - viewOffset < viewLength)
+  // The last element within the view, and assimp's count * stride within it too.
+  if (n == 0 || n > UINT32_MAX || offset > viewLength || viewLength - offset < size ||
+      (viewLength - offset - size) / stride < n - 1 || viewLength / stride < n || viewOffset > bufferLength ||
+      bufferLength - viewOffset < viewLength)
     return nullptr;
   return bin + viewOffset + offset;
 }
@@ -392,20 +399,20 @@ class Glb {
     const auto found = p.find("attributes");
     if (found == p.end() || !only(*found, {"POSITION", "NORMAL", "TEXCOORD_0"})) return false;
     const Json& attributes = *found;
-    size_t a = 0, nv = 0, nn = 0, nt = 0;
+    size_t a = 0, nv = 0, nn = 0, nt = 0, sv = 0, sn = 0, st = 0, si = 0;
     if (!index(attributes, "POSITION", count("accessors"), a)) return false;
-    const char* positions = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nv);
+    const char* positions = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nv, sv, true);
     const char* normals = nullptr;
     const char* uvs = nullptr;
     if (!positions) return false;
     if (attributes.contains("NORMAL")) {
       if (!index(attributes, "NORMAL", count("accessors"), a) ||
-          !(normals = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nn)) || nn != nv)
+          !(normals = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC3", 12, nn, sn, true)) || nn != nv)
         return false;
     }
     if (attributes.contains("TEXCOORD_0")) {
       if (!index(attributes, "TEXCOORD_0", count("accessors"), a) ||
-          !(uvs = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC2", 8, nt)) || nt != nv)
+          !(uvs = accessor(doc_, bin_, bufferLength_, a, 5126, "VEC2", 8, nt, st, true)) || nt != nv)
         return false;
     }
     const uint64_t base = out.numVerts();
@@ -419,7 +426,7 @@ class Glb {
     out.uvs.reserve(out.uvs.size() + 2 * nv);
     for (size_t v = 0; v < nv; ++v) {
       aiVector3D q;
-      std::memcpy(&q, positions + 12 * v, 12);
+      std::memcpy(&q, positions + sv * v, 12);
       if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return false;
       const aiVector3D pt = transform * q;
       if (!(std::fabs(pt.x) <= kMaxCoordinate && std::fabs(pt.y) <= kMaxCoordinate &&
@@ -428,14 +435,14 @@ class Glb {
       out.positions.insert(out.positions.end(), {pt.x, pt.y, pt.z});
       aiVector3D nm(0, 0, 0);
       if (normals) {
-        std::memcpy(&nm, normals + 12 * v, 12);
+        std::memcpy(&nm, normals + sn * v, 12);
         nm = normalMatrix * nm;
       }
       if (!std::isfinite(nm.x) || !std::isfinite(nm.y) || !std::isfinite(nm.z)) nm = aiVector3D(0, 0, 0);
       out.normals.insert(out.normals.end(), {nm.x, nm.y, nm.z});
       float uv[2] = {0, 0};
       if (uvs) {
-        std::memcpy(uv, uvs + 8 * v, 8);
+        std::memcpy(uv, uvs + st * v, 8);
         uv[1] = 1 - uv[1];  // assimp flips v
       }
       out.uvs.insert(out.uvs.end(), uv, uv + 2);
@@ -450,7 +457,7 @@ class Glb {
       if (!index(p, "indices", count("accessors"), a)) return false;
       for (const auto& [type, w] : {std::pair<int, int>{5121, 1}, {5123, 2}, {5125, 4}})
         if (!indices && doc_["accessors"][a].value("componentType", 0) == type)
-          indices = accessor(doc_, bin_, bufferLength_, a, type, "SCALAR", size_t(w), ni), width = w;
+          indices = accessor(doc_, bin_, bufferLength_, a, type, "SCALAR", size_t(w), ni, si), width = w;
       if (!indices) return false;
     }
     if (ni % 3 != 0) return false;

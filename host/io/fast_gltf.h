@@ -10,11 +10,11 @@
 // last.
 //
 // Accepted: one binary buffer in the BIN chunk; float POSITION, NORMAL and
-// TEXCOORD_0 accessors, tightly packed; u8, u16 or u32 indices, or none;
+// TEXCOORD_0 accessors, packed or interleaved; u8, u16 or u32 indices, or none;
 // triangle primitives; nodes with a mesh, children and a transform;
 // materials with a baseColorFactor and a baseColorTexture embedded in the
 // buffer (its sampler's wrap modes). Any other file (external images, skins, morph
-// targets, cameras, extensions, interleaved or sparse accessors, a JSON
+// targets, cameras, extensions, sparse accessors, a JSON
 // number assimp's parser could round otherwise, an index out of range)
 // returns false without a word: assimp reads it, so every refusal keeps its
 // wording.
