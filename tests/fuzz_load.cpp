@@ -4,7 +4,8 @@
 //
 // An input is one selector byte and the file's bytes. The selector picks the
 // file name extension: 'o' .obj, 'p' .ply, 'f' .off, 'g' .gltf, 'b' .glb,
-// 's' .stl; any other byte picks by its value modulo 10 among those and
+// 's' .stl, 'm' an MTL library (input.mtl, named by a fixed OBJ model,
+// input.obj, which is what loads); any other byte picks by its value modulo 10 among those and
 // names that assimp reads by content (.txt, .vrm, .dat, none), so the
 // checks must follow the reader assimp chooses, not the extension. The rest
 // is written to a file with that extension in the folder model/ of a scratch
@@ -37,6 +38,10 @@ namespace {
 
 std::string gDir;  // the model's folder, model/ of the scratch folder
 constexpr float kSecretPosition = 4242.0f;
+// The model of an 'm' input: its library, two materials of it, one unknown.
+const char* const kLibraryModel =
+    "mtllib input.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nf 1/1 2/2 3/1\n"
+    "usemtl a\nf 3/1 2/2 1/1\nusemtl z\nf 1/2 3/1 2/2\n";
 
 [[noreturn]] void fail(const std::string& path, const std::string& what)
 {
@@ -143,9 +148,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     case 'g': ext = ".gltf"; break;
     case 'b': ext = ".glb"; break;
     case 's': ext = ".stl"; break;
+    case 'm': ext = ".obj"; break;
   }
   const std::string path = gDir + "/input" + ext;
-  writeFile(path, std::string(reinterpret_cast<const char*>(data + 1), size - 1));
+  const std::string bytes(reinterpret_cast<const char*>(data + 1), size - 1);
+  if (data[0] == 'm') {
+    writeFile(gDir + "/input.mtl", bytes);
+    writeFile(path, kLibraryModel);
+  } else {
+    writeFile(path, bytes);
+  }
   try {
     checkMesh(path, clr::loadScene(path));
   } catch (const clr::Error& e) {

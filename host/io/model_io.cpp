@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "io/file_rule.h"
 #include "io/import_budget.h"
+#include "io/mtl.h"
 
 #include <assimp/MemoryIOWrapper.h>
 
@@ -107,6 +108,13 @@ Assimp::IOStream* RuleIOSystem::Open(const char* file, const char* mode)
         if (materials_ > kMaxMaterials) {
           overBudget_ = userText(modelPath_, 120) + ": more than " + std::to_string(kMaxMaterials) +
                         " materials in its material libraries, the limit for one OBJ (docs/limits.md)";
+          return nullptr;
+        }
+        // A statement assimp's MTL reader would apply to no material (a crash there): the library is refused.
+        if (!mtlReadableByAssimp(kept_.back())) {
+          kept_.pop_back();
+          refuseReference(file, userText(reference(file), 120) +
+                                    ": a map, bump, refl, norm, disp or anisotropy statement before any newmtl");
           return nullptr;
         }
         lastOpenFailed_ = false;

@@ -7,6 +7,8 @@
 #include "base/error.h"
 #include "io/asset_root.h"
 #include "io/exact_positions.h"
+#include "io/fast_gltf.h"
+#include "io/fast_obj.h"
 #include "io/fast_off.h"
 #include "io/fast_ply.h"
 #include "io/fast_stl.h"
@@ -33,6 +35,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <strings.h>
 #include <sys/stat.h>
 
 namespace clr {
@@ -388,6 +391,14 @@ void preparePointClouds(const std::string& path, bool ply, aiScene* scene)
 
 }  // namespace
 
+void convertMaterials(const std::string& path, const AssetRoot& root, const aiScene& scene, bool anyColors, Mesh& mesh)
+{
+  ImportState state{path, root, &scene, std::move(mesh)};
+  state.anyColors = anyColors;
+  loadMaterials(state);
+  mesh = std::move(state.mesh);
+}
+
 Mesh loadScene(const std::string& path, const std::string& assets)
 {
   return importScene(checkSceneFile(path), assets);
@@ -441,6 +452,12 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
     repairNormals(direct, path, direct.facts.normalsInFile);
     return direct;
   }
+  // The plain OBJ and GLB, read directly (fast_obj.h, fast_gltf.h): the same mesh.
+  if (file.direct && file.format == "obj" && file.byExtension && readPlainObj(path, *file.bytes, root, direct))
+    return direct;
+  if (file.direct && file.format == "gltf" && path.size() > 4 &&
+      strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, root, direct))
+    return direct;
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
   auto* io = new RuleIOSystem(path, assets);  // every file the import opens, under the file rules; the importer owns it

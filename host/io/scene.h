@@ -26,7 +26,11 @@
 
 #include <glm/glm.hpp>
 
+struct aiScene;
+
 namespace clr {
+
+class AssetRoot;
 
 // What loading found beyond the arrays, for `clraster info` (info.h).
 struct MeshFacts {
@@ -82,6 +86,11 @@ struct ModelFile {
 ModelFile checkSceneFile(const std::string& path);
 // `assets` as loadScene takes it.
 Mesh importScene(const ModelFile& file, const std::string& assets = "");
+
+// For direct readers (fast_obj.h): `scene`'s materials appended to
+// mesh.materials (and their textures to mesh.textures) exactly as the
+// assimp import converts them; `anyColors`: the file has vertex colours.
+void convertMaterials(const std::string& path, const AssetRoot& root, const aiScene& scene, bool anyColors, Mesh& mesh);
 
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();

@@ -1,0 +1,292 @@
+// test_fast_gltf.cpp — the direct GLB reader (io/fast_gltf.h) against its
+// oracle, assimp's path: for every GLB of assimp's test models and for
+// generated scenes (node trees with matrices and TRS transforms, shared
+// nodes, several primitives, u8/u16/u32 or no indices, normals, texture
+// coordinates, used and unused materials), a file the direct reader takes
+// must give a Mesh byte for byte the same as assimp's path gives.
+#include "io/asset_root.h"
+#include "io/fast_gltf.h"
+#include "io/file_rule.h"
+#include "io/scene.h"
+#include "test_support.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Json = nlohmann::json;
+
+template <typename T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+std::string difference(const clr::Mesh& a, const clr::Mesh& b)
+{
+  if (!sameBytes(a.positions, b.positions)) return "positions";
+  if (!sameBytes(a.normals, b.normals)) return "normals";
+  if (!sameBytes(a.uvs, b.uvs)) return "uvs";
+  if (!sameBytes(a.indices, b.indices)) return "indices";
+  if (!sameBytes(a.lines, b.lines) || !sameBytes(a.points, b.points)) return "lines or points";
+  if (!sameBytes(a.colors, b.colors)) return "colors";
+  if (!sameBytes(a.triMaterial, b.triMaterial)) return "triMaterial";
+  if (!sameBytes(a.materials, b.materials)) return "materials";
+  if (a.textures.size() != b.textures.size()) return "texture count";
+  for (size_t t = 0; t < a.textures.size(); ++t) {
+    const clr::Texture &x = a.textures[t], &y = b.textures[t];
+    if (x.name != y.name || x.width != y.width || x.height != y.height || x.wrapS != y.wrapS || x.wrapT != y.wrapT ||
+        !sameBytes(x.rgba, y.rgba))
+      return "texture " + std::to_string(t);
+  }
+  if (a.warnings.lines() != b.warnings.lines()) return "warnings";
+  if (a.facts.normalsInFile != b.facts.normalsInFile || a.facts.normalsRepaired != b.facts.normalsRepaired ||
+      a.facts.uvsInFile != b.facts.uvsInFile || a.facts.missingTextures != b.facts.missingTextures)
+    return "facts";
+  return "";
+}
+
+std::string load(const std::string& path, bool direct, clr::Mesh& mesh)
+{
+  try {
+    clr::ModelFile file = clr::checkSceneFile(path);
+    file.direct = direct;
+    mesh = clr::importScene(file);
+    return "";
+  } catch (const clr::Error& e) {
+    return e.what();
+  }
+}
+
+// Checks one file both ways; true when the direct reader took it.
+bool checkBothWays(const std::string& path)
+{
+  INFO(path);
+  clr::Mesh direct, assimp;
+  const std::string directError = load(path, true, direct);
+  REQUIRE(directError == load(path, false, assimp));
+  if (!directError.empty()) return false;
+  REQUIRE(difference(direct, assimp) == "");
+  clr::Mesh mesh;
+  const clr::AssetRoot root(path, "");
+  return clr::readPlainGlb(path, clr::readInputFile(path, clr::kModelInput), root, mesh);
+}
+
+// A GLB under construction: one buffer, a tightly packed view per accessor.
+struct GlbWriter {
+  Json doc = {{"asset", {{"version", "2.0"}}}, {"bufferViews", Json::array()}, {"accessors", Json::array()}};
+  std::string bin;
+
+  size_t accessor(const void* data, size_t bytes, int componentType, size_t count, const char* type)
+  {
+    while (bin.size() % 4) bin += '\0';
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}});
+    bin.append(static_cast<const char*>(data), bytes);
+    doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                                {"componentType", componentType},
+                                {"count", count},
+                                {"type", type}});
+    return doc["accessors"].size() - 1;
+  }
+
+  // Position, normal and texture coordinates interleaved in one view: their three accessors.
+  std::vector<size_t> interleaved(const std::vector<float>& pos, const std::vector<float>& nor,
+                                  const std::vector<float>& uv, size_t n)
+  {
+    while (bin.size() % 4) bin += '\0';
+    const size_t at = bin.size();
+    for (size_t v = 0; v < n; ++v) {
+      bin.append(reinterpret_cast<const char*>(&pos[3 * v]), 12);
+      bin.append(reinterpret_cast<const char*>(&nor[3 * v]), 12);
+      bin.append(reinterpret_cast<const char*>(&uv[2 * v]), 8);
+    }
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 32 * n}, {"byteStride", 32}});
+    std::vector<size_t> out;
+    for (const auto& [offset, type] : {std::pair<int, const char*>{0, "VEC3"}, {12, "VEC3"}, {24, "VEC2"}}) {
+      doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                                  {"byteOffset", offset},
+                                  {"componentType", 5126},
+                                  {"count", n},
+                                  {"type", type}});
+      out.push_back(doc["accessors"].size() - 1);
+    }
+    return out;
+  }
+
+  std::string finish()
+  {
+    while (bin.size() % 4) bin += '\0';
+    doc["buffers"] = Json::array({{{"byteLength", bin.size()}}});
+    std::string json = doc.dump();
+    while (json.size() % 4) json += ' ';
+    auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    return "glTF" + u32(2) + u32(uint32_t(28 + json.size() + bin.size())) + u32(uint32_t(json.size())) +
+           u32(0x4E4F534Au) + json + u32(uint32_t(bin.size())) + u32(0x004E4942u) + bin;
+  }
+};
+
+// A number of up to 3 decimals in [-range, range], as exporters write them (never -0).
+double shortNumber(std::mt19937& rng, int range)
+{
+  return double(int64_t(rng() % uint32_t(2000 * range + 1)) - 1000 * range) / 1000.0;
+}
+
+std::string generate(uint32_t seed)
+{
+  std::mt19937 rng(seed);
+  GlbWriter w;
+  // Embedded images (uncompressed TGA), textures of them with and without samplers.
+  const int images = int(rng() % 3), textures = images ? 1 + int(rng() % 3) : 0;
+  for (int i = 0; i < images; ++i) {
+    std::string tga(18, '\0');
+    tga[2] = 2, tga[12] = char(1 + i), tga[14] = 2, tga[16] = 24;
+    for (int t = 0; t < 2 * (1 + i); ++t) tga += std::string{char(rng()), char(rng()), char(rng())};
+    w.accessor(tga.data(), tga.size(), 5121, tga.size(), "SCALAR");  // its view; the accessor stays unused
+    w.doc["images"].push_back({{"bufferView", w.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
+  }
+  for (int t = 0; t < textures; ++t) {
+    Json texture = {{"source", rng() % uint32_t(images)}};
+    if (rng() % 2) {
+      static const int kWraps[] = {33071, 33648, 10497};
+      w.doc["samplers"].push_back({{"wrapS", kWraps[rng() % 3]}, {"wrapT", kWraps[rng() % 3]}});
+      texture["sampler"] = w.doc["samplers"].size() - 1;
+    }
+    w.doc["textures"].push_back(texture);
+  }
+  // Materials, some never used.
+  const int materials = int(rng() % 4);
+  for (int m = 0; m < materials; ++m) {
+    Json mat = {{"name", "m" + std::to_string(m)}};
+    if (rng() % 3)
+      mat["pbrMetallicRoughness"] = {
+          {"baseColorFactor",
+           {double(rng() % 1001) / 1000, double(rng() % 1001) / 1000, double(rng() % 1001) / 1000, 1.0}},
+          {"metallicFactor", 0.5}};
+    if (textures && rng() % 2)
+      mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", rng() % uint32_t(textures)}};
+    w.doc["materials"].push_back(mat);
+  }
+  // Meshes of 1 to 3 primitives.
+  const int meshes = 1 + int(rng() % 3);
+  for (int m = 0; m < meshes; ++m) {
+    Json primitives = Json::array();
+    const int count = 1 + int(rng() % 3);
+    for (int p = 0; p < count; ++p) {
+      const size_t nv = 3 + rng() % 30;
+      std::vector<float> pos, nor, uv;
+      for (size_t v = 0; v < nv; ++v) {
+        for (int k = 0; k < 3; ++k) pos.push_back(float(shortNumber(rng, 10)));
+        for (int k = 0; k < 3; ++k) nor.push_back(float(shortNumber(rng, 1)));
+        for (int k = 0; k < 2; ++k) uv.push_back(float(shortNumber(rng, 2)));
+      }
+      Json prim;
+      if (rng() % 3 == 0) {
+        const std::vector<size_t> a = w.interleaved(pos, nor, uv, nv);
+        prim = {{"attributes", {{"POSITION", a[0]}, {"NORMAL", a[1]}, {"TEXCOORD_0", a[2]}}}};
+      } else {
+        prim = {{"attributes", {{"POSITION", w.accessor(pos.data(), 4 * pos.size(), 5126, nv, "VEC3")}}}};
+        if (rng() % 2) prim["attributes"]["NORMAL"] = w.accessor(nor.data(), 4 * nor.size(), 5126, nv, "VEC3");
+        if (rng() % 2) prim["attributes"]["TEXCOORD_0"] = w.accessor(uv.data(), 4 * uv.size(), 5126, nv, "VEC2");
+      }
+      const int width = int(rng() % 4);  // none, u8, u16, u32
+      if (width) {
+        const size_t ni = 3 * (1 + rng() % 20);
+        std::vector<uint8_t> i8;
+        std::vector<uint16_t> i16;
+        std::vector<uint32_t> i32;
+        for (size_t i = 0; i < ni; ++i) {
+          const uint32_t k = uint32_t(rng() % nv);
+          i8.push_back(uint8_t(k)), i16.push_back(uint16_t(k)), i32.push_back(k);
+        }
+        prim["indices"] = width == 1   ? w.accessor(i8.data(), ni, 5121, ni, "SCALAR")
+                          : width == 2 ? w.accessor(i16.data(), 2 * ni, 5123, ni, "SCALAR")
+                                       : w.accessor(i32.data(), 4 * ni, 5125, ni, "SCALAR");
+      } else if (nv % 3) {
+        prim["indices"] = w.accessor(std::vector<uint32_t>{0, 1, 2}.data(), 12, 5125, 3, "SCALAR");
+      }
+      if (materials && rng() % 3) prim["material"] = rng() % materials;
+      if (rng() % 4 == 0) prim["mode"] = 4;
+      primitives.push_back(prim);
+    }
+    w.doc["meshes"].push_back({{"primitives", primitives}});
+  }
+  // Nodes: a tree (children after their parent), transforms of each kind, one node shared at times.
+  const int nodes = 1 + int(rng() % 6);
+  std::vector<Json> list(size_t(nodes), Json::object());
+  std::vector<int> roots;
+  for (int n = 0; n < nodes; ++n) {
+    Json& node = list[size_t(n)];
+    if (rng() % 4) node["mesh"] = rng() % uint32_t(meshes);
+    const int kind = int(rng() % 4);
+    if (kind == 1) {
+      Json m = Json::array();
+      for (int k = 0; k < 16; ++k) m.push_back(k == 15 ? 1.0 : shortNumber(rng, 2));
+      node["matrix"] = m;
+    } else if (kind >= 2) {
+      if (rng() % 2) node["translation"] = {shortNumber(rng, 5), shortNumber(rng, 5), shortNumber(rng, 5)};
+      if (rng() % 2) node["rotation"] = {shortNumber(rng, 1), shortNumber(rng, 1), shortNumber(rng, 1), 0.5};
+      if (rng() % 2) node["scale"] = {shortNumber(rng, 3), 2.0, 0.5};
+    }
+    if (n == 0 || rng() % 3 == 0)
+      roots.push_back(n);
+    else
+      list[rng() % uint32_t(n)]["children"].push_back(n);
+  }
+  if (nodes > 2 && rng() % 3 == 0) list[0]["children"].push_back(nodes - 1);  // shared: imported twice
+  w.doc["nodes"] = list;
+  w.doc["scenes"] = Json::array({{{"nodes", roots}}});
+  w.doc["scene"] = 0;
+  return w.finish();
+}
+
+}  // namespace
+
+TEST_CASE("fast gltf: every GLB the direct reader takes loads byte for byte as through assimp", "[fast_gltf]")
+{
+  size_t files = 0, taken = 0;
+  const std::string models = "/usr/share/assimp/models/";
+  for (const char* name :
+       {"glTF/BoxTextured-glTF-Binary/BoxTextured.glb", "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+        "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb",
+        "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"}) {
+    const std::string path = models + name;
+    std::ifstream probe(path);
+    if (!probe) continue;
+    ++files;
+    taken += checkBothWays(path);
+  }
+  for (uint32_t seed = 1; seed <= 80; ++seed) {
+    INFO("seed " << seed);
+    ++files;
+    const std::string path = test::tempDir() + "/fast_gltf.glb";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << generate(seed);
+    taken += checkBothWays(path);
+  }
+  // The fuzz seeds of GLB ('b': one selector byte, then the file; fuzz_load.cpp).
+  const std::string list = CLRASTER_CORPUS_LIST;
+  const std::string seeds = list.substr(0, list.rfind('/')) + "/fuzz_corpus";
+  size_t seedsTaken = 0;
+  for (const char* name : {"glb_direct_plain", "glb_direct_truncated", "glb_direct_count_huge", "glb_direct_index_out",
+                           "glb_direct_long_numbers", "glb_direct_cycle", "glb_direct_shared_roots", "glb_basic"}) {
+    INFO("seed " << name);
+    std::ifstream in(seeds + "/" + name, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    REQUIRE(bytes.size() > 1);
+    const std::string path = test::tempDir() + "/fast_gltf_seed.glb";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(1);
+    ++files;
+    seedsTaken += checkBothWays(path);
+  }
+  CHECK(seedsTaken >= 2);
+  INFO(taken << " of " << files << " files taken");
+  CHECK(files == 93);
+  CHECK(taken >= 70);
+}
