@@ -145,9 +145,9 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& cont
     ModelFile file = checkSceneFile(args.scenePath);
     times->readMs = file.readMs;
     times->parseMs = file.checkMs;
-    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs] {
+    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs]() mutable {
       const auto start = std::chrono::steady_clock::now();
-      Mesh imported = importScene(file, args.assets);
+      Mesh imported = importScene(std::move(file), args.assets);
       importMs = msSince(start);
       return imported;
     });

@@ -32,6 +32,7 @@
 #include <memory>
 #include <sstream>
 #include <sys/stat.h>
+#include <thread>
 
 namespace clr {
 
@@ -41,6 +42,9 @@ namespace {
 // differences of such coordinates still fit a float, so bounds, their
 // extent and the framing camera stay finite.
 constexpr float kMaxCoordinate = 1e18f;
+
+// Meshes of at least this many triangles get their smoothed normals on two threads.
+constexpr size_t kParallelTriangles = 1 << 16;
 
 std::string formatVector(const aiVector3D& v)
 {
@@ -426,13 +430,14 @@ ModelFile checkSceneFile(const std::string& path)
   return file;
 }
 
-Mesh importScene(const ModelFile& file, const std::string& assets)
+Mesh importScene(ModelFile file, const std::string& assets)
 {
   const std::string& path = file.path;
   const AssetRoot root(path, assets);
   // The plainest binary PLY, read directly (fast_ply.h): the same mesh.
   Mesh direct;
   if (file.direct && file.format == "ply" && file.byExtension && readPlainBinaryPly(*file.bytes, direct)) {
+    file.bytes.reset();  // the last reference, unless the caller kept one
     repairNormals(direct, path, false);
     return direct;
   }
@@ -503,34 +508,59 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
 void computeSmoothNormals(Mesh& mesh)
 {
   // Step 1: weld vertices by equal position (meshoptimizer compares bytes:
-  // -0 becomes +0 first, as the two compare equal). Welded ids follow first
-  // occurrence.
+  // -0 becomes +0 first, as the two compare equal; a copy only where one
+  // occurs). Welded ids follow first occurrence.
   const size_t n = mesh.numVerts();
-  std::vector<float> keys(mesh.positions.size());
-  for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
+  std::vector<float> keys;
+  if (std::any_of(mesh.positions.begin(), mesh.positions.end(), [](float c) { return c == 0.0f && std::signbit(c); })) {
+    keys.resize(mesh.positions.size());
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
+  }
+  const float* weldKeys = keys.empty() ? mesh.positions.data() : keys.data();
   std::vector<uint32_t> weld(n);
   const size_t welded =
-      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, keys.data(), n, 3 * sizeof(float));
+      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, weldKeys, n, 3 * sizeof(float));
   keys = {};
-  // Step 2: accumulate area-weighted face normals per welded vertex.
+  // Step 2: accumulate area-weighted face normals per welded vertex, in
+  // triangle order. Large meshes split the welded vertices in two halves,
+  // one per thread; each sums its own in the same order, so the sums are
+  // the same bits as one thread's.
   std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
   };
-  for (size_t t = 0; t < mesh.numTris(); ++t) {
-    const uint32_t* tri = &mesh.indices[3 * t];
-    const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
-    if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
-    for (int k = 0; k < 3; ++k) sum[weld[tri[k]]] += faceNormal;
-  }
+  auto accumulate = [&](size_t lo, size_t hi) {
+    for (size_t t = 0; t < mesh.numTris(); ++t) {
+      const uint32_t* tri = &mesh.indices[3 * t];
+      const uint32_t w[3] = {weld[tri[0]], weld[tri[1]], weld[tri[2]]};
+      const bool mine[3] = {w[0] >= lo && w[0] < hi, w[1] >= lo && w[1] < hi, w[2] >= lo && w[2] < hi};
+      if (!(mine[0] || mine[1] || mine[2])) continue;
+      const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
+      if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
+      for (int k = 0; k < 3; ++k)
+        if (mine[k]) sum[w[k]] += faceNormal;
+    }
+  };
   // Step 3: normalise.
-  mesh.normals.assign(3 * n, 0.0f);
-  for (size_t v = 0; v < n; ++v) {
-    const glm::dvec3 s = sum[weld[v]];
-    const double len = glm::length(s);
-    if (!(len > 0.0)) continue;
-    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = float(s[k] / len);
+  mesh.normals.resize(3 * n);
+  auto normalise = [&](size_t lo, size_t hi) {
+    for (size_t v = lo; v < hi; ++v) {
+      const glm::dvec3 s = sum[weld[v]];
+      const double len = glm::length(s);
+      for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = len > 0.0 ? float(s[k] / len) : 0.0f;
+    }
+  };
+  if (mesh.numTris() < kParallelTriangles) {
+    accumulate(0, welded);
+    normalise(0, n);
+    return;
   }
+  std::thread other([&] { accumulate(welded / 2, welded); });
+  accumulate(0, welded / 2);
+  other.join();
+  other = std::thread([&] { normalise(n / 2, n); });
+  normalise(0, n / 2);
+  other.join();
 }
 
 Bounds meshBounds(const Mesh& mesh)
