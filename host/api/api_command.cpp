@@ -195,14 +195,14 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
   uint64_t largest = 0;
   for (size_t v : selected) largest = std::max<uint64_t>(largest, uint64_t(views[v].width) * views[v].height);
   checkHostMemory("--views " + userText(args.viewsPath) + ": frames in flight", largest * (3 * 4 + 15));
-  const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
+  Mesh mesh = loadSceneDuringBuild(args, context, warnings);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);
   const std::vector<Camera> cameras = frameViews(args.viewsPath, views, bounds);
 
   // Step 2: scene upload, once.
   Pipeline pipeline(cl);
-  pipeline.uploadScene(mesh);
+  pipeline.uploadScene(std::move(mesh));  // its arrays freed as they are laid out
 
   // Step 3: frames, rendered here and written by the writer thread. frame_ms
   // is camera set-up to the image copied into host memory (the writer keeps it),
@@ -266,14 +266,14 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   StderrWarnings warnings;
-  const Mesh mesh = loadSceneDuringBuild(args, context, warnings, &times);
+  Mesh mesh = loadSceneDuringBuild(args, context, warnings, &times);
   ClContext& cl = context->impl().frameContext();
   const Bounds bounds = meshBounds(mesh);
   const Camera camera = frameCamera(args.camera, bounds);
 
   // Step 2: scene upload (not part of the frame time).
   Pipeline pipeline(cl);
-  pipeline.uploadScene(mesh);
+  pipeline.uploadScene(std::move(mesh));  // its arrays freed as they are laid out
   DepthChoice depth;
   FrameSettings settings = makeFrameSettings(args, camera, args.width, args.height, bounds, &depth);
   if (!depth.warning.empty()) warnings.add("depth", depth.warning);

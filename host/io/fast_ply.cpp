@@ -113,7 +113,6 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
   if (out.indices.capacity() > written + written / 4) out.indices.shrink_to_fit();
   if (p != end) return false;
   // Step 3: what the assimp path adds for such a file.
-  out.normals.assign(3 * n, 0.0f);
   out.uvs.assign(2 * n, 0.0f);
   out.triMaterial.assign(out.indices.size() / 3, 0);
   Material grey{};

@@ -520,7 +520,7 @@ void computeSmoothNormals(Mesh& mesh)
   std::vector<uint32_t> weld(n);
   const size_t welded =
       n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, weldKeys, n, 3 * sizeof(float));
-  keys = {};
+  std::vector<float>().swap(keys);  // (v = {} would keep the capacity)
   // Step 2: accumulate area-weighted face normals per welded vertex, in
   // triangle order. Large meshes split the welded vertices in two halves,
   // one per thread; each sums its own in the same order, so the sums are

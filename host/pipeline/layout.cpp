@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <thread>
 
 namespace clr {
 
@@ -16,6 +17,8 @@ namespace clr {
 constexpr double kCoherentSteps = 8.0;
 // How many sorted triangles' vertices show whether welding pays (weldPays).
 constexpr size_t kWeldSample = 16384;
+// Passes over at least this many elements run on two threads (inHalves).
+constexpr size_t kParallelElements = 1 << 16;
 
 // Copies per-element arrays (`width` values per element) into the new order.
 template <typename T>
@@ -28,17 +31,32 @@ static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint3
   return out;
 }
 
-// The mean distance between consecutive centroids in `order`.
-static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>& order)
+// Runs work(lo, hi) over [0, n) in two halves on two threads, where n is large enough to pay.
+template <typename Work>
+static void inHalves(size_t n, const Work& work)
 {
+  if (n < kParallelElements) {
+    work(size_t(0), n);
+    return;
+  }
+  std::thread other([&] { work(n / 2, n); });
+  work(size_t(0), n / 2);
+  other.join();
+}
+
+// The mean distance between consecutive centroids in `order` (null: the file's order).
+static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>* order)
+{
+  const size_t n = centroids.size() / 3;
+  auto at = [&](size_t i) { return order ? size_t((*order)[i]) : i; };
   double sum = 0;
-  for (size_t i = 1; i < order.size(); ++i) {
-    const float* a = &centroids[3 * size_t(order[i - 1])];
-    const float* b = &centroids[3 * size_t(order[i])];
+  for (size_t i = 1; i < n; ++i) {
+    const float* a = &centroids[3 * at(i - 1)];
+    const float* b = &centroids[3 * at(i)];
     sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
                      double(a[2] - b[2]) * (a[2] - b[2]));
   }
-  return order.size() > 1 ? sum / double(order.size() - 1) : 0.0;
+  return n > 1 ? sum / double(n - 1) : 0.0;
 }
 
 size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld)
@@ -78,17 +96,27 @@ static bool weldPays(const Mesh& file, const std::vector<uint32_t>& sortedIndice
   return weldVertices(sample, weld) < ids.size() - ids.size() / 64;
 }
 
-SceneLayout layOutScene(const Mesh& file, bool enabled)
+// Frees an array of the mesh the layout owns (a no-op for a borrowed one):
+// once its laid-out copy exists, the file's is not read again.
+template <typename T>
+static void release(Mesh* owned, std::vector<T> Mesh::*array)
+{
+  if (owned) std::vector<T>().swap(owned->*array);
+}
+
+// layOutScene's two forms: `file` borrowed (owned null), or owned (owned == &file), its arrays freed as they are laid
+// out.
+static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
 {
   SceneLayout out;
   const size_t tris = file.numTris(), verts = file.numVerts();
-  out.fileTri.resize(tris);
-  std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
   // An index past the vertices (the loader rejects such files) keeps the
   // file's order: meshoptimizer may not see it.
   for (uint32_t i : file.indices) enabled = enabled && i < verts;
   if (!enabled || tris < 2) {
-    out.mesh = file;
+    out.mesh = owned ? std::move(*owned) : file;
+    out.fileTri.resize(tris);
+    std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
     out.fileVertex.resize(verts);
     std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
     out.laidVertex = out.fileVertex;
@@ -97,22 +125,39 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   // Step 1: the triangles by the Morton order of their centroids (a
   // centroid that is not finite sorts as the origin).
   std::vector<float> centroids(3 * tris);
-  for (size_t t = 0; t < tris; ++t)
-    for (int a = 0; a < 3; ++a) {
-      float sum = 0.0f;
-      for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
-      centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
-    }
-  std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
-  meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
-  std::vector<uint32_t> sorted(tris);
-  for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  inHalves(tris, [&](size_t lo, size_t hi) {
+    for (size_t t = lo; t < hi; ++t)
+      for (int a = 0; a < 3; ++a) {
+        float sum = 0.0f;
+        for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
+        centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
+      }
+  });
   // A file whose triangles already step between near neighbours keeps its
   // order (docs/architecture.md, "Scene layout and locality": the sort
   // slowed raster on such a file, whose order also served the depth skip).
-  const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
-  if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
+  // The file's mean step is measured while the sort runs.
+  double fileStep = 0.0, sortedStep = 0.0;
+  std::thread measuring([&] { fileStep = meanStep(centroids, nullptr); });
+  std::vector<uint32_t> sorted;  // laid-out triangle -> file's
+  {
+    std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
+    meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
+    sorted.resize(tris);
+    for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  }
+  sortedStep = meanStep(centroids, &sorted);
+  measuring.join();
+  std::vector<float>().swap(centroids);  // (v = {} would keep the capacity)
+  if (!(fileStep <= kCoherentSteps * sortedStep)) {
+    out.fileTri = std::move(sorted);
+  } else {
+    out.fileTri.resize(tris);
+    std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
+  }
+  std::vector<uint32_t>().swap(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
+  release(owned, &Mesh::indices);
   // Step 2: vertices equal in every attribute become one, where that pays (weldPays).
   std::vector<uint32_t> weld;  // file vertex -> welded; empty: none welded
   size_t unique = verts;
@@ -131,27 +176,55 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
     out.laidVertex[v] = newVertex[weld.empty() ? v : weld[v]];
     out.fileVertex[out.laidVertex[v]] = uint32_t(v);
   }
-  for (uint32_t& i : sortedIndices) i = newVertex[i];
-  // Step 4: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
-  // replaced here, a quarter of a 10M-triangle upload's time.
+  std::vector<uint32_t>().swap(weld);
+  // Step 4: the copy, field by field (a copy of the whole mesh first would also copy, and page in, the arrays
+  // replaced here), the triangles' arrays on a second thread.
   static_assert(sizeof(Mesh) == 10 * sizeof(std::vector<float>) + sizeof(Warnings) + sizeof(MeshFacts),
                 "a new Mesh field must be copied or reordered here");
   Mesh& m = out.mesh;
-  m.lines = file.lines;
-  m.points = file.points;
-  m.materials = file.materials;
-  m.textures = file.textures;
-  m.warnings = file.warnings;
-  m.facts = file.facts;
-  m.indices = std::move(sortedIndices);
+  std::thread triangles([&] {
+    for (uint32_t& i : sortedIndices) i = newVertex[i];
+    m.indices = std::move(sortedIndices);
+    m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
+    release(owned, &Mesh::triMaterial);
+  });
   m.positions = gather(file.positions, out.fileVertex, 3);
+  release(owned, &Mesh::positions);
   m.normals = gather(file.normals, out.fileVertex, 3);
+  release(owned, &Mesh::normals);
   m.uvs = gather(file.uvs, out.fileVertex, 2);
+  release(owned, &Mesh::uvs);
   m.colors = gather(file.colors, out.fileVertex, 4);
-  m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
+  release(owned, &Mesh::colors);
+  triangles.join();
+  if (owned) {
+    m.lines = std::move(owned->lines);
+    m.points = std::move(owned->points);
+    m.materials = std::move(owned->materials);
+    m.textures = std::move(owned->textures);
+    m.warnings = std::move(owned->warnings);
+    m.facts = std::move(owned->facts);
+  } else {
+    m.lines = file.lines;
+    m.points = file.points;
+    m.materials = file.materials;
+    m.textures = file.textures;
+    m.warnings = file.warnings;
+    m.facts = file.facts;
+  }
   for (uint32_t& v : m.lines) v = out.laidVertex[v];  // a file's own lines and points name vertices too
   for (uint32_t& v : m.points) v = out.laidVertex[v];
   return out;
+}
+
+SceneLayout layOutScene(const Mesh& file, bool enabled)
+{
+  return layOut(file, nullptr, enabled);
+}
+
+SceneLayout layOutScene(Mesh&& file, bool enabled)
+{
+  return layOut(file, &file, enabled);
 }
 
 Mesh shuffledTriangles(const Mesh& mesh, uint32_t seed)
