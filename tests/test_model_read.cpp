@@ -164,11 +164,11 @@ TEST_CASE("smooth normals: vertices at the same position weld and -0 equals +0",
   for (int k = 0; k < 3; ++k) CHECK(mesh.normals[3 * 2 + k] == mesh.normals[3 * 4 + k]);
 }
 
-TEST_CASE("smooth normals: a large mesh's two threads give one thread's bits", "[io]")
+TEST_CASE("smooth normals: a large mesh gets a plain one-thread weld's bits", "[io]")
 {
   // 200,000 triangles of a shuffled height field whose vertices repeat
   // (each quad has corners of its own, a zero height written -0 in every
-  // other quad), far above the two-thread bound:
+  // other quad), far above the prefetch distance and the two-thread bound:
   // the result equals, bit for bit, this plain one-thread weld by position
   // bytes with the double sums taken in triangle order.
   const uint32_t side = 317;  // (side - 1)^2 quads, 2 triangles each

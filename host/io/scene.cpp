@@ -43,8 +43,10 @@ namespace {
 // extent and the framing camera stay finite.
 constexpr float kMaxCoordinate = 1e18f;
 
-// Meshes of at least this many triangles get their smoothed normals on two threads.
-constexpr size_t kParallelTriangles = 1 << 16;
+// Meshes of at least this many vertices normalise their smoothed normals on two threads.
+constexpr size_t kParallelVertices = 1 << 16;
+// How many triangles ahead the smoothed normals' sums fetch their vertices (computeSmoothNormals).
+constexpr size_t kPrefetch = 32;
 
 std::string formatVector(const aiVector3D& v)
 {
@@ -522,26 +524,31 @@ void computeSmoothNormals(Mesh& mesh)
       n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, weldKeys, n, 3 * sizeof(float));
   std::vector<float>().swap(keys);  // (v = {} would keep the capacity)
   // Step 2: accumulate area-weighted face normals per welded vertex, in
-  // triangle order. Large meshes split the welded vertices in two halves,
-  // one per thread; each sums its own in the same order, so the sums are
-  // the same bits as one thread's.
+  // triangle order. The loads are random in a large mesh (a scan's faces
+  // are in no spatial order): the vertices of the triangle kPrefetch ahead
+  // and their welded ids are fetched early, and the sums they add to half
+  // that far ahead, so that the misses overlap.
   std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
   };
-  auto accumulate = [&](size_t lo, size_t hi) {
-    for (size_t t = 0; t < mesh.numTris(); ++t) {
-      const uint32_t* tri = &mesh.indices[3 * t];
-      const uint32_t w[3] = {weld[tri[0]], weld[tri[1]], weld[tri[2]]};
-      const bool mine[3] = {w[0] >= lo && w[0] < hi, w[1] >= lo && w[1] < hi, w[2] >= lo && w[2] < hi};
-      if (!(mine[0] || mine[1] || mine[2])) continue;
-      const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
-      if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
-      for (int k = 0; k < 3; ++k)
-        if (mine[k]) sum[w[k]] += faceNormal;
-    }
-  };
-  // Step 3: normalise.
+  const size_t tris = mesh.numTris();
+  const uint32_t* indices = mesh.indices.data();
+  for (size_t t = 0; t < tris; ++t) {
+    if (t + kPrefetch < tris)
+      for (const uint32_t* v = indices + 3 * (t + kPrefetch); v < indices + 3 * (t + kPrefetch + 1); ++v) {
+        __builtin_prefetch(&weld[*v]);
+        __builtin_prefetch(&mesh.positions[3 * size_t(*v)]);
+      }
+    if (t + kPrefetch / 2 < tris)
+      for (const uint32_t* v = indices + 3 * (t + kPrefetch / 2); v < indices + 3 * (t + kPrefetch / 2 + 1); ++v)
+        __builtin_prefetch(&sum[weld[*v]], 1);
+    const uint32_t* tri = indices + 3 * t;
+    const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
+    if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
+    for (int k = 0; k < 3; ++k) sum[weld[tri[k]]] += faceNormal;
+  }
+  // Step 3: normalise, a large mesh's halves on two threads.
   mesh.normals.resize(3 * n);
   auto normalise = [&](size_t lo, size_t hi) {
     for (size_t v = lo; v < hi; ++v) {
@@ -550,15 +557,11 @@ void computeSmoothNormals(Mesh& mesh)
       for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = len > 0.0 ? float(s[k] / len) : 0.0f;
     }
   };
-  if (mesh.numTris() < kParallelTriangles) {
-    accumulate(0, welded);
+  if (n < kParallelVertices) {
     normalise(0, n);
     return;
   }
-  std::thread other([&] { accumulate(welded / 2, welded); });
-  accumulate(0, welded / 2);
-  other.join();
-  other = std::thread([&] { normalise(n / 2, n); });
+  std::thread other([&] { normalise(n / 2, n); });
   normalise(0, n / 2);
   other.join();
 }
