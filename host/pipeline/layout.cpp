@@ -17,6 +17,8 @@ namespace clr {
 constexpr double kCoherentSteps = 8.0;
 // How many sorted triangles' vertices show whether welding pays (weldPays).
 constexpr size_t kWeldSample = 16384;
+// How many elements ahead the passes of random reads fetch what they will read.
+constexpr size_t kPrefetch = 16;
 // Passes over at least this many elements run on two threads (inHalves).
 constexpr size_t kParallelElements = 1 << 16;
 
@@ -26,8 +28,10 @@ static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint3
 {
   if (from.empty()) return {};
   std::vector<T> out(order.size() * width);
-  for (size_t i = 0; i < order.size(); ++i)
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i + kPrefetch < order.size()) __builtin_prefetch(&from[size_t(order[i + kPrefetch]) * width]);
     for (size_t k = 0; k < width; ++k) out[i * width + k] = from[size_t(order[i]) * width + k];
+  }
   return out;
 }
 
@@ -51,6 +55,7 @@ static double meanStep(const std::vector<float>& centroids, const std::vector<ui
   auto at = [&](size_t i) { return order ? size_t((*order)[i]) : i; };
   double sum = 0;
   for (size_t i = 1; i < n; ++i) {
+    if (order && i + kPrefetch < n) __builtin_prefetch(&centroids[3 * at(i + kPrefetch)]);
     const float* a = &centroids[3 * at(i - 1)];
     const float* b = &centroids[3 * at(i)];
     sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
@@ -126,12 +131,16 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
   // centroid that is not finite sorts as the origin).
   std::vector<float> centroids(3 * tris);
   inHalves(tris, [&](size_t lo, size_t hi) {
-    for (size_t t = lo; t < hi; ++t)
+    for (size_t t = lo; t < hi; ++t) {
+      if (t + kPrefetch < hi)
+        for (int v = 0; v < 3; ++v)
+          __builtin_prefetch(&file.positions[3 * size_t(file.indices[3 * (t + kPrefetch) + v])]);
       for (int a = 0; a < 3; ++a) {
         float sum = 0.0f;
         for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
         centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
       }
+    }
   });
   // A file whose triangles already step between near neighbours keeps its
   // order (docs/architecture.md, "Scene layout and locality": the sort
