@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numeric>
 #include <random>
-#include <thread>
 
 namespace clr {
 
@@ -43,9 +43,9 @@ static void inHalves(size_t n, const Work& work)
     work(size_t(0), n);
     return;
   }
-  std::thread other([&] { work(n / 2, n); });
+  std::future<void> other = std::async(std::launch::async, [&] { work(n / 2, n); });
   work(size_t(0), n / 2);
-  other.join();
+  other.get();
 }
 
 // The mean distance between consecutive centroids in `order` (null: the file's order).
@@ -146,8 +146,8 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
   // order (docs/architecture.md, "Scene layout and locality": the sort
   // slowed raster on such a file, whose order also served the depth skip).
   // The file's mean step is measured while the sort runs.
-  double fileStep = 0.0, sortedStep = 0.0;
-  std::thread measuring([&] { fileStep = meanStep(centroids, nullptr); });
+  // (Futures, not threads: an exception on either side reaches the caller once both are done.)
+  std::future<double> fileStep = std::async(std::launch::async, [&] { return meanStep(centroids, nullptr); });
   std::vector<uint32_t> sorted;  // laid-out triangle -> file's
   {
     std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
@@ -155,10 +155,10 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
     sorted.resize(tris);
     for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
   }
-  sortedStep = meanStep(centroids, &sorted);
-  measuring.join();
+  const double sortedStep = meanStep(centroids, &sorted);
+  const bool keepFileOrder = fileStep.get() <= kCoherentSteps * sortedStep;
   std::vector<float>().swap(centroids);  // (v = {} would keep the capacity)
-  if (!(fileStep <= kCoherentSteps * sortedStep)) {
+  if (!keepFileOrder) {
     out.fileTri = std::move(sorted);
   } else {
     out.fileTri.resize(tris);
@@ -191,7 +191,7 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
   static_assert(sizeof(Mesh) == 10 * sizeof(std::vector<float>) + sizeof(Warnings) + sizeof(MeshFacts),
                 "a new Mesh field must be copied or reordered here");
   Mesh& m = out.mesh;
-  std::thread triangles([&] {
+  std::future<void> triangles = std::async(std::launch::async, [&] {
     for (uint32_t& i : sortedIndices) i = newVertex[i];
     m.indices = std::move(sortedIndices);
     m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
@@ -205,7 +205,7 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
   release(owned, &Mesh::uvs);
   m.colors = gather(file.colors, out.fileVertex, 4);
   release(owned, &Mesh::colors);
-  triangles.join();
+  triangles.get();
   if (owned) {
     m.lines = std::move(owned->lines);
     m.points = std::move(owned->points);
