@@ -70,9 +70,6 @@ void DeviceScene::placeScene(const Mesh& fileMesh)
 
 void DeviceScene::placeScene(Mesh&& fileMesh)
 {
-  // Texture coordinates that are all +0 read as absent ones do (bindAttributes): not laid out.
-  if (std::all_of(fileMesh.uvs.begin(), fileMesh.uvs.end(), [](float c) { return c == 0.0f && !std::signbit(c); }))
-    std::vector<float>().swap(fileMesh.uvs);
   placeLaidOut(layOutScene(std::move(fileMesh), layoutOn_));
 }
 

@@ -113,6 +113,9 @@ static void release(Mesh* owned, std::vector<T> Mesh::*array)
 // out.
 static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
 {
+  // Texture coordinates that are all +0 read as absent ones do (device_scene.h): an owned mesh's are not laid out.
+  if (owned && std::all_of(owned->uvs.begin(), owned->uvs.end(), [](float c) { return c == 0.0f && !std::signbit(c); }))
+    std::vector<float>().swap(owned->uvs);
   SceneLayout out;
   const size_t tris = file.numTris(), verts = file.numVerts();
   // An index past the vertices (the loader rejects such files) keeps the

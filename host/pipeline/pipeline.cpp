@@ -159,6 +159,14 @@ void Pipeline::uploadScene(Mesh&& mesh)
   afterUpload(start);
 }
 
+void Pipeline::uploadScene(SceneLayout&& laidOut)
+{
+  const auto start = std::chrono::steady_clock::now();
+  checkScene(laidOut.mesh);
+  placeLaidOut(std::move(laidOut));
+  afterUpload(start);
+}
+
 void Pipeline::checkScene(const Mesh& mesh) const
 {
   // The optional attributes against the vertices.

@@ -159,6 +159,9 @@ class Pipeline : public DeviceScene {
   // The same from a mesh the upload may consume (layOutScene's Mesh&&
   // form): the caller's arrays are freed as they are laid out.
   void uploadScene(Mesh&& mesh);
+  // The same from a scene laid out already (layOutScene, say on another
+  // thread while the program builds; setLayout does not apply): the uploads.
+  void uploadScene(SceneLayout&& laidOut);
   // Whether render() may size a frame from the last one's totals (default;
   // see runFrame). Off, every frame waits for its counts mid-frame.
   void setSpeculation(bool on) { speculationOn_ = on; }
