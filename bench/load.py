@@ -4,9 +4,12 @@
 For each size and format: `clraster render FILE -o PNG --size 1920x1080
 --stats`, best of REPEATS by total_ms, with its split and the process's peak
 memory; Open3D's o3d.io.read_triangle_mesh of the same file, best of
-REPEATS, timed inside a Python process that has already imported Open3D.
-Prints a Markdown table; --update-docs writes it into docs/benchmarks.md and
-the 1M rows into README.md, between the "load-table" markers.
+REPEATS, timed inside a Python process that has already imported Open3D;
+and, given --llvmpipe, llvmpipe's picture of the same file, command to PNG
+(clraster_llvmpipe_picture: assimp's read, one lambert frame, the PNG),
+best of REPEATS by the process's wall time. Prints a Markdown table;
+--update-docs writes it into docs/benchmarks.md and the 1M rows into
+README.md, between the "load-table" markers.
 """
 import argparse
 import json
@@ -61,26 +64,52 @@ def open3d_read(path, repeats):
     return float(ms), int(tris)
 
 
+def llvmpipe_picture(binary, path, png, repeats):
+    """llvmpipe's picture of the file: the best wall time of REPEATS runs, in ms (None without the tool)."""
+    if not binary:
+        return None
+    best = None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        res = subprocess.run([binary, path, png, "--size", "1920x1080"], capture_output=True, text=True)
+        wall = (time.perf_counter() - start) * 1000.0
+        if res.returncode != 0:
+            print("load.py: llvmpipe: %s" % res.stderr.strip(), file=sys.stderr)
+            return None
+        best = wall if best is None else min(best, wall)
+    return best
+
+
+def ms(value):
+    return "%.0f ms" % value if value is not None else "n/a"
+
+
+def ratio(a, b):
+    return "%.2f×" % (a / b) if b else "n/a"
+
+
 def table(rows):
     head = ("| file | triangles | MB | read | parse | build | prepare | frame | encode | total (command to PNG) "
-            "| wall | peak RSS | Open3D read | total / Open3D |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+            "| wall | peak RSS | Open3D read | total / Open3D | llvmpipe, command to PNG | wall / llvmpipe |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     lines = []
     for r in rows:
-        o3d = "%.0f ms" % r["o3d_ms"] if r["o3d_ms"] is not None else "n/a"
-        ratio = "%.2f×" % (r["total_ms"] / r["o3d_ms"]) if r["o3d_ms"] else "n/a"
-        lines.append("| %s | %s | %.1f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f ms | %.0f ms | %.0f MB | %s | %s |"
+        lines.append("| %s | %s | %.1f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f ms | %.0f ms | %.0f MB | %s | %s "
+                     "| %s | %s |"
                      % (NAMES[r["format"]], "{:,}".format(r["triangles"]), r["mb"], r["read_ms"], r["parse_ms"],
                         r["build_ms"], r["prepare_ms"], r["frame_ms"], r["encode_ms"], r["total_ms"], r["wall_ms"],
-                        r["rss_kb"] / 1024.0, o3d, ratio))
+                        r["rss_kb"] / 1024.0, ms(r["o3d_ms"]), ratio(r["total_ms"], r["o3d_ms"]),
+                        ms(r["llvmpipe_ms"]), ratio(r["wall_ms"], r["llvmpipe_ms"])))
     return head + "\n".join(lines) + "\n"
 
 
 def readme_table(rows):
-    out = "| 1M triangles | MB | parse ms | total, command to PNG | peak RSS | Open3D's read alone |\n|---|---|---|---|---|---|\n"
+    out = ("| 1M triangles | MB | parse ms | total, command to PNG | peak RSS | Open3D's read alone "
+           "| llvmpipe's picture, command to PNG |\n|---|---|---|---|---|---|---|\n")
     for r in rows:
-        o3d = "%.0f ms" % r["o3d_ms"] if r["o3d_ms"] is not None else "n/a"
-        out += "| %s | %.1f | %.0f | %.0f ms | %.0f MB | %s |\n" % (NAMES[r["format"]], r["mb"], r["parse_ms"],
-                                                                 r["total_ms"], r["rss_kb"] / 1024.0, o3d)
+        out += "| %s | %.1f | %.0f | %.0f ms | %.0f MB | %s | %s |\n" % (
+            NAMES[r["format"]], r["mb"], r["parse_ms"], r["total_ms"], r["rss_kb"] / 1024.0, ms(r["o3d_ms"]),
+            ms(r["llvmpipe_ms"]))
     return out
 
 
@@ -101,6 +130,7 @@ def main():
     ap.add_argument("--sizes", default="100000,1000000,10000000")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--update-docs", metavar="REPO")
+    ap.add_argument("--llvmpipe", metavar="BINARY", help="clraster_llvmpipe_picture, for llvmpipe's column")
     a = ap.parse_args()
     rows = []
     for size in [int(s) for s in a.sizes.split(",")]:
@@ -112,13 +142,14 @@ def main():
             best.update(format=fmt, triangles=best["triangles_in"], mb=os.path.getsize(path) / 1e6,
                         wall_ms=min(s["wall_ms"] for s in runs), rss_kb=peak_rss_kb(a.binary, path, png))
             best["o3d_ms"], _ = open3d_read(path, a.repeats)
+            best["llvmpipe_ms"] = llvmpipe_picture(a.llvmpipe, path, os.path.join(a.meshes, "llvmpipe.png"), a.repeats)
             rows.append(best)
             print("load.py: %s done" % path, file=sys.stderr)
     out = table(rows)
     sys.stdout.write(out)
     if a.update_docs:
-        note = ("Best of %d, 1920×1080, `bash bench/load.sh`, sizes %s, on a machine shared with other work: figures "
-                "vary by up to about 2× between runs.\n\n" % (a.repeats, a.sizes))
+        note = ("Best of %d, 1920×1080, `bash bench/load.sh`, sizes %s, on a 2-core machine shared with other work: "
+                "figures vary by up to about 2× between runs.\n\n" % (a.repeats, a.sizes))
         replace_between(os.path.join(a.update_docs, "docs/benchmarks.md"), note + out)
         small = [r for r in rows if r["triangles"] >= 900000 and r["triangles"] <= 1100000] or rows
         replace_between(os.path.join(a.update_docs, "README.md"), readme_table(small))

@@ -92,3 +92,19 @@ if(TARGET clraster_embree)
   set_tests_properties(embree_ids_default_scene embree_ids_wuson_grid PROPERTIES LABELS slow
                        ENVIRONMENT "POCL_CACHE_DIR=${CMAKE_BINARY_DIR}/pocl-cache")
 endif()
+
+# bench/load.sh's llvmpipe column (bench/llvmpipe_picture.cpp): a file becomes a PNG and one JSON line with the
+# split; a file it cannot import is one line on stderr and exit status 1. (Times nothing: the figures are only
+# printed.)
+if(TARGET clraster_llvmpipe_picture)
+  add_test(NAME llvmpipe_picture_writes_png
+           COMMAND bash -c "\"$0\" /usr/share/assimp/models/OFF/Wuson.off \"$1\" --size 64x48 && head -c 4 \"$1\" | tail -c 3"
+                   $<TARGET_FILE:clraster_llvmpipe_picture> ${CMAKE_BINARY_DIR}/llvmpipe_picture.png)
+  set_tests_properties(llvmpipe_picture_writes_png PROPERTIES PASS_REGULAR_EXPRESSION
+                                                               "\"triangles\":[1-9][0-9]*,.*\"total_ms\":[0-9.]+}\nPNG")
+  add_test(NAME llvmpipe_picture_refuses_bad_file
+           COMMAND bash -c "\"$0\" /nonexistent.off \"$1\" 2>&1; echo \"exit status $?\""
+                   $<TARGET_FILE:clraster_llvmpipe_picture> ${CMAKE_BINARY_DIR}/llvmpipe_picture_bad.png)
+  set_tests_properties(llvmpipe_picture_refuses_bad_file PROPERTIES PASS_REGULAR_EXPRESSION
+                                                                     "^clraster_llvmpipe_picture: [^\n]*nonexistent.off[^\n]*\nexit status 1\n$")
+endif()

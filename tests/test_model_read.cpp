@@ -10,10 +10,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -160,6 +162,58 @@ TEST_CASE("smooth normals: vertices at the same position weld and -0 equals +0",
     CHECK(mesh.normals[3 * v + 2] == Approx(r).margin(1e-6));
   }
   for (int k = 0; k < 3; ++k) CHECK(mesh.normals[3 * 2 + k] == mesh.normals[3 * 4 + k]);
+}
+
+TEST_CASE("smooth normals: a large mesh gets a plain one-thread weld's bits", "[io]")
+{
+  // 200,000 triangles of a shuffled height field whose vertices repeat
+  // (each quad has corners of its own, a zero height written -0 in every
+  // other quad), far above the prefetch distance and the two-thread bound:
+  // the result equals, bit for bit, this plain one-thread weld by position
+  // bytes with the double sums taken in triangle order.
+  const uint32_t side = 317;  // (side - 1)^2 quads, 2 triangles each
+  clr::Mesh mesh;
+  std::mt19937 random(46);
+  for (uint32_t y = 0; y + 1 < side; ++y)
+    for (uint32_t x = 0; x + 1 < side; ++x) {
+      const uint32_t base = uint32_t(mesh.numVerts());
+      for (uint32_t c = 0; c < 4; ++c) {
+        const uint32_t gx = x + (c & 1), gy = y + (c >> 1);
+        const float height = float((7 * gx + 3 * gy) % 5) * 0.25f;
+        mesh.positions.insert(mesh.positions.end(),
+                              {float(gx), float(gy), height == 0.0f && (x + y) % 2 ? -0.0f : height});
+      }
+      mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base + 2, base + 1, base + 3});
+    }
+  REQUIRE(mesh.numTris() > 65536 * 2);
+  std::vector<uint32_t> order(mesh.numTris());
+  for (uint32_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::shuffle(order.begin(), order.end(), random);
+  std::vector<uint32_t> shuffled;
+  for (uint32_t t : order) shuffled.insert(shuffled.end(), &mesh.indices[3 * t], &mesh.indices[3 * t] + 3);
+  mesh.indices = shuffled;
+  // The reference.
+  std::map<std::vector<float>, glm::dvec3> sums;
+  auto key = [&](uint32_t v) {
+    return std::vector<float>{mesh.positions[3 * v] + 0.0f, mesh.positions[3 * v + 1] + 0.0f,
+                              mesh.positions[3 * v + 2] + 0.0f};
+  };
+  auto pos = [&](uint32_t v) {
+    return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+  };
+  for (size_t t = 0; t < mesh.numTris(); ++t) {
+    const uint32_t* tri = &mesh.indices[3 * t];
+    const glm::dvec3 n = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
+    for (int k = 0; k < 3; ++k) sums[key(tri[k])] += n;
+  }
+  clr::computeSmoothNormals(mesh);
+  size_t differing = 0;
+  for (uint32_t v = 0; v < mesh.numVerts(); ++v) {
+    const glm::dvec3 s = sums[key(v)];
+    const double len = glm::length(s);
+    for (int k = 0; k < 3; ++k) differing += mesh.normals[3 * v + k] != (len > 0.0 ? float(s[k] / len) : 0.0f);
+  }
+  CHECK(differing == 0);
 }
 
 namespace {

@@ -1,11 +1,13 @@
 // test_output_files.cpp — what output files look like from outside: they
 // are created with the process's umask (a private render stays private),
-// and SIGINT, SIGTERM or SIGHUP during a run leave no temporary file beside
-// them.
+// SIGINT, SIGTERM or SIGHUP during a run leave no temporary file beside
+// them, and a PNG, small or large (deflated on two threads), holds the
+// image's pixels under a strict reader (zlib checks the stream's Adler-32).
 #include "cli_support.h"
 #include "test_support.h"
 
 #include "base/temp_files.h"
+#include "io/image_io.h"
 
 #include <catch2/catch.hpp>
 
@@ -15,8 +17,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <zlib.h>
+
 #include <algorithm>
+#include <cstdint>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -34,7 +41,72 @@ std::string freshDir(const std::string& name)
   return dir;
 }
 
+// The RGB rows of a PNG (8-bit RGB, any row filters), read strictly:
+// chunk CRCs, one zlib stream with its Adler-32, exactly the rows' bytes.
+std::vector<unsigned char> pngRows(const std::vector<unsigned char>& png, uint32_t& width, uint32_t& height)
+{
+  auto be32 = [&](size_t at) {
+    return uint32_t(png[at]) << 24 | uint32_t(png[at + 1]) << 16 | uint32_t(png[at + 2]) << 8 | png[at + 3];
+  };
+  REQUIRE(png.size() > 8);
+  std::vector<unsigned char> idat;
+  for (size_t at = 8; at + 12 <= png.size();) {
+    const uint32_t n = be32(at);
+    REQUIRE(at + 12 + n <= png.size());
+    const std::string kind(png.begin() + at + 4, png.begin() + at + 8);
+    CHECK(crc32(0, &png[at + 4], n + 4) == be32(at + 8 + n));
+    if (kind == "IHDR") {
+      width = be32(at + 8);
+      height = be32(at + 12);
+      REQUIRE(png[at + 16] == 8);  // bit depth
+      REQUIRE(png[at + 17] == 2);  // RGB
+    }
+    if (kind == "IDAT") idat.insert(idat.end(), png.begin() + at + 8, png.begin() + at + 8 + n);
+    at += 12 + n;
+  }
+  const size_t stride = 3 * size_t(width);
+  std::vector<unsigned char> raw(height * (stride + 1) + 1);
+  uLongf rawSize = raw.size();
+  REQUIRE(uncompress(raw.data(), &rawSize, idat.data(), idat.size()) == Z_OK);
+  REQUIRE(rawSize == height * (stride + 1));
+  std::vector<unsigned char> rows(height * stride);
+  for (uint32_t y = 0; y < height; ++y) {
+    const unsigned char filter = raw[y * (stride + 1)];
+    REQUIRE(filter <= 4);
+    for (size_t x = 0; x < stride; ++x) {
+      const int a = x >= 3 ? rows[y * stride + x - 3] : 0, b = y ? rows[(y - 1) * stride + x] : 0;
+      const int c = x >= 3 && y ? rows[(y - 1) * stride + x - 3] : 0;
+      const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+      const int predicted[] = {0, a, b, (a + b) / 2, pa <= pb && pa <= pc ? a : pb <= pc ? b : c};
+      rows[y * stride + x] = static_cast<unsigned char>(raw[y * (stride + 1) + 1 + x] + predicted[filter]);
+    }
+  }
+  return rows;
+}
+
 }  // namespace
+
+TEST_CASE("outputs: a PNG holds the image's pixels small or large", "[outputs]")
+{
+  // 64x48 is deflated in one piece, 1200x700 (2.5 MB of rows) in two halves on two threads.
+  for (const auto& [w, h] : {std::pair<uint32_t, uint32_t>{64, 48}, {1200, 700}}) {
+    INFO(w << "x" << h);
+    std::vector<uint32_t> rgba(size_t(w) * h);
+    uint32_t state = 46;
+    for (size_t i = 0; i < rgba.size(); ++i) {
+      state = state * 1664525u + 1013904223u;  // a smooth gradient with noise: matches and literals
+      rgba[i] = (i % w) * 255 / w | ((i / w) * 255 / h) << 8 | (state >> 28) << 16 | 0xFF000000u;
+    }
+    uint32_t width = 0, height = 0;
+    const std::vector<unsigned char> rows = pngRows(clr::encodePng("test.png", w, h, rgba.data()), width, height);
+    REQUIRE(width == w);
+    REQUIRE(height == h);
+    size_t differ = 0;
+    for (size_t i = 0; i < rgba.size(); ++i)
+      for (int c = 0; c < 3; ++c) differ += rows[3 * i + c] != ((rgba[i] >> (8 * c)) & 0xFF);
+    CHECK(differ == 0);
+  }
+}
 
 TEST_CASE("outputs: files are created with the process's umask", "[outputs]")
 {

@@ -345,6 +345,9 @@ TEST_CASE("views: --stats prints one JSON line for the run", "[views]")
   CHECK(std::stod(m[2].str()) > 0.0);
   CHECK(std::stod(m[2].str()) <= std::stod(m[1].str()));
   CHECK_THAT(r.out, Contains("\"write_ms\":"));
+  // The run's split, as one view's (cli.md, "Statistics").
+  for (const char* key : {"read_ms", "parse_ms", "build_ms", "encode_ms", "command_ms"})
+    CHECK_THAT(r.out, Contains(std::string("\"") + key + "\":"));
   CHECK(countFiles(dir) == 3);
 }
 

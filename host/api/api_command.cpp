@@ -5,11 +5,12 @@
 // scene-level calls (frame_request.h, quality.h, views.h).
 //
 // renderCommand checks arguments and output paths before any device work,
-// loads a file (quick checks first, then the import on a second thread
-// while the device's program builds; an import error is reported in
-// preference to a device error), renders, and writes every output through
+// loads a file (quick checks first, then the import and the scene's layout
+// on a second thread while the device's program builds; an import error is
+// reported in preference to a device error), renders, and writes every output through
 // a temporary file renamed into place, so a failure leaves none half-written.
 #include "pipeline/aov.h"
+#include "pipeline/layout.h"
 #include "api/api_impl.h"
 #include "render/camera.h"
 #include "render/frame_request.h"
@@ -54,6 +55,7 @@ std::string format(const char* fmt, Args... args)
 // Where a run's time went before and after its frames (--stats).
 struct RunTimes {
   double readMs = 0.0, parseMs = 0.0, buildMs = 0.0, encodeMs = 0.0;
+  double layoutMs = 0.0;  // the scene's layout, on the import's thread: part of prepare_ms
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 };
 
@@ -86,8 +88,9 @@ std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipelin
       "\"parse_ms\":%.3f,\"build_ms\":%.3f,\"encode_ms\":%.3f,\"total_ms\":%.3f%s%s}\n",
       median(idleMs), (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped,
       (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries,
-      pipeline.deviceBytes(), pipeline.prepareMs(), aaModeName(settings.samples, settings.shadeEverySample).c_str(),
-      settings.samples, pipeline.bytesPerPixel(), settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
+      pipeline.deviceBytes(), times.layoutMs + pipeline.prepareMs(),
+      aaModeName(settings.samples, settings.shadeEverySample).c_str(), settings.samples, pipeline.bytesPerPixel(),
+      settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
       settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective", traversalName(settings.traversal),
       depthModeName(depth.mode), jsonEscape(depth.reason).c_str(),
       settings.visibility == CLR_VISIBILITY_PAINTER ? "painter" : "zbuffer", times.readMs, times.parseMs, times.buildMs,
@@ -127,29 +130,45 @@ void warnAbout(const RenderArgs& args, const Mesh& mesh, StderrWarnings& warning
     warnings.add("ids", std::to_string(mesh.numTris()) + " triangles; --shade id encodes only 24 bits, ids wrap");
 }
 
-// The scene, and the device context with its frame program, at once (see
-// the file's contract); the context goes to `context`.
-Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context, StderrWarnings& warnings,
-                          RunTimes* times = nullptr)
+// A loaded scene, laid out (layout.h) for its upload.
+struct LoadedScene {
+  SceneLayout layout;
+  Bounds bounds;  // of the file's vertices
+};
+
+// The scene, laid out, and the device context with its frame program, at
+// once (see the file's contract); the context goes to `context`.
+LoadedScene loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& context, StderrWarnings& warnings,
+                                 RunTimes* times = nullptr)
 {
   RunTimes ignored;
   if (!times) times = &ignored;
-  Mesh mesh;
-  std::future<Mesh> importing;  // a file's import, when valid()
-  double importMs = 0.0;        // written by the import's thread, read after get()
+  // The file's import, then its bounds and layout; the mesh moves into the layout.
+  auto prepare = [times](Mesh mesh) {
+    LoadedScene scene;
+    scene.bounds = meshBounds(mesh);
+    const auto start = std::chrono::steady_clock::now();
+    scene.layout = layOutScene(std::move(mesh));
+    times->layoutMs = msSince(start);
+    return scene;
+  };
+  LoadedScene scene;
+  std::future<LoadedScene> importing;  // a file's import and layout, when valid()
+  double importMs = 0.0;               // written by the import's thread, read after get()
   if (args.scenePath.empty()) {
     const auto start = std::chrono::steady_clock::now();
-    mesh = defaultScene();
+    Mesh mesh = defaultScene();
     times->parseMs = msSince(start);
+    scene = prepare(std::move(mesh));
   } else {
     ModelFile file = checkSceneFile(args.scenePath);
     times->readMs = file.readMs;
     times->parseMs = file.checkMs;
-    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs] {
+    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs, prepare]() mutable {
       const auto start = std::chrono::steady_clock::now();
-      Mesh imported = importScene(file, args.assets);
+      Mesh imported = importScene(std::move(file), args.assets);
       importMs = msSince(start);
-      return imported;
+      return prepare(std::move(imported));
     });
   }
   try {
@@ -162,11 +181,11 @@ Mesh loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context>& cont
     throw;
   }
   if (importing.valid()) {
-    mesh = importing.get();
+    scene = importing.get();
     times->parseMs += importMs;
   }
-  warnAbout(args, mesh, warnings);
-  return mesh;
+  warnAbout(args, scene.layout.mesh, warnings);
+  return scene;
 }
 
 // `render --views`: one scene upload, then the shard's views in order, each
@@ -195,14 +214,15 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
   uint64_t largest = 0;
   for (size_t v : selected) largest = std::max<uint64_t>(largest, uint64_t(views[v].width) * views[v].height);
   checkHostMemory("--views " + userText(args.viewsPath) + ": frames in flight", largest * (3 * 4 + 15));
-  const Mesh mesh = loadSceneDuringBuild(args, context, warnings);
+  RunTimes times;
+  LoadedScene scene = loadSceneDuringBuild(args, context, warnings, &times);
   ClContext& cl = context->impl().frameContext();
-  const Bounds bounds = meshBounds(mesh);
+  const Bounds bounds = scene.bounds;
   const std::vector<Camera> cameras = frameViews(args.viewsPath, views, bounds);
 
   // Step 2: scene upload, once.
   Pipeline pipeline(cl);
-  pipeline.uploadScene(mesh);
+  pipeline.uploadScene(std::move(scene.layout));
 
   // Step 3: frames, rendered here and written by the writer thread. frame_ms
   // is camera set-up to the image copied into host memory (the writer keeps it),
@@ -248,13 +268,17 @@ std::string renderViews(const RenderArgs& args, std::unique_ptr<Context>& contex
   };
   auto lo = [](std::vector<double> ms) { return *std::min_element(ms.begin(), ms.end()); };
   auto hi = [](std::vector<double> ms) { return *std::max_element(ms.begin(), ms.end()); };
+  double encodeMs = 0.0;  // all of the writer thread's encodes and writes, overlapping the frames
+  for (double ms : writeMs) encodeMs += ms;
   return format(
       "{\"device\":\"%s\",\"views\":%zu,\"shard\":\"%u/%u\",\"frames\":%zu,\"startup_ms\":%.3f,"
       "\"prepare_ms\":%.3f,\"total_ms\":%.3f,\"frames_per_s\":%.3f,"
-      "\"frame_ms\":%.3f,\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"write_ms\":%.3f}\n",
+      "\"frame_ms\":%.3f,\"frame_ms_min\":%.3f,\"frame_ms_max\":%.3f,\"write_ms\":%.3f,"
+      "\"read_ms\":%.3f,\"parse_ms\":%.3f,\"build_ms\":%.3f,\"encode_ms\":%.3f,\"command_ms\":%.3f}\n",
       jsonEscape(cl.info.name).c_str(), views.size(), args.shard.index, args.shard.count, selected.size(), startupMs,
-      pipeline.prepareMs(), totalMs, totalMs > 0.0 ? selected.size() * 1000.0 / totalMs : 0.0, stat(frameMs, median),
-      stat(frameMs, lo), stat(frameMs, hi), stat(writeMs, median));
+      times.layoutMs + pipeline.prepareMs(), totalMs, totalMs > 0.0 ? selected.size() * 1000.0 / totalMs : 0.0,
+      stat(frameMs, median), stat(frameMs, lo), stat(frameMs, hi), stat(writeMs, median), times.readMs, times.parseMs,
+      times.buildMs, encodeMs, msSince(commandStart));
 }
 
 std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
@@ -266,14 +290,14 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
   if (!args.outPath.empty()) checkWritable(args.outPath);
   if (!args.aovPath.empty()) checkWritable(args.aovPath);
   StderrWarnings warnings;
-  const Mesh mesh = loadSceneDuringBuild(args, context, warnings, &times);
+  LoadedScene scene = loadSceneDuringBuild(args, context, warnings, &times);
   ClContext& cl = context->impl().frameContext();
-  const Bounds bounds = meshBounds(mesh);
+  const Bounds bounds = scene.bounds;
   const Camera camera = frameCamera(args.camera, bounds);
 
   // Step 2: scene upload (not part of the frame time).
   Pipeline pipeline(cl);
-  pipeline.uploadScene(mesh);
+  pipeline.uploadScene(std::move(scene.layout));
   DepthChoice depth;
   FrameSettings settings = makeFrameSettings(args, camera, args.width, args.height, bounds, &depth);
   if (!depth.warning.empty()) warnings.add("depth", depth.warning);

@@ -3,6 +3,7 @@
 
 #include "io/fast_off.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -80,21 +81,34 @@ bool readPlainBinaryPly(const std::string& bytes, Mesh& mesh)
   const unsigned char* const end = reinterpret_cast<const unsigned char*>(bytes.data()) + bytes.size();
   // Each face takes at least 13 bytes: the count is bounded by the body before anything is reserved.
   if (layout.faces > uint64_t(end - p) / 13) return false;
-  out.indices.reserve(3 * layout.faces);
+  // Triangles are written in place; a polygon's fan grows the array.
+  out.indices.resize(3 * layout.faces);
+  size_t written = 0;
   for (uint64_t f = 0; f < layout.faces; ++f) {
     if (p == end) return false;
     const unsigned k = *p++;
     if (k < 3 || size_t(end - p) < 4 * size_t(k)) return false;
+    if (written + 3 * size_t(k - 2) > out.indices.size())
+      out.indices.resize(std::max(2 * out.indices.size(), written + 3 * size_t(k - 2)));
+    uint32_t* to = out.indices.data() + written;
     uint32_t first = 0, previous = 0;
     for (unsigned j = 0; j < k; ++j, p += 4) {
       uint32_t index;
       std::memcpy(&index, p, 4);
       if (index >= n) return false;
       if (j == 0) first = index;
-      if (j >= 2) out.indices.insert(out.indices.end(), {first, previous, index});
+      if (j >= 2) {
+        to[0] = first;
+        to[1] = previous;
+        to[2] = index;
+        to += 3;
+      }
       previous = index;
     }
+    written += 3 * size_t(k - 2);
   }
+  out.indices.resize(written);
+  if (out.indices.capacity() > written + written / 4) out.indices.shrink_to_fit();
   if (p != end) return false;
   addImportDefaults(out);
   mesh = std::move(out);

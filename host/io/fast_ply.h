@@ -11,7 +11,7 @@
 // doubt (a face of fewer than 3 vertices, an index out of range, a
 // non-finite or huge coordinate, a body not exactly the header's size),
 // returns false without a word: assimp reads it, so every refusal keeps its
-// message. Normals are left for the caller (repairNormals).
+// message. Normals are left empty for the caller (repairNormals).
 #pragma once
 
 #include "io/scene.h"

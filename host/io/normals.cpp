@@ -20,24 +20,34 @@ void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals)
 {
   mesh.facts.normalsInFile = fileHasNormals;
   mesh.facts.normalsRepaired = 0;
-  // Step 1: the vertices triangles use whose normal is unusable.
+  // Step 1: the vertices triangles use, and how many of them have an unusable normal.
   const size_t n = mesh.numVerts();
   std::vector<bool> used(n, false);
   for (uint32_t i : mesh.indices) used[i] = true;
   mesh.normals.resize(3 * n, 0.0f);
-  std::vector<size_t> broken;
+  size_t usedCount = 0, brokenCount = 0;
   for (size_t v = 0; v < n; ++v)
-    if (used[v] && !usable(&mesh.normals[3 * v])) broken.push_back(v);
-  if (broken.empty()) return;
-  // Step 2: smoothed normals for all, kept only where the file's failed.
-  std::vector<float> fromFile = mesh.normals;
+    if (used[v]) {
+      ++usedCount;
+      if (!usable(&mesh.normals[3 * v])) ++brokenCount;
+    }
+  if (brokenCount == 0) return;
+  // Step 2: smoothed normals for all, kept only where the file's failed:
+  // the file's normals of the other vertices are set aside and put back.
+  std::vector<uint32_t> kept;
+  std::vector<float> keptNormals;
+  for (size_t v = 0; v < n; ++v)
+    if (!used[v] || usable(&mesh.normals[3 * v])) {
+      kept.push_back(uint32_t(v));
+      keptNormals.insert(keptNormals.end(), &mesh.normals[3 * v], &mesh.normals[3 * v] + 3);
+    }
   computeSmoothNormals(mesh);
-  std::swap(fromFile, mesh.normals);
+  for (size_t i = 0; i < kept.size(); ++i)
+    for (int k = 0; k < 3; ++k) mesh.normals[3 * size_t(kept[i]) + k] = keptNormals[3 * i + k];
   size_t replaced = 0;
-  for (size_t v : broken) {
-    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = fromFile[3 * v + k];
-    if (usable(&mesh.normals[3 * v])) ++replaced;
-  }
+  for (size_t v = 0; v < n; ++v)
+    if (used[v] && usable(&mesh.normals[3 * v])) ++replaced;
+  replaced -= usedCount - brokenCount;  // the used vertices whose file normal was kept
   if (!fileHasNormals || replaced == 0) return;
   mesh.facts.normalsRepaired = replaced;
   mesh.warnings.add("normals", userText(path) + ": " + std::to_string(replaced) + " of " + std::to_string(n) +

@@ -37,6 +37,7 @@
 #include <sstream>
 #include <strings.h>
 #include <sys/stat.h>
+#include <thread>
 
 namespace clr {
 
@@ -46,6 +47,11 @@ namespace {
 // differences of such coordinates still fit a float, so bounds, their
 // extent and the framing camera stay finite.
 constexpr float kMaxCoordinate = 1e18f;
+
+// Meshes of at least this many vertices normalise their smoothed normals on two threads.
+constexpr size_t kParallelVertices = 1 << 16;
+// How many triangles ahead the smoothed normals' sums fetch their vertices (computeSmoothNormals).
+constexpr size_t kPrefetch = 32;
 
 std::string formatVector(const aiVector3D& v)
 {
@@ -439,7 +445,7 @@ ModelFile checkSceneFile(const std::string& path)
   return file;
 }
 
-Mesh importScene(const ModelFile& file, const std::string& assets)
+Mesh importScene(ModelFile file, const std::string& assets)
 {
   const std::string& path = file.path;
   const AssetRoot root(path, assets);
@@ -449,6 +455,7 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
       ((file.format == "ply" && (readPlainBinaryPly(*file.bytes, direct) || readPlainAsciiPly(*file.bytes, direct))) ||
        (file.format == "off" && readPlainOff(*file.bytes, direct)) ||
        (file.format == "stl" && readPlainStl(*file.bytes, direct)))) {
+    file.bytes.reset();  // the last reference, unless the caller kept one
     repairNormals(direct, path, direct.facts.normalsInFile);
     return direct;
   }
@@ -525,34 +532,60 @@ Mesh importScene(const ModelFile& file, const std::string& assets)
 void computeSmoothNormals(Mesh& mesh)
 {
   // Step 1: weld vertices by equal position (meshoptimizer compares bytes:
-  // -0 becomes +0 first, as the two compare equal). Welded ids follow first
-  // occurrence.
+  // -0 becomes +0 first, as the two compare equal; a copy only where one
+  // occurs). Welded ids follow first occurrence.
   const size_t n = mesh.numVerts();
-  std::vector<float> keys(mesh.positions.size());
-  for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
+  std::vector<float> keys;
+  if (std::any_of(mesh.positions.begin(), mesh.positions.end(), [](float c) { return c == 0.0f && std::signbit(c); })) {
+    keys.resize(mesh.positions.size());
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
+  }
+  const float* weldKeys = keys.empty() ? mesh.positions.data() : keys.data();
   std::vector<uint32_t> weld(n);
   const size_t welded =
-      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, keys.data(), n, 3 * sizeof(float));
-  keys = {};
-  // Step 2: accumulate area-weighted face normals per welded vertex.
+      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, weldKeys, n, 3 * sizeof(float));
+  std::vector<float>().swap(keys);  // (v = {} would keep the capacity)
+  // Step 2: accumulate area-weighted face normals per welded vertex, in
+  // triangle order. The loads are random in a large mesh (a scan's faces
+  // are in no spatial order): the vertices of the triangle kPrefetch ahead
+  // and their welded ids are fetched early, and the sums they add to half
+  // that far ahead, so that the misses overlap.
   std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
   };
-  for (size_t t = 0; t < mesh.numTris(); ++t) {
-    const uint32_t* tri = &mesh.indices[3 * t];
+  const size_t tris = mesh.numTris();
+  const uint32_t* indices = mesh.indices.data();
+  for (size_t t = 0; t < tris; ++t) {
+    if (t + kPrefetch < tris)
+      for (const uint32_t* v = indices + 3 * (t + kPrefetch); v < indices + 3 * (t + kPrefetch + 1); ++v) {
+        __builtin_prefetch(&weld[*v]);
+        __builtin_prefetch(&mesh.positions[3 * size_t(*v)]);
+      }
+    if (t + kPrefetch / 2 < tris)
+      for (const uint32_t* v = indices + 3 * (t + kPrefetch / 2); v < indices + 3 * (t + kPrefetch / 2 + 1); ++v)
+        __builtin_prefetch(&sum[weld[*v]], 1);
+    const uint32_t* tri = indices + 3 * t;
     const glm::dvec3 faceNormal = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
     if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
     for (int k = 0; k < 3; ++k) sum[weld[tri[k]]] += faceNormal;
   }
-  // Step 3: normalise.
-  mesh.normals.assign(3 * n, 0.0f);
-  for (size_t v = 0; v < n; ++v) {
-    const glm::dvec3 s = sum[weld[v]];
-    const double len = glm::length(s);
-    if (!(len > 0.0)) continue;
-    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = float(s[k] / len);
+  // Step 3: normalise, a large mesh's halves on two threads.
+  mesh.normals.resize(3 * n);
+  auto normalise = [&](size_t lo, size_t hi) {
+    for (size_t v = lo; v < hi; ++v) {
+      const glm::dvec3 s = sum[weld[v]];
+      const double len = glm::length(s);
+      for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = len > 0.0 ? float(s[k] / len) : 0.0f;
+    }
+  };
+  if (n < kParallelVertices) {
+    normalise(0, n);
+    return;
   }
+  std::thread other([&] { normalise(n / 2, n); });
+  normalise(0, n / 2);
+  other.join();
 }
 
 Bounds meshBounds(const Mesh& mesh)

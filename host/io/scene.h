@@ -82,10 +82,11 @@ struct ModelFile {
 // loadScene in two steps, so that a caller can report a bad file at once
 // and import a good one while it does something else: checkSceneFile reads
 // the file and runs the quick checks (a readable, non-empty regular file;
-// model_checks.h), importScene the rest, on those bytes.
+// model_checks.h), importScene the rest, on those bytes. A file moved into
+// importScene lets its bytes go once the mesh no longer needs them.
 ModelFile checkSceneFile(const std::string& path);
 // `assets` as loadScene takes it.
-Mesh importScene(const ModelFile& file, const std::string& assets = "");
+Mesh importScene(ModelFile file, const std::string& assets = "");
 
 // For direct readers (fast_obj.h): `scene`'s materials appended to
 // mesh.materials (and their textures to mesh.textures) exactly as the

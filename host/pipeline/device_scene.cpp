@@ -65,12 +65,25 @@ static std::vector<float> clusterBounds(const Mesh& mesh)
 
 void DeviceScene::placeScene(const Mesh& fileMesh)
 {
-  SceneLayout layout = layOutScene(fileMesh, layoutOn_);
+  placeLaidOut(layOutScene(fileMesh, layoutOn_));
+}
+
+void DeviceScene::placeScene(Mesh&& fileMesh)
+{
+  placeLaidOut(layOutScene(std::move(fileMesh), layoutOn_));
+}
+
+void DeviceScene::placeLaidOut(SceneLayout&& layout)
+{
   scene_ = std::move(layout.mesh);
   fileTriHost_ = std::move(layout.fileTri);
   laidVertex_ = std::move(layout.laidVertex);
+  std::vector<uint32_t>().swap(layout.fileVertex);  // not kept
   oneMaterial_ = std::all_of(scene_.triMaterial.begin(), scene_.triMaterial.end(),
                              [&](uint32_t m) { return m == scene_.triMaterial[0]; });
+  triMaterials_ = !scene_.triMaterial.empty();
+  firstMaterial_ = triMaterials_ ? scene_.triMaterial[0] : 0;
+  if (oneMaterial_) std::vector<uint32_t>().swap(scene_.triMaterial);  // firstMaterial_ says it all
   ++sceneUploads_;
   resident_ = 0;
   fileOrder_ = true;
@@ -79,11 +92,18 @@ void DeviceScene::placeScene(const Mesh& fileMesh)
     fileTri_.reserve(1);  // FrameParams.fileOrder: no reader takes it
   else
     fileTri_.upload(fileTriHost_);
-  positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
-  indices_.upload(scene_.indices);
+  // The cluster bounds first, then each array uploaded and freed in turn
+  // (the host keeps the positions only for the file's own lines and
+  // points, file_primitives.cpp): host and device hold one array twice at most.
   const std::vector<float> bounds = cl_.lanes > 1 ? clusterBounds(scene_) : std::vector<float>(6, NAN);
   clusterBounds_.upload(bounds);
   clusterCount_.reserve(std::max<size_t>(1, bounds.size() / 6), true);
+  sceneVerts_ = scene_.numVerts();
+  sceneTris_ = scene_.numTris();
+  indices_.upload(scene_.indices);
+  std::vector<uint32_t>().swap(scene_.indices);  // (v = {} would keep the capacity)
+  positions_.uploadPadded(scene_.positions, 1);  // setup reads x, y, z of a vertex as one float4 (setup.cl)
+  if (scene_.lines.empty() && scene_.points.empty()) std::vector<float>().swap(scene_.positions);
   sceneMin_ = glm::vec3(INFINITY);
   sceneMax_ = glm::vec3(-INFINITY);
   for (size_t c = 0; c + 5 < bounds.size(); c += 6)
@@ -109,6 +129,9 @@ void DeviceScene::placeClipScene(const float* positions, size_t numVerts, const 
   sceneMin_ = glm::vec3(INFINITY);
   sceneMax_ = glm::vec3(-INFINITY);
   scene_ = Mesh{};
+  triMaterials_ = false;
+  sceneVerts_ = numVerts;
+  sceneTris_ = numTris;
   resident_ = 0;
 }
 
@@ -116,17 +139,18 @@ uint32_t DeviceScene::bindAttributes(const FrameSettings& settings)
 {
   const uint32_t mode = settings.shadeMode;
   const bool albedo = CLR_USES_ALBEDO(mode);
-  const bool materials = albedo && !scene_.materials.empty() && !scene_.triMaterial.empty();
+  const bool materials = albedo && !scene_.materials.empty() && triMaterials_;
   const bool textures = materials && scene_.hasTextures();
   const bool colors = CLR_NEEDS_COLORS(mode) && !scene_.colors.empty();
   // Step 1: upload what is missing, once.
   if (CLR_NEEDS_NORMALS(mode) && !(resident_ & kResidentNormals)) {
     normals_.upload(scene_.normals);
+    std::vector<float>().swap(scene_.normals);  // read only by this upload
     resident_ |= kResidentNormals;
   }
   if ((CLR_NEEDS_UVS(mode) || textures) && !(resident_ & kResidentUvs)) {
     // Meshes without texture coordinates read (0, 0).
-    uvs_.upload(scene_.uvs.empty() ? std::vector<float>(2 * scene_.numVerts(), 0.0f) : scene_.uvs);
+    uvs_.upload(scene_.uvs.empty() ? std::vector<float>(2 * sceneVerts_, 0.0f) : scene_.uvs);
     resident_ |= kResidentUvs;
   }
   if (colors && !(resident_ & kResidentColors)) {
@@ -137,7 +161,7 @@ uint32_t DeviceScene::bindAttributes(const FrameSettings& settings)
   const bool oneMaterial = materials && oneMaterial_;
   if (materials && !(resident_ & kResidentMaterials)) {
     if (oneMaterial) {
-      materials_.upload({scene_.materials[scene_.triMaterial[0]]});
+      materials_.upload({scene_.materials[firstMaterial_]});
     } else {
       triMaterial_.upload(scene_.triMaterial);
       materials_.upload(scene_.materials);

@@ -11,6 +11,7 @@
 #include "pipeline/buffer.h"
 #include "pipeline/device.h"
 #include "pipeline/frame_settings.h"
+#include "pipeline/layout.h"
 #include "io/scene.h"
 
 #include "kernels/shared.h"
@@ -51,6 +52,10 @@ class DeviceScene {
   // Lays a checked mesh out and uploads its positions, indices and cluster
   // bounds; the other attributes wait for bindAttributes.
   void placeScene(const Mesh& mesh);
+  // The same from a mesh it may consume (layOutScene's Mesh&& form).
+  void placeScene(Mesh&& mesh);
+  // Both placeScenes' upload of the laid-out scene.
+  void placeLaidOut(SceneLayout&& layout);
   // The library's clip-space positions (4 floats a vertex) and triangles, in the caller's order, no clusters.
   void placeClipScene(const float* positions, size_t numVerts, const uint32_t* indices, size_t numTris);
   // Uploads what this frame's shading reads and is not resident yet, and
@@ -62,14 +67,21 @@ class DeviceScene {
 
   ClContext& cl_;
   DeviceMemory memory_;
-  Mesh scene_;  // host copy, laid out: lazy uploads read it
+  // Host copy, laid out: lazy uploads read it. Its indices, its positions
+  // (unless it has lines or points), a triMaterial of one material and,
+  // once uploaded, its normals are freed: the device holds them
+  // (sceneVerts_ and sceneTris_ count them).
+  Mesh scene_;
+  size_t sceneVerts_ = 0, sceneTris_ = 0;
   bool layoutOn_ = true;
   double prepareMs_ = 0;
   uint64_t sceneUploads_ = 0;                       // counts placed scenes: part of PrefetchChooser's case
   std::vector<uint32_t> fileTriHost_, laidVertex_;  // the layout's maps (layout.h)
   bool fileOrder_ = false;                          // fileTriHost_ is the identity: fileTri_ is not bound
   uint32_t resident_ = 0;                           // kResident* bits
-  bool oneMaterial_ = true;                         // every triangle of scene_ has one material (bindAttributes)
+  bool triMaterials_ = false;                       // the scene came with a material per triangle (bindAttributes)
+  bool oneMaterial_ = true;                         // all of them firstMaterial_ (scene_.triMaterial then freed)
+  uint32_t firstMaterial_ = 0;
   DeviceBuffer<float> positions_, normals_, uvs_, colors_;
   DeviceBuffer<float> clusterBounds_;    // setup's clusters (shared.h), CPU work shape; one dummy bound on a GPU
   DeviceBuffer<uint32_t> clusterCount_;  // their setup counts' sums (shared.h), CPU work shape; else a dummy

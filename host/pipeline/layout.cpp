@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numeric>
 #include <random>
 
@@ -16,6 +17,10 @@ namespace clr {
 constexpr double kCoherentSteps = 8.0;
 // How many sorted triangles' vertices show whether welding pays (weldPays).
 constexpr size_t kWeldSample = 16384;
+// How many elements ahead the passes of random reads fetch what they will read.
+constexpr size_t kPrefetch = 16;
+// Passes over at least this many elements run on two threads (inHalves).
+constexpr size_t kParallelElements = 1 << 16;
 
 // Copies per-element arrays (`width` values per element) into the new order.
 template <typename T>
@@ -23,22 +28,40 @@ static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint3
 {
   if (from.empty()) return {};
   std::vector<T> out(order.size() * width);
-  for (size_t i = 0; i < order.size(); ++i)
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (i + kPrefetch < order.size()) __builtin_prefetch(&from[size_t(order[i + kPrefetch]) * width]);
     for (size_t k = 0; k < width; ++k) out[i * width + k] = from[size_t(order[i]) * width + k];
+  }
   return out;
 }
 
-// The mean distance between consecutive centroids in `order`.
-static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>& order)
+// Runs work(lo, hi) over [0, n) in two halves on two threads, where n is large enough to pay.
+template <typename Work>
+static void inHalves(size_t n, const Work& work)
 {
+  if (n < kParallelElements) {
+    work(size_t(0), n);
+    return;
+  }
+  std::future<void> other = std::async(std::launch::async, [&] { work(n / 2, n); });
+  work(size_t(0), n / 2);
+  other.get();
+}
+
+// The mean distance between consecutive centroids in `order` (null: the file's order).
+static double meanStep(const std::vector<float>& centroids, const std::vector<uint32_t>* order)
+{
+  const size_t n = centroids.size() / 3;
+  auto at = [&](size_t i) { return order ? size_t((*order)[i]) : i; };
   double sum = 0;
-  for (size_t i = 1; i < order.size(); ++i) {
-    const float* a = &centroids[3 * size_t(order[i - 1])];
-    const float* b = &centroids[3 * size_t(order[i])];
+  for (size_t i = 1; i < n; ++i) {
+    if (order && i + kPrefetch < n) __builtin_prefetch(&centroids[3 * at(i + kPrefetch)]);
+    const float* a = &centroids[3 * at(i - 1)];
+    const float* b = &centroids[3 * at(i)];
     sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
                      double(a[2] - b[2]) * (a[2] - b[2]));
   }
-  return order.size() > 1 ? sum / double(order.size() - 1) : 0.0;
+  return n > 1 ? sum / double(n - 1) : 0.0;
 }
 
 size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld)
@@ -78,17 +101,30 @@ static bool weldPays(const Mesh& file, const std::vector<uint32_t>& sortedIndice
   return weldVertices(sample, weld) < ids.size() - ids.size() / 64;
 }
 
-SceneLayout layOutScene(const Mesh& file, bool enabled)
+// Frees an array of the mesh the layout owns (a no-op for a borrowed one):
+// once its laid-out copy exists, the file's is not read again.
+template <typename T>
+static void release(Mesh* owned, std::vector<T> Mesh::*array)
 {
+  if (owned) std::vector<T>().swap(owned->*array);
+}
+
+// layOutScene's two forms: `file` borrowed (owned null), or owned (owned == &file), its arrays freed as they are laid
+// out.
+static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
+{
+  // Texture coordinates that are all +0 read as absent ones do (device_scene.h): an owned mesh's are not laid out.
+  if (owned && std::all_of(owned->uvs.begin(), owned->uvs.end(), [](float c) { return c == 0.0f && !std::signbit(c); }))
+    std::vector<float>().swap(owned->uvs);
   SceneLayout out;
   const size_t tris = file.numTris(), verts = file.numVerts();
-  out.fileTri.resize(tris);
-  std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
   // An index past the vertices (the loader rejects such files) keeps the
   // file's order: meshoptimizer may not see it.
   for (uint32_t i : file.indices) enabled = enabled && i < verts;
   if (!enabled || tris < 2) {
-    out.mesh = file;
+    out.mesh = owned ? std::move(*owned) : file;
+    out.fileTri.resize(tris);
+    std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
     out.fileVertex.resize(verts);
     std::iota(out.fileVertex.begin(), out.fileVertex.end(), 0u);
     out.laidVertex = out.fileVertex;
@@ -97,22 +133,43 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
   // Step 1: the triangles by the Morton order of their centroids (a
   // centroid that is not finite sorts as the origin).
   std::vector<float> centroids(3 * tris);
-  for (size_t t = 0; t < tris; ++t)
-    for (int a = 0; a < 3; ++a) {
-      float sum = 0.0f;
-      for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
-      centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
+  inHalves(tris, [&](size_t lo, size_t hi) {
+    for (size_t t = lo; t < hi; ++t) {
+      if (t + kPrefetch < hi)
+        for (int v = 0; v < 3; ++v)
+          __builtin_prefetch(&file.positions[3 * size_t(file.indices[3 * (t + kPrefetch) + v])]);
+      for (int a = 0; a < 3; ++a) {
+        float sum = 0.0f;
+        for (int v = 0; v < 3; ++v) sum += file.positions[3 * size_t(file.indices[3 * t + v]) + a];
+        centroids[3 * t + a] = std::isfinite(sum) ? sum / 3.0f : 0.0f;
+      }
     }
-  std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
-  meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
-  std::vector<uint32_t> sorted(tris);
-  for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  });
   // A file whose triangles already step between near neighbours keeps its
   // order (docs/architecture.md, "Scene layout and locality": the sort
   // slowed raster on such a file, whose order also served the depth skip).
-  const double fileStep = meanStep(centroids, out.fileTri), sortedStep = meanStep(centroids, sorted);
-  if (!(fileStep <= kCoherentSteps * sortedStep)) out.fileTri = std::move(sorted);
+  // The file's mean step is measured while the sort runs.
+  // (Futures, not threads: an exception on either side reaches the caller once both are done.)
+  std::future<double> fileStep = std::async(std::launch::async, [&] { return meanStep(centroids, nullptr); });
+  std::vector<uint32_t> sorted;  // laid-out triangle -> file's
+  {
+    std::vector<uint32_t> newTri(tris);  // file triangle -> laid-out
+    meshopt_spatialSortRemap(newTri.data(), centroids.data(), tris, 3 * sizeof(float));
+    sorted.resize(tris);
+    for (size_t t = 0; t < tris; ++t) sorted[newTri[t]] = uint32_t(t);
+  }
+  const double sortedStep = meanStep(centroids, &sorted);
+  const bool keepFileOrder = fileStep.get() <= kCoherentSteps * sortedStep;
+  std::vector<float>().swap(centroids);  // (v = {} would keep the capacity)
+  if (!keepFileOrder) {
+    out.fileTri = std::move(sorted);
+  } else {
+    out.fileTri.resize(tris);
+    std::iota(out.fileTri.begin(), out.fileTri.end(), 0u);
+  }
+  std::vector<uint32_t>().swap(sorted);
   std::vector<uint32_t> sortedIndices = gather(file.indices, out.fileTri, 3);
+  release(owned, &Mesh::indices);
   // Step 2: vertices equal in every attribute become one, where that pays (weldPays).
   std::vector<uint32_t> weld;  // file vertex -> welded; empty: none welded
   size_t unique = verts;
@@ -131,27 +188,55 @@ SceneLayout layOutScene(const Mesh& file, bool enabled)
     out.laidVertex[v] = newVertex[weld.empty() ? v : weld[v]];
     out.fileVertex[out.laidVertex[v]] = uint32_t(v);
   }
-  for (uint32_t& i : sortedIndices) i = newVertex[i];
-  // Step 4: the copy, field by field: a copy of the whole mesh first would also copy (and page in) the arrays
-  // replaced here, a quarter of a 10M-triangle upload's time.
+  std::vector<uint32_t>().swap(weld);
+  // Step 4: the copy, field by field (a copy of the whole mesh first would also copy, and page in, the arrays
+  // replaced here), the triangles' arrays on a second thread.
   static_assert(sizeof(Mesh) == 10 * sizeof(std::vector<float>) + sizeof(Warnings) + sizeof(MeshFacts),
                 "a new Mesh field must be copied or reordered here");
   Mesh& m = out.mesh;
-  m.lines = file.lines;
-  m.points = file.points;
-  m.materials = file.materials;
-  m.textures = file.textures;
-  m.warnings = file.warnings;
-  m.facts = file.facts;
-  m.indices = std::move(sortedIndices);
+  std::future<void> triangles = std::async(std::launch::async, [&] {
+    for (uint32_t& i : sortedIndices) i = newVertex[i];
+    m.indices = std::move(sortedIndices);
+    m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
+    release(owned, &Mesh::triMaterial);
+  });
   m.positions = gather(file.positions, out.fileVertex, 3);
+  release(owned, &Mesh::positions);
   m.normals = gather(file.normals, out.fileVertex, 3);
+  release(owned, &Mesh::normals);
   m.uvs = gather(file.uvs, out.fileVertex, 2);
+  release(owned, &Mesh::uvs);
   m.colors = gather(file.colors, out.fileVertex, 4);
-  m.triMaterial = gather(file.triMaterial, out.fileTri, 1);
+  release(owned, &Mesh::colors);
+  triangles.get();
+  if (owned) {
+    m.lines = std::move(owned->lines);
+    m.points = std::move(owned->points);
+    m.materials = std::move(owned->materials);
+    m.textures = std::move(owned->textures);
+    m.warnings = std::move(owned->warnings);
+    m.facts = std::move(owned->facts);
+  } else {
+    m.lines = file.lines;
+    m.points = file.points;
+    m.materials = file.materials;
+    m.textures = file.textures;
+    m.warnings = file.warnings;
+    m.facts = file.facts;
+  }
   for (uint32_t& v : m.lines) v = out.laidVertex[v];  // a file's own lines and points name vertices too
   for (uint32_t& v : m.points) v = out.laidVertex[v];
   return out;
+}
+
+SceneLayout layOutScene(const Mesh& file, bool enabled)
+{
+  return layOut(file, nullptr, enabled);
+}
+
+SceneLayout layOutScene(Mesh&& file, bool enabled)
+{
+  return layOut(file, &file, enabled);
 }
 
 Mesh shuffledTriangles(const Mesh& mesh, uint32_t seed)

@@ -31,6 +31,11 @@ struct SceneLayout {
 };
 
 SceneLayout layOutScene(const Mesh& file, bool enabled = true);
+// The same from a mesh the layout may consume: each of its arrays is freed
+// once laid out, so that the two copies of the scene never coexist whole;
+// texture coordinates that are all +0 are dropped (an absent array reads
+// as zeros).
+SceneLayout layOutScene(Mesh&& file, bool enabled = true);
 
 // Vertices equal in every attribute (position, normal, texture coordinates,
 // colour), bit for bit, as one (meshopt_generateVertexRemapMulti): assimp

@@ -157,11 +157,33 @@ Pipeline::Pipeline(ClContext& cl)
   initMicro();
 }
 
-void Pipeline::uploadScene(const Mesh& fileMesh)
+void Pipeline::uploadScene(const Mesh& mesh)
 {
   const auto start = std::chrono::steady_clock::now();
-  const Mesh& mesh = fileMesh;
-  // Step 1: validate the optional attributes against the vertices.
+  checkScene(mesh);
+  placeScene(mesh);
+  afterUpload(start);
+}
+
+void Pipeline::uploadScene(Mesh&& mesh)
+{
+  const auto start = std::chrono::steady_clock::now();
+  checkScene(mesh);
+  placeScene(std::move(mesh));
+  afterUpload(start);
+}
+
+void Pipeline::uploadScene(SceneLayout&& laidOut)
+{
+  const auto start = std::chrono::steady_clock::now();
+  checkScene(laidOut.mesh);
+  placeLaidOut(std::move(laidOut));
+  afterUpload(start);
+}
+
+void Pipeline::checkScene(const Mesh& mesh) const
+{
+  // The optional attributes against the vertices.
   if (cl_.clipInput) throw Error("uploadScene: this context's programs take clip-space positions (uploadClipScene)");
   if (mesh.numTris() > UINT32_MAX / CLR_MAX_SUBTRIS) throw Error("scene has too many triangles");
   if (mesh.normals.size() != mesh.positions.size() || (!mesh.uvs.empty() && mesh.uvs.size() != 2 * mesh.numVerts()) ||
@@ -177,13 +199,16 @@ void Pipeline::uploadScene(const Mesh& fileMesh)
     if (v >= mesh.numVerts()) throw Error("scene's point vertex " + std::to_string(v) + " out of range");
   for (const Material& m : mesh.materials)
     if (m.texture >= int64_t(mesh.textures.size())) throw Error("scene's material texture out of range");
-  // Step 2: the layout; what every mode reads, now; the rest when a frame reads it.
-  placeScene(fileMesh);
+}
+
+void Pipeline::afterUpload(std::chrono::steady_clock::time_point start)
+{
+  // The layout and what every mode reads are placed (placeScene); the rest waits for a frame that reads it.
   framedScene_ = false;
   paintOrder_.clear();
-  triCount_.reserve(mesh.numTris(), true);
-  params_.numVerts = uint32_t(scene_.numVerts());
-  params_.numTris = uint32_t(mesh.numTris());
+  triCount_.reserve(sceneTris_, true);
+  params_.numVerts = uint32_t(sceneVerts_);
+  params_.numTris = uint32_t(sceneTris_);
   cl_.queue.finish();
   prepareMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -22,6 +22,7 @@
 
 #include <glm/glm.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <string>
@@ -155,6 +156,12 @@ class Pipeline : public DeviceScene {
   // (readSetup's and readClipBary's triangles, readClipPositions' order,
   // paintOrder, the id shading and AOV) speaks of the file's order.
   void uploadScene(const Mesh& mesh);
+  // The same from a mesh the upload may consume (layOutScene's Mesh&&
+  // form): the caller's arrays are freed as they are laid out.
+  void uploadScene(Mesh&& mesh);
+  // The same from a scene laid out already (layOutScene, say on another
+  // thread while the program builds; setLayout does not apply): the uploads.
+  void uploadScene(SceneLayout&& laidOut);
   // Whether render() may size a frame from the last one's totals (default;
   // see runFrame). Off, every frame waits for its counts mid-frame.
   void setSpeculation(bool on) { speculationOn_ = on; }
@@ -238,6 +245,10 @@ class Pipeline : public DeviceScene {
   uint32_t visPlane() const { return numVisSlots_ * CLR_TILE_SIZE * CLR_TILE_SIZE; }
 
  private:
+  // uploadScene's checks of a mesh's arrays against one another, and its
+  // bookkeeping once the scene is placed (prepareMs from `start`).
+  void checkScene(const Mesh& mesh) const;
+  void afterUpload(std::chrono::steady_clock::time_point start);
   // beginFrame to resolve (and lines): the frame of both render()s.
   void runStages(const FrameSettings& settings);
   // The frame of both render()s, its image mapped (view) or read (rgba):

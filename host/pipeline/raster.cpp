@@ -22,9 +22,9 @@ namespace clr {
 
 void Pipeline::sortForPainter()
 {
-  // Step 1: this frame's clip positions (the indices are the host copy of the scene).
+  // Step 1: this frame's clip positions, and the indices (the host keeps none, device_scene.h).
   const uint32_t numTris = params_.numTris;
-  const std::vector<uint32_t>& indices = scene_.indices;
+  const std::vector<uint32_t> indices = indices_.download(3 * uint64_t(numTris));
   transform();
   const std::vector<cl_float4> clip = clipPos_.download(params_.numVerts);
   // Step 2: each triangle's farthest vertex depth (−inf when all w <= 0).
