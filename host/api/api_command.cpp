@@ -299,15 +299,16 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
 
   // Step 3: frames, timed from parameter upload to the image the host can
   // read where the device left it (an ImageView, as the bench times: on a
-  // CPU device no copy). With --stats, one untimed frame first: PoCL
-  // finishes compiling each kernel for its work-group size at its first
+  // CPU device no copy). With --stats and --frames, one untimed frame first:
+  // PoCL finishes compiling each kernel for its work-group size at its first
   // launch, which is program build, not frame time (reported as
-  // first_frame_ms).
+  // first_frame_ms). A single picture renders its one frame only, both the
+  // first and the timed one, so that total_ms is the time to picture.
   ImageView image;
   std::vector<double> frameMs;
   std::vector<clr::FrameStats> frames;
   double firstFrameMs = -1.0;
-  if (args.stats) {
+  if (args.stats && args.framesGiven) {
     const auto start = std::chrono::steady_clock::now();
     pipeline.render(settings, image);
     firstFrameMs = msSince(start);
@@ -317,6 +318,7 @@ std::string renderOne(const RenderArgs& args, std::unique_ptr<Context>& context)
     frames.push_back(pipeline.render(settings, image));
     frameMs.push_back(msSince(start));
   }
+  if (firstFrameMs < 0.0) firstFrameMs = frameMs.front();
 
   // Step 4: output, both files or neither.
   const auto encodeStart = std::chrono::steady_clock::now();
