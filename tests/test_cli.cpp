@@ -312,6 +312,24 @@ TEST_CASE("cli: renders a file and reports stats", "[cli]")
   CHECK(leftoverTemps(png) == 0);
 }
 
+TEST_CASE("cli: --stats of a single picture renders its one frame only", "[cli]")
+{
+  // Without --frames no warm-up frame runs: the picture's frame is both the
+  // first and the timed one, so both fields print the same measurement.
+  const std::string png = tmpDir() + "/single-stats.png";
+  const Run r = run("render -o '" + png + "' --size 32x24 --stats");
+  INFO(r.out + r.err);
+  REQUIRE(r.status == 0);
+  auto field = [&](const std::string& key) {
+    const size_t at = r.out.find("\"" + key + "\":");
+    REQUIRE(at != std::string::npos);
+    const size_t begin = at + key.size() + 3;
+    return r.out.substr(begin, r.out.find(',', begin) - begin);
+  };
+  CHECK(field("frames") == "1");
+  CHECK(field("first_frame_ms") == field("frame_ms"));
+}
+
 TEST_CASE("cli: stats that cannot be written are an error", "[cli]")
 {
   // A render ends without tearing the device down (main.cpp), flushing its
