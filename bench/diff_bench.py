@@ -83,7 +83,11 @@ def bench(name, render, params, iterations):
     ops = sorted({op for op in rows[0] if op != "total" for op in [op[0]]})
     parts = []
     for op in ops:
-        f, b = med([r.get((op, "forward"), 0.0) for r in rows]), med([r.get((op, "backward"), 0.0) for r in rows])
+        f = med([r.get((op, "forward"), 0.0) for r in rows])
+        if not any((op, "backward") in r for r in rows):  # no parameter upstream: autograd skips its backward
+            parts.append(f"{op} {f:.2f}/-")
+            continue
+        b = med([r.get((op, "backward"), 0.0) for r in rows])
         parts.append(f"{op} {f:.2f}/{b:.2f} (x{b / max(f, 1e-9):.2f})")
     print(f"{name:6s} forward {med([r['total'][0] for r in rows]):7.2f} ms  backward "
           f"{med([r['total'][1] for r in rows]):7.2f} ms  per op fwd/bwd ms (median): {'  '.join(parts)}")
