@@ -2,8 +2,11 @@
 // (io/scene.h) against the same call without one: the normals must be the
 // same bytes on meshes whose file positions repeat under different indices,
 // hold -0 and +0, NaN of different payloads, and triangles of zero area.
+// The layout's weld from the classes the normals leave (MeshFacts::
+// weldClasses) is its weld without them, for true, stale and wrong hints.
 #include "io/normals.h"
 #include "io/scene.h"
+#include "pipeline/layout.h"
 
 #include <catch2/catch.hpp>
 
@@ -11,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -66,6 +70,17 @@ bool sameBytes(const std::vector<float>& a, const std::vector<float>& b)
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+// Every array of two layouts, byte for byte.
+bool sameLayout(const clr::SceneLayout& a, const clr::SceneLayout& b)
+{
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+  };
+  return same(a.fileTri, b.fileTri) && same(a.fileVertex, b.fileVertex) && same(a.laidVertex, b.laidVertex) &&
+         same(a.mesh.positions, b.mesh.positions) && same(a.mesh.normals, b.mesh.normals) &&
+         same(a.mesh.uvs, b.mesh.uvs) && same(a.mesh.colors, b.mesh.colors) && same(a.mesh.indices, b.mesh.indices);
+}
+
 }  // namespace
 
 TEST_CASE("weld hint: hinted smooth normals are the un-hinted ones bit for bit", "[weld][direct]")
@@ -115,4 +130,54 @@ TEST_CASE("weld hint: repairNormals passes the hint and keeps the file's good no
   CHECK(sameBytes(plain.normals, hinted.normals));
   CHECK(plain.facts.normalsRepaired == hinted.facts.normalsRepaired);
   CHECK(plain.facts.normalsRepaired > 0);
+}
+
+TEST_CASE("weld hint: the layout welds the same with a true a stale or a wrong class hint", "[weld][layout]")
+{
+  // Un-shared corners of a few hundred finite positions, -0 among them: the
+  // normals' classes (-0 as +0) are coarser than the layout's bitwise weld.
+  Soup s = randomSoup(3, 200, 3000);
+  for (float& c : s.mesh.positions)
+    if (std::isnan(c)) c = 0.5f;
+  clr::computeSmoothNormals(s.mesh);
+  REQUIRE(s.mesh.facts.weldClasses.size() == s.mesh.numVerts());
+  clr::Mesh plain = s.mesh;
+  plain.facts.weldClasses.clear(), plain.facts.weldClassCount = 0;
+  const clr::SceneLayout expected = clr::layOutScene(plain);
+  REQUIRE(expected.mesh.numVerts() < s.mesh.numVerts() / 2);  // welded
+  const size_t n = s.mesh.numVerts();
+  auto withHint = [&](std::vector<uint32_t> classes, size_t count) {
+    clr::Mesh m = plain;
+    m.facts.weldClasses = std::move(classes), m.facts.weldClassCount = count;
+    return clr::layOutScene(m);
+  };
+  // The normals' own classes, where no -0 occurs, and where it does (coarser).
+  CHECK(sameLayout(expected, clr::layOutScene(s.mesh)));
+  clr::Mesh noNegativeZero = plain;
+  for (float& c : noNegativeZero.positions) c += 0.0f;
+  clr::computeSmoothNormals(noNegativeZero);
+  clr::Mesh bare = noNegativeZero;
+  bare.facts.weldClasses.clear(), bare.facts.weldClassCount = 0;
+  CHECK(sameLayout(clr::layOutScene(bare), clr::layOutScene(noNegativeZero)));
+  // Every vertex one class; classes renumbered backwards; all in one class
+  // (wrong); a class past the count; a hint of another mesh's size.
+  std::vector<uint32_t> own(n);
+  std::iota(own.begin(), own.end(), 0u);
+  CHECK(sameLayout(expected, withHint(own, n)));
+  std::vector<uint32_t> backwards = s.mesh.facts.weldClasses;
+  for (uint32_t& c : backwards) c = uint32_t(s.mesh.facts.weldClassCount - 1 - c);
+  CHECK(sameLayout(expected, withHint(backwards, s.mesh.facts.weldClassCount)));
+  CHECK(sameLayout(expected, withHint(std::vector<uint32_t>(n, 0), 1)));
+  std::vector<uint32_t> past = own;
+  past.back() = uint32_t(n);
+  CHECK(sameLayout(expected, withHint(past, n)));
+  CHECK(sameLayout(expected, withHint(std::vector<uint32_t>(n - 1, 0), 1)));
+  // The right classes, but one vertex's normal changed after they were made (stale).
+  clr::Mesh stale = s.mesh;
+  stale.normals[3 * (n / 2)] += 1.0f;
+  clr::Mesh staleBare = stale;
+  staleBare.facts.weldClasses.clear(), staleBare.facts.weldClassCount = 0;
+  CHECK(sameLayout(clr::layOutScene(staleBare), clr::layOutScene(stale)));
+  // The laid-out mesh keeps no hint: its vertices are not the file's.
+  CHECK(clr::layOutScene(s.mesh).mesh.facts.weldClasses.empty());
 }

@@ -606,6 +606,9 @@ void computeSmoothNormals(Mesh& mesh, const PositionIndex* hint)
   };
   if (!table.empty()) halves(welded, tabulate);
   halves(n, normalise);
+  // Un-shared vertices: the classes are the layout's weld hint.
+  mesh.facts.weldClassCount = table.empty() ? 0 : welded;
+  mesh.facts.weldClasses = table.empty() ? std::vector<uint32_t>() : std::move(weld);
 }
 
 Bounds meshBounds(const Mesh& mesh)

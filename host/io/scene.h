@@ -38,6 +38,11 @@ struct MeshFacts {
   size_t normalsRepaired = 0;                // of those, zero, NaN or missing ones recomputed (normals.h)
   bool uvsInFile = false;                    // some mesh had texture coordinates
   std::vector<std::string> missingTextures;  // texture files named but not read
+  // Where the smoothed normals welded un-shared vertices: a class per vertex
+  // (equal positions, -0 as +0, share one), `weldClassCount` of them; else
+  // empty. Only a hint: the layout checks it before it trusts it (layout.h).
+  std::vector<uint32_t> weldClasses;
+  size_t weldClassCount = 0;
 };
 
 struct Mesh {
