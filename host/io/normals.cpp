@@ -44,6 +44,8 @@ void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals, con
   computeSmoothNormals(mesh, hint);
   for (size_t i = 0; i < kept.size(); ++i)
     for (int k = 0; k < 3; ++k) mesh.normals[3 * size_t(kept[i]) + k] = keptNormals[3 * i + k];
+  // A kept normal may differ from its class's: the layout would check the classes in vain.
+  if (!kept.empty()) mesh.facts.weldClasses = {}, mesh.facts.weldClassCount = 0;
   size_t replaced = 0;
   for (size_t v = 0; v < n; ++v)
     if (used[v] && usable(&mesh.normals[3 * v])) ++replaced;
