@@ -130,6 +130,7 @@ TEST_CASE("weld hint: repairNormals passes the hint and keeps the file's good no
   CHECK(sameBytes(plain.normals, hinted.normals));
   CHECK(plain.facts.normalsRepaired == hinted.facts.normalsRepaired);
   CHECK(plain.facts.normalsRepaired > 0);
+  CHECK(hinted.facts.weldClasses.empty());  // kept file normals: no class hint for the layout
 }
 
 TEST_CASE("weld hint: the layout welds the same with a true a stale or a wrong class hint", "[weld][layout]")
