@@ -485,7 +485,8 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
   if (colored) out.colors.resize(4 * corners);
   out.indices.resize(3 * triangles);
   out.triMaterial.resize(triangles);
-  aiMatrix3x3 normalMatrix{aiMatrix4x4()};  // as scene.cpp transforms normals
+  std::vector<uint32_t> positionIndex(corners);  // each corner's v, for the weld (repairNormals)
+  aiMatrix3x3 normalMatrix{aiMatrix4x4()};       // as scene.cpp transforms normals
   normalMatrix.Inverse().Transpose();
   const size_t stride = strideOf(form);
   std::atomic<bool> inRange{true};
@@ -502,6 +503,7 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
         const int64_t v = src[0];
         if (v < 0 || uint64_t(v) >= vBase[n]) return void(inRange = false);
         std::copy_n(&positions[3 * size_t(v)], 3, &out.positions[3 * corner]);
+        positionIndex[corner] = uint32_t(v);
         if (colored) {
           std::copy_n(&colors[3 * size_t(v)], 3, &out.colors[4 * corner]);
           out.colors[4 * corner + 3] = 1.0f;
@@ -548,7 +550,8 @@ bool readPlainObj(const std::string& path, const std::string& bytes, const Asset
     scene.mMaterials[scene.mNumMaterials++] = mat;
   }
   convertMaterials(path, root, scene, colored != 0, out);
-  repairNormals(out, path, hasNormal(form));
+  const PositionIndex hint{positions.data(), vBase[n], positionIndex.data()};
+  repairNormals(out, path, hasNormal(form), &hint);
   mesh = std::move(out);
   return true;
 }

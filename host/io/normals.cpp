@@ -16,7 +16,7 @@ bool usable(const float* n)
 
 }  // namespace
 
-void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals)
+void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals, const PositionIndex* hint)
 {
   mesh.facts.normalsInFile = fileHasNormals;
   mesh.facts.normalsRepaired = 0;
@@ -41,9 +41,11 @@ void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals)
       kept.push_back(uint32_t(v));
       keptNormals.insert(keptNormals.end(), &mesh.normals[3 * v], &mesh.normals[3 * v] + 3);
     }
-  computeSmoothNormals(mesh);
+  computeSmoothNormals(mesh, hint);
   for (size_t i = 0; i < kept.size(); ++i)
     for (int k = 0; k < 3; ++k) mesh.normals[3 * size_t(kept[i]) + k] = keptNormals[3 * i + k];
+  // A kept normal may differ from its class's: the layout would check the classes in vain.
+  if (!kept.empty()) mesh.facts.weldClasses = {}, mesh.facts.weldClassCount = 0;
   size_t replaced = 0;
   for (size_t v = 0; v < n; ++v)
     if (used[v] && usable(&mesh.normals[3 * v])) ++replaced;

@@ -17,7 +17,8 @@ namespace clr {
 // Repairs mesh.normals in place and records the count in mesh.facts. When
 // the file had normals (fileHasNormals) and some were replaced, one warning
 // naming `path` and the count goes to mesh.warnings; a file with none at
-// all gets smoothed normals without a warning.
-void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals);
+// all gets smoothed normals without a warning. `hint` (scene.h) as
+// computeSmoothNormals takes it.
+void repairNormals(Mesh& mesh, const std::string& path, bool fileHasNormals, const PositionIndex* hint = nullptr);
 
 }  // namespace clr

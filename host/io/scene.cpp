@@ -529,27 +529,37 @@ Mesh importScene(ModelFile file, const std::string& assets)
   return std::move(state.mesh);
 }
 
-void computeSmoothNormals(Mesh& mesh)
+void computeSmoothNormals(Mesh& mesh, const PositionIndex* hint)
 {
   // Step 1: weld vertices by equal position (meshoptimizer compares bytes:
   // -0 becomes +0 first, as the two compare equal; a copy only where one
-  // occurs). Welded ids follow first occurrence.
+  // occurs). With a hint the file's positions are welded instead and vertex
+  // v takes the class of its position index[v]: v's key is that position's
+  // key, so key(v) = key(w) exactly when their positions' classes agree.
   const size_t n = mesh.numVerts();
+  const float* source = hint ? hint->positions : mesh.positions.data();
+  const size_t keyCount = hint ? hint->count : n;
   std::vector<float> keys;
-  if (std::any_of(mesh.positions.begin(), mesh.positions.end(), [](float c) { return c == 0.0f && std::signbit(c); })) {
-    keys.resize(mesh.positions.size());
-    for (size_t i = 0; i < keys.size(); ++i) keys[i] = mesh.positions[i] + 0.0f;
+  if (std::any_of(source, source + 3 * keyCount, [](float c) { return c == 0.0f && std::signbit(c); })) {
+    keys.resize(3 * keyCount);
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = source[i] + 0.0f;
   }
-  const float* weldKeys = keys.empty() ? mesh.positions.data() : keys.data();
+  const float* weldKeys = keys.empty() ? source : keys.data();
   std::vector<uint32_t> weld(n);
+  std::vector<uint32_t> keyWeld(hint ? keyCount : 0);
+  uint32_t* remap = hint ? keyWeld.data() : weld.data();
   const size_t welded =
-      n == 0 ? 0 : meshopt_generateVertexRemap(weld.data(), nullptr, n, weldKeys, n, 3 * sizeof(float));
+      keyCount == 0 ? 0 : meshopt_generateVertexRemap(remap, nullptr, keyCount, weldKeys, keyCount, 3 * sizeof(float));
   std::vector<float>().swap(keys);  // (v = {} would keep the capacity)
+  if (hint)
+    for (size_t v = 0; v < n; ++v) weld[v] = keyWeld[hint->index[v]];
+  std::vector<uint32_t>().swap(keyWeld);
   // Step 2: accumulate area-weighted face normals per welded vertex, in
-  // triangle order. The loads are random in a large mesh (a scan's faces
-  // are in no spatial order): the vertices of the triangle kPrefetch ahead
-  // and their welded ids are fetched early, and the sums they add to half
-  // that far ahead, so that the misses overlap.
+  // triangle order (whatever the classes' numbers, each sum adds the same
+  // terms in the same order). The loads are random in a large mesh (a
+  // scan's faces are in no spatial order): the vertices of the triangle
+  // kPrefetch ahead and their welded ids are fetched early, and the sums
+  // they add to half that far ahead, so that the misses overlap.
   std::vector<glm::dvec3> sum(welded, glm::dvec3(0.0));
   auto pos = [&](uint32_t v) {
     return glm::dvec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
@@ -570,22 +580,35 @@ void computeSmoothNormals(Mesh& mesh)
     if (!std::isfinite(faceNormal.x + faceNormal.y + faceNormal.z)) continue;
     for (int k = 0; k < 3; ++k) sum[weld[tri[k]]] += faceNormal;
   }
-  // Step 3: normalise, a large mesh's halves on two threads.
+  // Step 3: normalise, a large mesh's halves on two threads. Where the
+  // vertices outnumber the classes twice over (un-shared vertices), each
+  // class is normalised once and copied: the same operations, the same bits.
+  auto unit = [](const glm::dvec3& s, float* out) {
+    const double len = glm::length(s);
+    for (int k = 0; k < 3; ++k) out[k] = len > 0.0 ? float(s[k] / len) : 0.0f;
+  };
+  std::vector<float> table(2 * welded <= n ? 3 * welded : 0);
+  auto tabulate = [&](size_t lo, size_t hi) {
+    for (size_t w = lo; w < hi; ++w) unit(sum[w], &table[3 * w]);
+  };
   mesh.normals.resize(3 * n);
   auto normalise = [&](size_t lo, size_t hi) {
-    for (size_t v = lo; v < hi; ++v) {
-      const glm::dvec3 s = sum[weld[v]];
-      const double len = glm::length(s);
-      for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = len > 0.0 ? float(s[k] / len) : 0.0f;
-    }
+    if (table.empty())
+      for (size_t v = lo; v < hi; ++v) unit(sum[weld[v]], &mesh.normals[3 * v]);
+    else
+      for (size_t v = lo; v < hi; ++v) std::copy_n(&table[3 * size_t(weld[v])], 3, &mesh.normals[3 * v]);
   };
-  if (n < kParallelVertices) {
-    normalise(0, n);
-    return;
-  }
-  std::thread other([&] { normalise(n / 2, n); });
-  normalise(0, n / 2);
-  other.join();
+  auto halves = [](size_t count, const auto& work) {
+    if (count < kParallelVertices) return work(0, count);
+    std::thread other([&] { work(count / 2, count); });
+    work(0, count / 2);
+    other.join();
+  };
+  if (!table.empty()) halves(welded, tabulate);
+  halves(n, normalise);
+  // Un-shared vertices: the classes are the layout's weld hint.
+  mesh.facts.weldClassCount = table.empty() ? 0 : welded;
+  mesh.facts.weldClasses = table.empty() ? std::vector<uint32_t>() : std::move(weld);
 }
 
 Bounds meshBounds(const Mesh& mesh)

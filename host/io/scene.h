@@ -38,6 +38,11 @@ struct MeshFacts {
   size_t normalsRepaired = 0;                // of those, zero, NaN or missing ones recomputed (normals.h)
   bool uvsInFile = false;                    // some mesh had texture coordinates
   std::vector<std::string> missingTextures;  // texture files named but not read
+  // Where the smoothed normals welded un-shared vertices: a class per vertex
+  // (equal positions, -0 as +0, share one), `weldClassCount` of them; else
+  // empty. Only a hint: the layout checks it before it trusts it (layout.h).
+  std::vector<uint32_t> weldClasses;
+  size_t weldClassCount = 0;
 };
 
 struct Mesh {
@@ -96,8 +101,19 @@ void convertMaterials(const std::string& path, const AssetRoot& root, const aiSc
 // The built-in scene shipped in the binary (procedural, no file).
 Mesh defaultScene();
 
-// Area-weighted vertex normals, smoothed across vertices at equal positions.
-void computeSmoothNormals(Mesh& mesh);
+// Where a direct reader took each vertex's position from: vertex v's
+// position is positions[3 * index[v] ..] of the file's `count` positions,
+// bit for bit or differing only in the sign of a zero. Welding those
+// (fewer) positions gives the same classes as welding the vertices.
+struct PositionIndex {
+  const float* positions = nullptr;  // 3 per file position
+  size_t count = 0;
+  const uint32_t* index = nullptr;  // 1 per mesh vertex, each < count
+};
+
+// Area-weighted vertex normals, smoothed across vertices at equal positions
+// (equal bytes once -0 is +0); `hint`, when given, only makes the weld cheaper.
+void computeSmoothNormals(Mesh& mesh, const PositionIndex* hint = nullptr);
 
 // Bounds of the finite vertex positions.
 Bounds meshBounds(const Mesh& mesh);

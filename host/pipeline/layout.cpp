@@ -5,7 +5,9 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 #include <future>
 #include <numeric>
 #include <random>
@@ -79,6 +81,50 @@ size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld)
   if (verts == 0) return 0;
   return meshopt_generateVertexRemapMulti(weld.data(), every.data(), verts + 2 - (verts + 2) % 3, verts, streams.data(),
                                           streams.size());
+}
+
+// Whether vertices a and b are equal in every attribute, bit for bit.
+static bool sameVertex(const Mesh& mesh, size_t a, size_t b)
+{
+  auto same = [&](const std::vector<float>& array, size_t width) {
+    return array.empty() || std::memcmp(&array[a * width], &array[b * width], width * sizeof(float)) == 0;
+  };
+  return same(mesh.positions, 3) && same(mesh.normals, 3) && same(mesh.uvs, 2) && same(mesh.colors, 4);
+}
+
+// weldVertices' result from a hint (MeshFacts::weldClasses), or false where
+// the hint does not hold. Every vertex is checked equal to the first vertex
+// of its class, and those first vertices, in vertex order, are welded by
+// meshoptimizer: v and w weld exactly when their classes' first vertices
+// are equal, that is when v and w are; the first vertex of each welded one
+// is a class's first, so the numbering (first appearance) is the same too.
+static bool weldByClasses(const Mesh& mesh, std::vector<uint32_t>& weld, size_t& unique)
+{
+  const std::vector<uint32_t>& classes = mesh.facts.weldClasses;
+  const size_t verts = mesh.numVerts(), count = mesh.facts.weldClassCount;
+  if (classes.size() != verts || count == 0 || count > verts) return false;
+  std::vector<uint32_t> first(count, ~0u), firsts;
+  for (size_t v = 0; v < verts; ++v) {
+    if (classes[v] >= count) return false;
+    if (first[classes[v]] == ~0u) first[classes[v]] = uint32_t(v), firsts.push_back(uint32_t(v));
+  }
+  std::atomic<bool> hold{true};
+  inHalves(verts, [&](size_t lo, size_t hi) {
+    for (size_t v = lo; v < hi && hold; ++v)
+      if (!sameVertex(mesh, v, first[classes[v]])) hold = false;
+  });
+  if (!hold) return false;
+  Mesh sample;
+  sample.positions = gather(mesh.positions, firsts, 3);
+  sample.normals = gather(mesh.normals, firsts, 3);
+  sample.uvs = gather(mesh.uvs, firsts, 2);
+  sample.colors = gather(mesh.colors, firsts, 4);
+  std::vector<uint32_t> sampleWeld;
+  unique = weldVertices(sample, sampleWeld);
+  for (size_t i = 0; i < firsts.size(); ++i) first[classes[firsts[i]]] = sampleWeld[i];  // class -> welded
+  weld.resize(verts);
+  for (size_t v = 0; v < verts; ++v) weld[v] = first[classes[v]];
+  return true;
 }
 
 // Whether welding pays: in a mesh of more vertices than triangles (faces with vertices of their own have two or three
@@ -174,7 +220,7 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
   std::vector<uint32_t> weld;  // file vertex -> welded; empty: none welded
   size_t unique = verts;
   if (weldPays(file, sortedIndices)) {
-    unique = weldVertices(file, weld);
+    if (!weldByClasses(file, weld, unique)) unique = weldVertices(file, weld);
     for (uint32_t& i : sortedIndices) i = weld[i];
   }
   // Step 3: the welded vertices in the order the sorted triangles first use them, then the unused ones.
@@ -224,7 +270,8 @@ static SceneLayout layOut(const Mesh& file, Mesh* owned, bool enabled)
     m.warnings = file.warnings;
     m.facts = file.facts;
   }
-  for (uint32_t& v : m.lines) v = out.laidVertex[v];  // a file's own lines and points name vertices too
+  m.facts.weldClasses = {}, m.facts.weldClassCount = 0;  // (of the file's vertices, not of these)
+  for (uint32_t& v : m.lines) v = out.laidVertex[v];     // a file's own lines and points name vertices too
   for (uint32_t& v : m.points) v = out.laidVertex[v];
   return out;
 }

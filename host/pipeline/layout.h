@@ -42,7 +42,9 @@ SceneLayout layOutScene(Mesh&& file, bool enabled = true);
 // gives each face of an OBJ, STL or Blender file vertices of its own, which
 // a frame would otherwise hold and gather two or three times over. Sets
 // weld[file vertex] = its distinct vertex, numbered in order of first
-// appearance, and returns how many there are.
+// appearance, and returns how many there are. The layout's weld starts from
+// a mesh's MeshFacts::weldClasses where every vertex proves equal to its
+// class's first, welding only those first vertices: the same result.
 size_t weldVertices(const Mesh& mesh, std::vector<uint32_t>& weld);
 
 // A copy of a mesh with its triangles in a random order (a Fisher-Yates
