@@ -166,9 +166,11 @@ double shortNumber(std::mt19937& rng, int range)
   return double(int64_t(rng() % uint32_t(2000 * range + 1)) - 1000 * range) / 1000.0;
 }
 
-// A random scene: the GLB, or with `uri` set the text glTF (its buffer in
-// `bin` to be written as `*uri`, or a data uri when `*uri` is empty).
-std::string generate(uint32_t seed, const std::string* uri = nullptr, std::string* bin = nullptr)
+// A random scene: the GLB, or with `uri` set the text glTF, the files it
+// names (its buffer as `*uri`, unless that is empty: a data uri; some
+// images) in `files`, names and bytes.
+using Files = std::vector<std::pair<std::string, std::string>>;
+std::string generate(uint32_t seed, const std::string* uri = nullptr, Files* files = nullptr)
 {
   std::mt19937 rng(seed);
   GlbWriter w;
@@ -178,6 +180,12 @@ std::string generate(uint32_t seed, const std::string* uri = nullptr, std::strin
     std::string tga(18, '\0');
     tga[2] = 2, tga[12] = char(1 + i), tga[14] = 2, tga[16] = 24;
     for (int t = 0; t < 2 * (1 + i); ++t) tga += std::string{char(rng()), char(rng()), char(rng())};
+    if (files && i % 2) {  // a file beside the model
+      const std::string name = "image-" + std::to_string(seed) + "-" + std::to_string(i) + ".tga";
+      files->emplace_back(name, tga);
+      w.doc["images"].push_back({{"uri", name}});
+      continue;
+    }
     w.accessor(tga.data(), tga.size(), 5121, tga.size(), "SCALAR");  // its view; the accessor stays unused
     w.doc["images"].push_back({{"bufferView", w.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
   }
@@ -275,7 +283,7 @@ std::string generate(uint32_t seed, const std::string* uri = nullptr, std::strin
   w.doc["scene"] = 0;
   if (!uri) return w.finish();
   const std::string text = w.finishText(*uri);
-  *bin = w.bin;
+  if (!uri->empty()) files->emplace_back(*uri, w.bin);
   return text;
 }
 
@@ -344,9 +352,10 @@ TEST_CASE("fast gltf: every glTF the direct reader takes loads byte for byte as 
     const std::string uri = seed % 3 == 0   ? ""
                             : seed % 3 == 1 ? "scene.bin"
                                             : "buffers/scene-" + std::to_string(seed) + ".bin";
-    std::string bin;
-    const std::string text = generate(seed, &uri, &bin);
-    if (!uri.empty()) std::ofstream(dir + "/" + uri, std::ios::binary | std::ios::trunc) << bin;
+    Files named;
+    const std::string text = generate(seed, &uri, &named);
+    for (const auto& [name, bytes] : named)
+      std::ofstream(dir + "/" + name, std::ios::binary | std::ios::trunc) << bytes;
     std::ofstream(dir + "/scene.gltf", std::ios::binary | std::ios::trunc) << text;
     ++files;
     taken += checkBothWays(dir + "/scene.gltf");
@@ -364,9 +373,10 @@ TEST_CASE("fast gltf: a buffer file outside the model folder is refused as throu
   std::filesystem::create_directories(dir + "/model");
   std::filesystem::create_directories(dir + "/elsewhere");
   const std::string uri = "linked/scene.bin";
-  std::string bin;
-  const std::string text = generate(7, &uri, &bin);
-  std::ofstream(dir + "/elsewhere/scene.bin", std::ios::binary) << bin;
+  Files named;
+  const std::string text = generate(7, &uri, &named);
+  for (const auto& [name, bytes] : named)
+    std::ofstream(dir + (name == uri ? "/elsewhere/scene.bin" : "/model/" + name), std::ios::binary) << bytes;
   REQUIRE(symlink((dir + "/elsewhere").c_str(), (dir + "/model/linked").c_str()) == 0);
   const std::string path = dir + "/model/scene.gltf";
   std::ofstream(path, std::ios::binary) << text;

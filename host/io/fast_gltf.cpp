@@ -98,11 +98,12 @@ bool plainNumbers(const char* p, const char* e)
   return true;
 }
 
-// `object` is an object whose keys are all in `allowed`.
+// `object` is an object whose keys are all in `allowed`, its name a string.
 bool only(const Json& object, std::initializer_list<const char*> allowed)
 {
   if (!object.is_object()) return false;
   for (const auto& item : object.items()) {
+    if (item.key() == "name" && !item.value().is_string()) return false;  // assimp refuses it
     bool found = false;
     for (const char* key : allowed) found = found || item.key() == key;
     if (!found) return false;
@@ -205,6 +206,18 @@ const char* accessor(const Json& doc, const char* bin, uint64_t bufferLength, si
   return bin + viewOffset + offset;
 }
 
+// A uri naming a file beside the model as both readers resolve it: letters,
+// digits, '.', '_', '-' and '/', relative, no ".." part (no escape to decode).
+bool plainUri(const Json& uri)
+{
+  if (!uri.is_string()) return false;
+  const std::string& s = uri.get_ref<const std::string&>();
+  if (s.empty() || s[0] == '/' || s.find("..") != std::string::npos) return false;
+  for (const char c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && !std::strchr("._-/", c)) return false;
+  return true;
+}
+
 class Glb {
  public:
   Glb(const Json& doc, const char* bin, uint64_t bufferLength) : doc_(doc), bin_(bin), bufferLength_(bufferLength) {}
@@ -267,7 +280,10 @@ class Glb {
       mat->AddProperty(&colour, 1, AI_MATKEY_BASE_COLOR);
       if (pbr && pbr->contains("baseColorTexture")) {
         const Json& texture = doc_["textures"][(*pbr)["baseColorTexture"]["index"].get<size_t>()];
-        aiString uri("*" + std::to_string(imageIndex_[texture["source"].get<size_t>()]));
+        // An embedded image by its index ("*N"), a file by its uri, as assimp names them.
+        const size_t source = texture["source"].get<size_t>();
+        aiString uri(imageIndex_[source] >= 0 ? "*" + std::to_string(imageIndex_[source])
+                                              : doc_["images"][source]["uri"].get<std::string>());
         int wrap[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
         if (texture.contains("sampler")) {
           const Json& sampler = doc_["samplers"][texture["sampler"].get<size_t>()];
@@ -364,8 +380,16 @@ class Glb {
         !only(doc_["samplers"][sampler], {"wrapS", "wrapT", "magFilter", "minFilter", "name"}))
       return false;
     if (imageIndex_.size() < count("images")) imageIndex_.assign(count("images"), -1);
-    if (imageIndex_[image] >= 0) return true;
+    if (imageIndex_[image] != -1) return true;
     const Json& img = doc_["images"][image];
+    if (img.contains("uri")) {
+      // A file: scene.cpp opens it under the model-folder rule, as for assimp's import.
+      if (!only(img, {"uri", "mimeType", "name"}) || !plainUri(img["uri"]) ||
+          (img.contains("mimeType") && !img["mimeType"].is_string()))
+        return false;
+      imageIndex_[image] = -2;
+      return true;
+    }
     size_t view = 0;
     if (!only(img, {"bufferView", "mimeType", "name"}) || !index(img, "bufferView", count("bufferViews"), view) ||
         !img.contains("mimeType") || !img["mimeType"].is_string())
@@ -486,7 +510,7 @@ class Glb {
   std::vector<bool> meshRead_;
   std::vector<long> materialIndex_;  // file index: assimp's index, -1 unused
   std::vector<size_t> materials_;    // assimp's order: file indices
-  std::vector<long> imageIndex_;     // file index: assimp's embedded texture index, -1 unused
+  std::vector<long> imageIndex_;     // file index: assimp's embedded texture index, -1 unused, -2 a file
   std::vector<std::pair<const char*, size_t>> images_;
   aiScene scene_;  // the materials and textures as assimp's importer makes them
   bool anyNormals_ = false;
@@ -529,11 +553,8 @@ bool readBuffer(const std::string& path, const Json& buffer, const AssetRoot& ro
     out.resize(size_t(length));
     return true;
   }
-  // A plain relative name: letters, digits, '.', '_', '-' and '/', no ".." part, no folder of its own to resolve.
-  if (uri.empty() || uri[0] == '/' || uri.find("..") != std::string::npos || path.find('\\') != std::string::npos)
-    return false;
-  for (const char c : uri)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && !std::strchr("._-/", c)) return false;
+  // A plain relative name, beside the model (a path with '\\' could resolve otherwise).
+  if (!plainUri(buffer["uri"]) || path.find('\\') != std::string::npos) return false;
   const size_t slash = path.rfind('/');
   const std::string file = (slash == std::string::npos ? "" : path.substr(0, slash + 1)) + uri;
   try {

@@ -15,7 +15,8 @@
 // TEXCOORD_0 accessors, packed or interleaved; u8, u16 or u32 indices, or none;
 // triangle primitives; nodes with a mesh, children and a transform;
 // materials with a baseColorFactor and a baseColorTexture embedded in the
-// buffer (its sampler's wrap modes). Any other file (external images, skins, morph
+// buffer or a file named by a plain relative uri, which scene.cpp opens as
+// for assimp's import (its sampler's wrap modes). Any other file (image data uris, skins, morph
 // targets, cameras, extensions, sparse accessors, a JSON
 // number assimp's parser could round otherwise, an index out of range)
 // returns false without a word: assimp reads it, so every refusal keeps its
