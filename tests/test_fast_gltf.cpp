@@ -386,7 +386,8 @@ TEST_CASE("fast gltf: a buffer file outside the model folder is refused as throu
   CHECK(error == load(path, false, assimp));
   clr::Mesh mesh;
   CHECK_FALSE(clr::readPlainGltf(path, text, clr::AssetRoot(path, ""), mesh));
-  // --assets any: read, and by the direct reader.
+  // --assets any or the folder: read, and by the direct reader.
   CHECK(checkBothWays(path, clr::kAnyAssets));
+  CHECK(checkBothWays(path, dir + "/elsewhere"));
   CHECK(clr::readPlainGltf(path, text, clr::AssetRoot(path, clr::kAnyAssets), mesh));
 }
