@@ -1,9 +1,11 @@
-// test_fast_gltf.cpp — the direct GLB reader (io/fast_gltf.h) against its
-// oracle, assimp's path: for every GLB of assimp's test models and for
+// test_fast_gltf.cpp — the direct GLB and glTF reader (io/fast_gltf.h)
+// against its oracle, assimp's path: for every GLB and glTF 2 file of
+// assimp's test models and for
 // generated scenes (node trees with matrices and TRS transforms, shared
 // nodes, several primitives, u8/u16/u32 or no indices, normals, texture
 // coordinates, used and unused materials), a file the direct reader takes
-// must give a Mesh byte for byte the same as assimp's path gives.
+// must give a Mesh byte for byte the same as assimp's path gives, and a
+// buffer file outside the model's folder is refused in assimp's words.
 #include "io/asset_root.h"
 #include "io/fast_gltf.h"
 #include "io/file_rule.h"
@@ -13,7 +15,12 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -54,12 +61,12 @@ std::string difference(const clr::Mesh& a, const clr::Mesh& b)
   return "";
 }
 
-std::string load(const std::string& path, bool direct, clr::Mesh& mesh)
+std::string load(const std::string& path, bool direct, clr::Mesh& mesh, const std::string& assets = "")
 {
   try {
     clr::ModelFile file = clr::checkSceneFile(path);
     file.direct = direct;
-    mesh = clr::importScene(file);
+    mesh = clr::importScene(file, assets);
     return "";
   } catch (const clr::Error& e) {
     return e.what();
@@ -67,17 +74,19 @@ std::string load(const std::string& path, bool direct, clr::Mesh& mesh)
 }
 
 // Checks one file both ways; true when the direct reader took it.
-bool checkBothWays(const std::string& path)
+bool checkBothWays(const std::string& path, const std::string& assets = "")
 {
   INFO(path);
   clr::Mesh direct, assimp;
-  const std::string directError = load(path, true, direct);
-  REQUIRE(directError == load(path, false, assimp));
+  const std::string directError = load(path, true, direct, assets);
+  REQUIRE(directError == load(path, false, assimp, assets));
   if (!directError.empty()) return false;
   REQUIRE(difference(direct, assimp) == "");
   clr::Mesh mesh;
-  const clr::AssetRoot root(path, "");
-  return clr::readPlainGlb(path, clr::readInputFile(path, clr::kModelInput), root, mesh);
+  const clr::AssetRoot root(path, assets);
+  const std::string bytes = clr::readInputFile(path, clr::kModelInput);
+  return path.size() > 5 && path.compare(path.size() - 5, 5, ".gltf") == 0 ? clr::readPlainGltf(path, bytes, root, mesh)
+                                                                           : clr::readPlainGlb(path, bytes, root, mesh);
 }
 
 // A GLB under construction: one buffer, a tightly packed view per accessor.
@@ -121,6 +130,24 @@ struct GlbWriter {
     return out;
   }
 
+  // The text glTF: its buffer named `uri`, or embedded as a base64 data uri when `uri` is empty.
+  std::string finishText(const std::string& uri)
+  {
+    while (bin.size() % 4) bin += '\0';
+    std::string data = uri;
+    if (uri.empty()) {
+      static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      data = "data:application/octet-stream;base64,";
+      for (size_t i = 0; i < bin.size(); i += 3) {
+        uint32_t v = 0;
+        for (size_t k = 0; k < 3; ++k) v = v << 8 | (i + k < bin.size() ? uint8_t(bin[i + k]) : 0u);
+        for (size_t k = 0; k < 4; ++k) data += k <= bin.size() - i ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
+      }
+    }
+    doc["buffers"] = Json::array({{{"byteLength", bin.size()}, {"uri", data}}});
+    return doc.dump(1);
+  }
+
   std::string finish()
   {
     while (bin.size() % 4) bin += '\0';
@@ -139,7 +166,11 @@ double shortNumber(std::mt19937& rng, int range)
   return double(int64_t(rng() % uint32_t(2000 * range + 1)) - 1000 * range) / 1000.0;
 }
 
-std::string generate(uint32_t seed)
+// A random scene: the GLB, or with `uri` set the text glTF, the files it
+// names (its buffer as `*uri`, unless that is empty: a data uri; some
+// images) in `files`, names and bytes.
+using Files = std::vector<std::pair<std::string, std::string>>;
+std::string generate(uint32_t seed, const std::string* uri = nullptr, Files* files = nullptr)
 {
   std::mt19937 rng(seed);
   GlbWriter w;
@@ -149,6 +180,12 @@ std::string generate(uint32_t seed)
     std::string tga(18, '\0');
     tga[2] = 2, tga[12] = char(1 + i), tga[14] = 2, tga[16] = 24;
     for (int t = 0; t < 2 * (1 + i); ++t) tga += std::string{char(rng()), char(rng()), char(rng())};
+    if (files && i % 2) {  // a file beside the model
+      const std::string name = "image-" + std::to_string(seed) + "-" + std::to_string(i) + ".tga";
+      files->emplace_back(name, tga);
+      w.doc["images"].push_back({{"uri", name}});
+      continue;
+    }
     w.accessor(tga.data(), tga.size(), 5121, tga.size(), "SCALAR");  // its view; the accessor stays unused
     w.doc["images"].push_back({{"bufferView", w.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
   }
@@ -244,7 +281,10 @@ std::string generate(uint32_t seed)
   w.doc["nodes"] = list;
   w.doc["scenes"] = Json::array({{{"nodes", roots}}});
   w.doc["scene"] = 0;
-  return w.finish();
+  if (!uri) return w.finish();
+  const std::string text = w.finishText(*uri);
+  if (!uri->empty()) files->emplace_back(*uri, w.bin);
+  return text;
 }
 
 }  // namespace
@@ -289,4 +329,65 @@ TEST_CASE("fast gltf: every GLB the direct reader takes loads byte for byte as t
   INFO(taken << " of " << files << " files taken");
   CHECK(files == 93);
   CHECK(taken >= 70);
+}
+
+TEST_CASE("fast gltf: every glTF the direct reader takes loads byte for byte as through assimp", "[fast_gltf]")
+{
+  size_t files = 0, taken = 0, corpusTaken = 0;
+  std::vector<std::string> corpus;
+  const std::string models = "/usr/share/assimp/models/glTF2";
+  if (std::filesystem::is_directory(models))
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(models))
+      if (entry.path().extension() == ".gltf") corpus.push_back(entry.path().string());
+  std::sort(corpus.begin(), corpus.end());
+  for (const std::string& path : corpus) {
+    ++files;
+    corpusTaken += checkBothWays(path);
+  }
+  // Generated scenes: the buffer a file beside it (in a subfolder at times), or a data uri.
+  const std::string dir = test::tempDir() + "/fast_gltf_text";
+  std::filesystem::create_directories(dir + "/buffers");
+  for (uint32_t seed = 1; seed <= 60; ++seed) {
+    INFO("seed " << seed);
+    const std::string uri = seed % 3 == 0   ? ""
+                            : seed % 3 == 1 ? "scene.bin"
+                                            : "buffers/scene-" + std::to_string(seed) + ".bin";
+    Files named;
+    const std::string text = generate(seed, &uri, &named);
+    for (const auto& [name, bytes] : named)
+      std::ofstream(dir + "/" + name, std::ios::binary | std::ios::trunc) << bytes;
+    std::ofstream(dir + "/scene.gltf", std::ios::binary | std::ios::trunc) << text;
+    ++files;
+    taken += checkBothWays(dir + "/scene.gltf");
+  }
+  INFO(corpusTaken << " of " << corpus.size() << " corpus files taken, " << taken << " generated");
+  CHECK(corpusTaken >= 3);
+  CHECK(taken >= 45);
+}
+
+TEST_CASE("fast gltf: a buffer file outside the model folder is refused as through assimp", "[fast_gltf]")
+{
+  // The buffer reached through a link in the model's folder to a folder beside it.
+  const std::string dir = test::tempDir() + "/fast_gltf_outside";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/model");
+  std::filesystem::create_directories(dir + "/elsewhere");
+  const std::string uri = "linked/scene.bin";
+  Files named;
+  const std::string text = generate(7, &uri, &named);
+  for (const auto& [name, bytes] : named)
+    std::ofstream(dir + (name == uri ? "/elsewhere/scene.bin" : "/model/" + name), std::ios::binary) << bytes;
+  REQUIRE(symlink((dir + "/elsewhere").c_str(), (dir + "/model/linked").c_str()) == 0);
+  const std::string path = dir + "/model/scene.gltf";
+  std::ofstream(path, std::ios::binary) << text;
+  clr::Mesh direct, assimp;
+  const std::string error = load(path, true, direct);
+  CHECK(error.find(clr::AssetRoot::refusal(uri)) != std::string::npos);
+  CHECK(error == load(path, false, assimp));
+  clr::Mesh mesh;
+  CHECK_FALSE(clr::readPlainGltf(path, text, clr::AssetRoot(path, ""), mesh));
+  // --assets any or the folder: read, and by the direct reader.
+  CHECK(checkBothWays(path, clr::kAnyAssets));
+  CHECK(checkBothWays(path, dir + "/elsewhere"));
+  CHECK(clr::readPlainGltf(path, text, clr::AssetRoot(path, clr::kAnyAssets), mesh));
 }

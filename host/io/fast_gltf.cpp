@@ -1,16 +1,19 @@
-// fast_gltf.cpp — the plain GLB reader (see fast_gltf.h). The JSON is read
+// fast_gltf.cpp — the plain GLB and glTF reader (see fast_gltf.h). The JSON is read
 // with nlohmann::json, which rounds numbers correctly; assimp's rapidjson
 // does too for the numbers plainNumbers() lets through (at most 15
 // significant digits, a decimal exponent within ±22: its exact fast path).
 #include "io/fast_gltf.h"
 
+#include "io/import_budget.h"
 #include "io/normals.h"
 
 #include <assimp/scene.h>
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -95,11 +98,12 @@ bool plainNumbers(const char* p, const char* e)
   return true;
 }
 
-// `object` is an object whose keys are all in `allowed`.
+// `object` is an object whose keys are all in `allowed`, its name a string.
 bool only(const Json& object, std::initializer_list<const char*> allowed)
 {
   if (!object.is_object()) return false;
   for (const auto& item : object.items()) {
+    if (item.key() == "name" && !item.value().is_string()) return false;  // assimp refuses it
     bool found = false;
     for (const char* key : allowed) found = found || item.key() == key;
     if (!found) return false;
@@ -202,6 +206,18 @@ const char* accessor(const Json& doc, const char* bin, uint64_t bufferLength, si
   return bin + viewOffset + offset;
 }
 
+// A uri naming a file beside the model as both readers resolve it: letters,
+// digits, '.', '_', '-' and '/', relative, no ".." part (no escape to decode).
+bool plainUri(const Json& uri)
+{
+  if (!uri.is_string()) return false;
+  const std::string& s = uri.get_ref<const std::string&>();
+  if (s.empty() || s[0] == '/' || s.find("..") != std::string::npos) return false;
+  for (const char c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && !std::strchr("._-/", c)) return false;
+  return true;
+}
+
 class Glb {
  public:
   Glb(const Json& doc, const char* bin, uint64_t bufferLength) : doc_(doc), bin_(bin), bufferLength_(bufferLength) {}
@@ -264,7 +280,10 @@ class Glb {
       mat->AddProperty(&colour, 1, AI_MATKEY_BASE_COLOR);
       if (pbr && pbr->contains("baseColorTexture")) {
         const Json& texture = doc_["textures"][(*pbr)["baseColorTexture"]["index"].get<size_t>()];
-        aiString uri("*" + std::to_string(imageIndex_[texture["source"].get<size_t>()]));
+        // An embedded image by its index ("*N"), a file by its uri, as assimp names them.
+        const size_t source = texture["source"].get<size_t>();
+        aiString uri(imageIndex_[source] >= 0 ? "*" + std::to_string(imageIndex_[source])
+                                              : doc_["images"][source]["uri"].get<std::string>());
         int wrap[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
         if (texture.contains("sampler")) {
           const Json& sampler = doc_["samplers"][texture["sampler"].get<size_t>()];
@@ -361,8 +380,16 @@ class Glb {
         !only(doc_["samplers"][sampler], {"wrapS", "wrapT", "magFilter", "minFilter", "name"}))
       return false;
     if (imageIndex_.size() < count("images")) imageIndex_.assign(count("images"), -1);
-    if (imageIndex_[image] >= 0) return true;
+    if (imageIndex_[image] != -1) return true;
     const Json& img = doc_["images"][image];
+    if (img.contains("uri")) {
+      // A file: scene.cpp opens it under the model-folder rule, as for assimp's import.
+      if (!only(img, {"uri", "mimeType", "name"}) || !plainUri(img["uri"]) ||
+          (img.contains("mimeType") && !img["mimeType"].is_string()))
+        return false;
+      imageIndex_[image] = -2;
+      return true;
+    }
     size_t view = 0;
     if (!only(img, {"bufferView", "mimeType", "name"}) || !index(img, "bufferView", count("bufferViews"), view) ||
         !img.contains("mimeType") || !img["mimeType"].is_string())
@@ -483,7 +510,7 @@ class Glb {
   std::vector<bool> meshRead_;
   std::vector<long> materialIndex_;  // file index: assimp's index, -1 unused
   std::vector<size_t> materials_;    // assimp's order: file indices
-  std::vector<long> imageIndex_;     // file index: assimp's embedded texture index, -1 unused
+  std::vector<long> imageIndex_;     // file index: assimp's embedded texture index, -1 unused, -2 a file
   std::vector<std::pair<const char*, size_t>> images_;
   aiScene scene_;  // the materials and textures as assimp's importer makes them
   bool anyNormals_ = false;
@@ -491,24 +518,83 @@ class Glb {
 
 }  // namespace
 
-bool readPlainGlb(const std::string& path, const std::string& bytes, const AssetRoot& root, Mesh& mesh)
+namespace {
+
+// Buffer 0 of `doc` from a text glTF: its file, named by a plain relative
+// uri and opened as assimp's reader opens it (folder + uri, under `root`),
+// or a base64 data uri. false: not read here (assimp reads or refuses it).
+bool readBuffer(const std::string& path, const Json& buffer, const AssetRoot& root, std::string& out)
 {
-  // Step 1: the container: header, JSON chunk, BIN chunk, nothing else.
-  if (bytes.size() < 28 || bytes.compare(0, 4, "glTF") != 0 || u32(bytes, 4) != 2 || u32(bytes, 8) != bytes.size())
+  if (!only(buffer, {"uri", "byteLength", "name"}) || !buffer.contains("uri") || !buffer["uri"].is_string() ||
+      !buffer.contains("byteLength") || !buffer["byteLength"].is_number_unsigned())
     return false;
-  const uint64_t jsonLength = u32(bytes, 12);
-  if (u32(bytes, 16) != 0x4E4F534Au || jsonLength % 4 != 0 || 20 + jsonLength + 8 > bytes.size()) return false;
-  const size_t binAt = size_t(20 + jsonLength);
-  const uint64_t binLength = u32(bytes, binAt);
-  if (u32(bytes, binAt + 4) != 0x004E4942u || binAt + 8 + binLength != bytes.size()) return false;
-  // Step 2: the JSON, its numbers within what both parsers read alike, no key twice.
-  const char* json = bytes.data() + 20;
-  if (!plainNumbers(json, json + jsonLength)) return false;
+  const std::string uri = buffer["uri"].get<std::string>();
+  const uint64_t length = buffer["byteLength"].get<uint64_t>();
+  if (length == 0 || length > kReferencedBytes) return false;
+  const std::string kData = "data:application/octet-stream;base64,";
+  if (uri.compare(0, kData.size(), kData) == 0) {
+    // Strict base64 only, decoding to exactly byteLength bytes, as assimp requires.
+    const size_t at = kData.size(), n = uri.size() - at;
+    if (n % 4 || n / 4 * 3 < length || n / 4 * 3 - length > 2) return false;
+    out.clear();
+    out.reserve(size_t(length) + 2);
+    static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const size_t pad = size_t(n / 4 * 3 - length);
+    for (size_t i = 0; i < n; i += 4) {
+      uint32_t v = 0;
+      for (size_t k = 0; k < 4; ++k) {
+        const bool padding = i + 4 == n && k >= 4 - pad;
+        const size_t d = padding ? 0 : kAlphabet.find(uri[at + i + k]);
+        if ((padding && uri[at + i + k] != '=') || d == std::string::npos) return false;
+        v = v << 6 | uint32_t(d);
+      }
+      for (int k = 2; k >= 0; --k) out += char(v >> (8 * k));
+    }
+    out.resize(size_t(length));
+    return true;
+  }
+  // A plain relative name, beside the model (a path with '\\' could resolve otherwise).
+  if (!plainUri(buffer["uri"]) || path.find('\\') != std::string::npos) return false;
+  const size_t slash = path.rfind('/');
+  const std::string file = (slash == std::string::npos ? "" : path.substr(0, slash + 1)) + uri;
+  try {
+    const std::unique_ptr<InputFile> input =
+        root.confined() ? root.open(file, uri, kModelInput) : std::make_unique<InputFile>(file, kModelInput);
+    if (input->size() < length || input->size() > kReferencedBytes) return false;
+    out = input->read(size_t(length));
+  } catch (const Error&) {
+    return false;  // assimp refuses it, in its words
+  }
+  return out.size() == length;
+}
+
+// The glTF JSON [json, json + length), its one buffer `bin` (at least the
+// buffer's byteLength, checked by the caller), into `mesh`.
+bool readDocument(const std::string& path, const Json& doc, const char* bin, const AssetRoot& root, Mesh& mesh)
+{
+  Glb glb(doc, bin, doc["buffers"][0]["byteLength"].get<uint64_t>());
+  Mesh out;
+  try {
+    if (!glb.read(out)) return false;
+  } catch (const Json::exception&) {
+    return false;
+  }
+  convertMaterials(path, root, glb.scene(), false, out);
+  repairNormals(out, path, glb.anyNormals());
+  mesh = std::move(out);
+  return true;
+}
+
+// The JSON text [json, json + length): its numbers within what both parsers
+// read alike, no key twice, only what the reader knows at the top. false:
+// not read here.
+bool parseDocument(const char* json, size_t length, Json& doc)
+{
+  if (!plainNumbers(json, json + length)) return false;
   bool repeated = false;
   std::vector<std::set<std::string>> keys;
-  Json doc;
   try {
-    doc = Json::parse(json, json + jsonLength, [&](int, Json::parse_event_t event, Json& parsed) {
+    doc = Json::parse(json, json + length, [&](int, Json::parse_event_t event, Json& parsed) {
       if (event == Json::parse_event_t::object_start) keys.emplace_back();
       if (event == Json::parse_event_t::object_end) keys.pop_back();
       if (event == Json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second) repeated = true;
@@ -523,23 +609,42 @@ bool readPlainGlb(const std::string& path, const std::string& bytes, const Asset
   if (!doc.contains("asset") || !only(doc["asset"], {"version", "generator", "copyright"}) ||
       doc["asset"].value("version", "") != "2.0")
     return false;
-  if (!doc.contains("buffers") || !doc["buffers"].is_array() || doc["buffers"].size() != 1 ||
-      !only(doc["buffers"][0], {"byteLength", "name"}) || !doc["buffers"][0].contains("byteLength") ||
-      !doc["buffers"][0]["byteLength"].is_number_unsigned() ||
-      doc["buffers"][0]["byteLength"].get<uint64_t>() > binLength)
+  return doc.contains("buffers") && doc["buffers"].is_array() && doc["buffers"].size() == 1;
+}
+
+}  // namespace
+
+bool readPlainGlb(const std::string& path, const std::string& bytes, const AssetRoot& root, Mesh& mesh)
+{
+  // Step 1: the container: header, JSON chunk, BIN chunk, nothing else.
+  if (bytes.size() < 28 || bytes.compare(0, 4, "glTF") != 0 || u32(bytes, 4) != 2 || u32(bytes, 8) != bytes.size())
+    return false;
+  const uint64_t jsonLength = u32(bytes, 12);
+  if (u32(bytes, 16) != 0x4E4F534Au || jsonLength % 4 != 0 || 20 + jsonLength + 8 > bytes.size()) return false;
+  const size_t binAt = size_t(20 + jsonLength);
+  const uint64_t binLength = u32(bytes, binAt);
+  if (u32(bytes, binAt + 4) != 0x004E4942u || binAt + 8 + binLength != bytes.size()) return false;
+  // Step 2: the JSON; its one buffer is the BIN chunk.
+  Json doc;
+  if (!parseDocument(bytes.data() + 20, size_t(jsonLength), doc)) return false;
+  const Json& buffer = doc["buffers"][0];
+  if (!only(buffer, {"byteLength", "name"}) || !buffer.contains("byteLength") ||
+      !buffer["byteLength"].is_number_unsigned() || buffer["byteLength"].get<uint64_t>() > binLength)
     return false;
   // Step 3: the scene.
-  Glb glb(doc, bytes.data() + binAt + 8, doc["buffers"][0]["byteLength"].get<uint64_t>());
-  Mesh out;
-  try {
-    if (!glb.read(out)) return false;
-  } catch (const Json::exception&) {
-    return false;
-  }
-  convertMaterials(path, root, glb.scene(), false, out);
-  repairNormals(out, path, glb.anyNormals());
-  mesh = std::move(out);
-  return true;
+  return readDocument(path, doc, bytes.data() + binAt + 8, root, mesh);
+}
+
+bool readPlainGltf(const std::string& path, const std::string& bytes, const AssetRoot& root, Mesh& mesh)
+{
+  // Step 1: the JSON, opening with '{' (no byte order mark); its one buffer, read whole.
+  const size_t first = bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || bytes[first] != '{') return false;
+  Json doc;
+  std::string bin;
+  if (!parseDocument(bytes.data(), bytes.size(), doc) || !readBuffer(path, doc["buffers"][0], root, bin)) return false;
+  // Step 2: the scene.
+  return readDocument(path, doc, bin.data(), root, mesh);
 }
 
 }  // namespace clr

@@ -459,11 +459,13 @@ Mesh importScene(ModelFile file, const std::string& assets)
     repairNormals(direct, path, direct.facts.normalsInFile);
     return direct;
   }
-  // The plain OBJ and GLB, read directly (fast_obj.h, fast_gltf.h): the same mesh.
+  // The plain OBJ, GLB and glTF, read directly (fast_obj.h, fast_gltf.h): the same mesh.
   if (file.direct && file.format == "obj" && file.byExtension && readPlainObj(path, *file.bytes, root, direct))
     return direct;
   if (file.direct && file.format == "gltf" && path.size() > 4 &&
-      strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, root, direct))
+      ((strcasecmp(path.c_str() + path.size() - 4, ".glb") == 0 && readPlainGlb(path, *file.bytes, root, direct)) ||
+       (path.size() > 5 && strcasecmp(path.c_str() + path.size() - 5, ".gltf") == 0 &&
+        readPlainGltf(path, *file.bytes, root, direct))))
     return direct;
   // Step 1: import without reordering post-processing, from the bytes checked.
   Assimp::Importer importer;
