@@ -5,10 +5,9 @@
 // scene-level calls (frame_request.h, quality.h, views.h).
 //
 // renderCommand checks arguments and output paths before any device work,
-// loads a file (quick checks first, then the import, or the built-in scene,
-// and the scene's layout, while a second thread creates the device context
-// and builds its program; a scene error is reported in preference to a device
-// error), renders, and writes every output through
+// loads a file (quick checks first, then the import and the scene's layout
+// on a second thread while the device's program builds; an import error is
+// reported in preference to a device error), renders, and writes every output through
 // a temporary file renamed into place, so a failure leaves none half-written.
 #include "pipeline/aov.h"
 #include "pipeline/layout.h"
@@ -144,37 +143,47 @@ LoadedScene loadSceneDuringBuild(const RenderArgs& args, std::unique_ptr<Context
 {
   RunTimes ignored;
   if (!times) times = &ignored;
-  // A file's quick checks before any device work, so that most bad files fail at once.
-  std::optional<ModelFile> file;
-  if (!args.scenePath.empty()) {
-    file = checkSceneFile(args.scenePath);
-    times->readMs = file->readMs;
-    times->parseMs = file->checkMs;
-  }
-  // Then the device's context and frame program on their own thread, while
-  // this one imports (or makes) the scene and lays it out.
-  std::future<std::unique_ptr<Context>> building = std::async(std::launch::async, [&args, times] {
-    const auto start = std::chrono::steady_clock::now();
-    auto built = std::make_unique<Context>(args.device);
-    built->impl().frameContext();
-    times->buildMs = msSince(start);  // read after get()
-    return built;
-  });
-  LoadedScene scene;
-  try {
-    const auto importStart = std::chrono::steady_clock::now();
-    Mesh mesh = file ? importScene(std::move(*file), args.assets) : defaultScene();
-    times->parseMs += msSince(importStart);
-    // Its bounds and layout; the mesh moves into the layout.
+  // The file's import, then its bounds and layout; the mesh moves into the layout.
+  auto prepare = [times](Mesh mesh) {
+    LoadedScene scene;
     scene.bounds = meshBounds(mesh);
-    const auto layoutStart = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     scene.layout = layOutScene(std::move(mesh));
-    times->layoutMs = msSince(layoutStart);
+    times->layoutMs = msSince(start);
+    return scene;
+  };
+  LoadedScene scene;
+  std::future<LoadedScene> importing;  // a file's import and layout, when valid()
+  double importMs = 0.0;               // written by the import's thread, read after get()
+  if (args.scenePath.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    Mesh mesh = defaultScene();
+    times->parseMs = msSince(start);
+    scene = prepare(std::move(mesh));
+  } else {
+    ModelFile file = checkSceneFile(args.scenePath);
+    times->readMs = file.readMs;
+    times->parseMs = file.checkMs;
+    importing = std::async(std::launch::async, [file = std::move(file), &args, &importMs, prepare]() mutable {
+      const auto start = std::chrono::steady_clock::now();
+      Mesh imported = importScene(std::move(file), args.assets);
+      importMs = msSince(start);
+      return prepare(std::move(imported));
+    });
+  }
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    context = std::make_unique<Context>(args.device);
+    context->impl().frameContext();
+    times->buildMs = msSince(start);
   } catch (...) {
-    building.wait();  // the scene's error first; the device's, if any, goes unreported
+    if (importing.valid()) importing.get();  // the scene's error first (this waits for the import either way)
     throw;
   }
-  context = building.get();
+  if (importing.valid()) {
+    scene = importing.get();
+    times->parseMs += importMs;
+  }
   warnAbout(args, scene.layout.mesh, warnings);
   return scene;
 }
