@@ -67,14 +67,14 @@ std::vector<float> smoothed(clr::Mesh mesh, const Soup* hinted)
 
 bool sameBytes(const std::vector<float>& a, const std::vector<float>& b)
 {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 
 // Every array of two layouts, byte for byte.
 bool sameLayout(const clr::SceneLayout& a, const clr::SceneLayout& b)
 {
   auto same = [](const auto& x, const auto& y) {
-    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
   };
   return same(a.fileTri, b.fileTri) && same(a.fileVertex, b.fileVertex) && same(a.laidVertex, b.laidVertex) &&
          same(a.mesh.positions, b.mesh.positions) && same(a.mesh.normals, b.mesh.normals) &&
