@@ -413,7 +413,7 @@ clr_driver="$(peak_text platform), driver $(peak_text driver)"
   echo
   echo "## Visibility alone against Embree"
   echo
-  echo "clraster's triangle-ID frame (\\`--shade id\\`, camera upload to mapped image) against Embree $(dpkg-query -W -f='${Version}' libembree3-3 2>/dev/null || echo '?')"
+  echo "clraster's triangle-ID frame (\`--shade id\`, camera upload to mapped image) against Embree $(dpkg-query -W -f='${Version}' libembree3-3 2>/dev/null || echo '?')"
   echo "primary rays (one per pixel centre, 16-ray packets, as many threads as cores; the BVH built once, its build"
   echo "timed apart), medians of $frames frames in turns. **differing** counts pixels whose IDs differ, over those either"
   echo "covers (edges: float rays against 1/256-pixel snapping). Goal: clraster <= 0.15x Embree."
