@@ -31,9 +31,10 @@ from . import rasterize as np_rasterize
 
 __all__ = ["Context", "RasterizeCudaContext", "RasterizeGLContext", "Error", "rasterize", "interpolate", "texture",
            "texture_construct_mip", "TextureMip", "DepthPeeler", "antialias", "antialias_construct_topology_hash", "TopologyHash",
-           "triangle_ids", "set_default_context"]
+           "triangle_ids", "set_default_context", "get_log_level", "set_log_level"]
 
 _default = None
+_log_level = 1  # nvdiffrast's levels: 0 info, 1 warning (its default), 2 error, 3 fatal
 
 
 class RasterizeCudaContext(Context):
@@ -59,6 +60,23 @@ def set_default_context(glctx):
     if not isinstance(glctx, Context):
         raise ArgumentTypeError(f"glctx: expected a clraster.Context, got {type(glctx).__name__}")
     _default = glctx
+
+
+def get_log_level():
+    """nvdiffrast's log level, 0 (info) to 3 (fatal); 1 until set."""
+    return _log_level
+
+
+def set_log_level(level):
+    """Sets the level get_log_level returns. clraster.torch writes no log
+    lines at any level (problems raise exceptions), so the level changes no
+    output; it is kept so that scripts which set it run unchanged."""
+    global _log_level
+    if isinstance(level, bool) or not isinstance(level, (int, np.integer)):
+        raise ArgumentTypeError(f"level: expected an int from 0 to 3, got {type(level).__name__}")
+    if not 0 <= int(level) <= 3:
+        raise ValueError(f"level: {int(level)} outside [0, 3] (0 info, 1 warning, 2 error, 3 fatal)")
+    _log_level = int(level)
 
 
 def _context():

@@ -115,3 +115,19 @@ def test_rast_naming_no_triangle_is_refused(rast, channel):
         dr.interpolate(attr, bad, TRI)
     with pytest.raises(ValueError, match="^rast"):
         dr.antialias(torch.zeros(1, 8, 8, 3), bad, POS, TRI)
+
+
+def test_log_level_round_trips_and_refuses_bad_levels():
+    assert dr.get_log_level() == 1  # nvdiffrast's default
+    try:
+        dr.set_log_level(np.int64(2))
+        assert dr.get_log_level() == 2
+        for bad in (-1, 4):
+            with pytest.raises(ValueError, match=r"^level: "):
+                dr.set_log_level(bad)
+        for bad in (1.0, "1", True, None):
+            with pytest.raises(dr.ArgumentTypeError, match=r"^level: "):
+                dr.set_log_level(bad)
+        assert dr.get_log_level() == 2  # a refused level changes nothing
+    finally:
+        dr.set_log_level(1)
