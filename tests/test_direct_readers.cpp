@@ -8,6 +8,7 @@
 // plus variants a direct reader must leave to assimp. Each format must have
 // files the direct reader accepted, so the test cannot compare nothing.
 #include "cli_support.h"
+#include "test_support.h"
 #include "io/fast_off.h"
 #include "io/fast_ply.h"
 #include "io/fast_stl.h"
@@ -46,35 +47,6 @@ Outcome load(const std::string& path, bool direct)
   return o;
 }
 
-template <typename T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-// The first array in which the two meshes differ, or "".
-std::string difference(const clr::Mesh& a, const clr::Mesh& b)
-{
-  if (!sameBytes(a.positions, b.positions)) return "positions";
-  if (!sameBytes(a.normals, b.normals)) return "normals";
-  if (!sameBytes(a.uvs, b.uvs)) return "uvs";
-  if (a.indices != b.indices) return "indices";
-  if (a.lines != b.lines) return "lines";
-  if (a.points != b.points) return "points";
-  if (!sameBytes(a.colors, b.colors)) return "colors";
-  if (a.triMaterial != b.triMaterial) return "triMaterial";
-  if (a.materials.size() != b.materials.size() ||
-      (!a.materials.empty() &&
-       std::memcmp(a.materials.data(), b.materials.data(), a.materials.size() * sizeof(Material)) != 0))
-    return "materials";
-  if (a.textures.size() != b.textures.size()) return "textures";
-  if (a.warnings.lines() != b.warnings.lines()) return "warnings";
-  if (a.facts.normalsInFile != b.facts.normalsInFile || a.facts.normalsRepaired != b.facts.normalsRepaired ||
-      a.facts.uvsInFile != b.facts.uvsInFile)
-    return "facts";
-  return "";
-}
-
 std::string readAll(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
@@ -104,7 +76,7 @@ std::string compareBothWays(const std::string& path)
   INFO(path);
   const Outcome viaAssimp = load(path, false), direct = load(path, true);
   CHECK(viaAssimp.error == direct.error);
-  CHECK(difference(viaAssimp.mesh, direct.mesh) == "");
+  CHECK(test::meshDifference(viaAssimp.mesh, direct.mesh) == "");
   return directKind(path);
 }
 

@@ -31,36 +31,6 @@ namespace {
 
 using Json = nlohmann::json;
 
-template <typename T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-std::string difference(const clr::Mesh& a, const clr::Mesh& b)
-{
-  if (!sameBytes(a.positions, b.positions)) return "positions";
-  if (!sameBytes(a.normals, b.normals)) return "normals";
-  if (!sameBytes(a.uvs, b.uvs)) return "uvs";
-  if (!sameBytes(a.indices, b.indices)) return "indices";
-  if (!sameBytes(a.lines, b.lines) || !sameBytes(a.points, b.points)) return "lines or points";
-  if (!sameBytes(a.colors, b.colors)) return "colors";
-  if (!sameBytes(a.triMaterial, b.triMaterial)) return "triMaterial";
-  if (!sameBytes(a.materials, b.materials)) return "materials";
-  if (a.textures.size() != b.textures.size()) return "texture count";
-  for (size_t t = 0; t < a.textures.size(); ++t) {
-    const clr::Texture &x = a.textures[t], &y = b.textures[t];
-    if (x.name != y.name || x.width != y.width || x.height != y.height || x.wrapS != y.wrapS || x.wrapT != y.wrapT ||
-        !sameBytes(x.rgba, y.rgba))
-      return "texture " + std::to_string(t);
-  }
-  if (a.warnings.lines() != b.warnings.lines()) return "warnings";
-  if (a.facts.normalsInFile != b.facts.normalsInFile || a.facts.normalsRepaired != b.facts.normalsRepaired ||
-      a.facts.uvsInFile != b.facts.uvsInFile || a.facts.missingTextures != b.facts.missingTextures)
-    return "facts";
-  return "";
-}
-
 std::string load(const std::string& path, bool direct, clr::Mesh& mesh, const std::string& assets = "")
 {
   try {
@@ -81,7 +51,7 @@ bool checkBothWays(const std::string& path, const std::string& assets = "")
   const std::string directError = load(path, true, direct, assets);
   REQUIRE(directError == load(path, false, assimp, assets));
   if (!directError.empty()) return false;
-  REQUIRE(difference(direct, assimp) == "");
+  REQUIRE(test::meshDifference(direct, assimp) == "");
   clr::Mesh mesh;
   const clr::AssetRoot root(path, assets);
   const std::string bytes = clr::readInputFile(path, clr::kModelInput);

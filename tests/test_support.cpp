@@ -113,4 +113,28 @@ size_t countDifferences(const std::vector<uint32_t>& a, const std::vector<uint32
   return n + (a.size() > b.size() ? a.size() - b.size() : b.size() - a.size());
 }
 
+std::string meshDifference(const clr::Mesh& a, const clr::Mesh& b)
+{
+  if (!sameBytes(a.positions, b.positions)) return "positions";
+  if (!sameBytes(a.normals, b.normals)) return "normals";
+  if (!sameBytes(a.uvs, b.uvs)) return "uvs";
+  if (!sameBytes(a.indices, b.indices)) return "indices";
+  if (!sameBytes(a.lines, b.lines) || !sameBytes(a.points, b.points)) return "lines or points";
+  if (!sameBytes(a.colors, b.colors)) return "colors";
+  if (!sameBytes(a.triMaterial, b.triMaterial)) return "triMaterial";
+  if (!sameBytes(a.materials, b.materials)) return "materials";
+  if (a.textures.size() != b.textures.size()) return "texture count";
+  for (size_t t = 0; t < a.textures.size(); ++t) {
+    const clr::Texture &x = a.textures[t], &y = b.textures[t];
+    if (x.name != y.name || x.width != y.width || x.height != y.height || x.wrapS != y.wrapS || x.wrapT != y.wrapT ||
+        !sameBytes(x.rgba, y.rgba))
+      return "texture " + std::to_string(t);
+  }
+  if (a.warnings.lines() != b.warnings.lines()) return "warnings";
+  if (a.facts.normalsInFile != b.facts.normalsInFile || a.facts.normalsRepaired != b.facts.normalsRepaired ||
+      a.facts.uvsInFile != b.facts.uvsInFile || a.facts.missingTextures != b.facts.missingTextures)
+    return "facts";
+  return "";
+}
+
 }  // namespace test

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,16 @@ std::vector<uint32_t> readTriIds(const clr::Pipeline& pipeline, uint32_t sample 
 std::vector<uint32_t> renderTriIds(const Geometry& geometry, const clr::FrameSettings& settings);
 
 // The tests' scratch directory (created on first use).
+// Two vectors' bytes equal (sizes too; empty vectors compare without memcmp).
+template <typename T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// The first array or fact of two meshes that differs, byte for byte ("" when equal): the direct readers' oracle.
+std::string meshDifference(const clr::Mesh& a, const clr::Mesh& b);
+
 std::string tempDir();
 
 // Number of pixels where two ID images differ.

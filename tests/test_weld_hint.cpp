@@ -7,6 +7,7 @@
 #include "io/normals.h"
 #include "io/scene.h"
 #include "pipeline/layout.h"
+#include "test_support.h"
 
 #include <catch2/catch.hpp>
 
@@ -65,10 +66,7 @@ std::vector<float> smoothed(clr::Mesh mesh, const Soup* hinted)
   return mesh.normals;
 }
 
-bool sameBytes(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
-}
+using test::sameBytes;
 
 // Every array of two layouts, byte for byte.
 bool sameLayout(const clr::SceneLayout& a, const clr::SceneLayout& b)
