@@ -2,6 +2,7 @@
 // pixel (the same image), and llvmpipe again with its fixed-function lighting per vertex.
 //
 //   clraster_bench [SCENE] [--sphere TRIANGLES] [--grid N] [--shuffle SEED] [--no-layout] [--no-speculation]
+//                  [--micro-max N]
 //                  [--view far|fill|near] [--size WxH] [--warmup K] [--frames N] [--rounds R] [--device SEL]
 //                  [--no-ids] [--name NAME] [--csv FILE] [--images PREFIX]
 //                  [--peak-lane-gops X] [--peak-copy-gbs Y] [--max-shade-mad M]
@@ -15,7 +16,9 @@
 // by bench/ab.sh (serveTurns). Every failure is one line on stderr and exit status 1.
 // --shuffle SEED puts the triangles in a random order (layout.h: a file in no spatial order, the same camera);
 // --no-layout keeps the file's order on the device (Pipeline::setLayout(false)), for bench/ab.sh turns;
-// --no-speculation makes every frame wait for its counts mid-frame (Pipeline::setSpeculation(false)), likewise.
+// --no-speculation makes every frame wait for its counts mid-frame (Pipeline::setSpeculation(false)), likewise;
+// --micro-max N sets the micro path's limit (FrameSettings::microMax, 0 off; bench/micro.sh), failing where the
+// device or frame cannot take that path.
 #include "llvmpipe_render.h"
 #include "procedural.h"
 
@@ -53,6 +56,7 @@ struct Args {
   std::optional<uint32_t> shuffleSeed;  // --shuffle
   bool layout = true;                   // --no-layout clears it
   bool speculation = true;              // --no-speculation clears it
+  int32_t microMax = -1;                // --micro-max; -1 the device's default
   std::string view = "far";
   uint32_t width = 1920, height = 1080;
   uint32_t warmup = 2, frames = 5, rounds = 4;
@@ -93,6 +97,8 @@ Args parseArgs(const std::vector<std::string>& args)
       r.layout = false;
     } else if (a == "--no-speculation") {
       r.speculation = false;
+    } else if (a == "--micro-max") {
+      r.microMax = int32_t(parseUnsigned(a, flagValue(args, i), 0, CLR_TILE_SIZE * CLR_TILE_SIZE));
     } else if (a == "--view") {
       r.view = flagValue(args, i);
       if (r.view != "far" && r.view != "fill" && r.view != "near" && r.view != "away")
@@ -416,6 +422,15 @@ void appendCsv(const std::string& path, const std::vector<std::pair<std::string,
   if (std::fclose(file) != 0) throw Error("--csv: cannot write '" + path + "'");
 }
 
+// Fails when --micro-max asked for the micro path and the frame did not take it (a device without
+// cl_khr_int64_extended_atomics, Pipeline::microMaxFor), so no run compares a path that never ran.
+void checkMicro(const Args& args, const FrameStats& stats)
+{
+  if (args.microMax > 0 && stats.microMax == 0)
+    throw Error("--micro-max " + std::to_string(args.microMax) +
+                ": this device cannot take the micro path (it needs cl_khr_int64_extended_atomics)");
+}
+
 // --serve: clraster alone, in turns another process drives (bench/ab.sh): after loading it prints "ready", then per
 // "turn" line on stdin renders K untimed and N timed frames and prints "frame=MS STAGE=MS ...", the turn's medians,
 // until stdin ends. No ID frame; refuses --csv, --images and --max-shade-mad. --shade MODE (only here: no peer to
@@ -429,9 +444,10 @@ int serveTurns(const Args& args, const Mesh& mesh, const Camera& camera)
   pipeline.uploadScene(mesh);
   RenderArgs frameArgs;  // the CLI's defaults, but the shading
   frameArgs.shadeMode = args.shadeMode;
-  const FrameSettings settings = makeFrameSettings(frameArgs, camera, args.width, args.height, meshBounds(mesh));
+  FrameSettings settings = makeFrameSettings(frameArgs, camera, args.width, args.height, meshBounds(mesh));
+  settings.microMax = args.microMax;
   ImageView view;
-  pipeline.render(settings, view);  // the first frame: kernel code generation
+  checkMicro(args, pipeline.render(settings, view));  // the first frame: kernel code generation
   std::printf("ready\n");
   std::fflush(stdout);
   for (std::string line; std::getline(std::cin, line);) {
@@ -478,7 +494,8 @@ int run(const Args& args)
   pipeline.setLayout(args.layout);
   pipeline.setSpeculation(args.speculation);
   pipeline.uploadScene(mesh);
-  const FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
+  FrameSettings settings = makeFrameSettings(RenderArgs{}, camera, args.width, args.height, meshBounds(mesh));
+  settings.microMax = args.microMax;
   const glm::mat4 mvp = camera.viewProjection(args.width, args.height);
   ClrasterRun clr;
   clr.device = cl.info.name;
@@ -490,6 +507,7 @@ int run(const Args& args)
     const uint32_t frames = args.frames / rounds + (round < args.frames % rounds ? 1 : 0);
     const size_t clrFirst = clr.frameMs.size();
     timeClrasterRound(pipeline, settings, args.warmup, frames, clr, timed);
+    checkMicro(args, timed.back());
     for (LambertShading shading : {LambertShading::perPixel, LambertShading::perVertex}) {
       LlvmpipeFrames part = renderLlvmpipeLambert(mesh, args.width, args.height, mvp, camera.lightDirection(), shading,
                                                   args.warmup, frames);

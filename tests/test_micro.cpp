@@ -25,6 +25,7 @@ struct Frame {
   std::vector<uint32_t> rgba;
   std::vector<std::vector<VisSample>> vis;
   uint64_t binEntries = 0;
+  uint32_t microMax = 0;  // the limit the frame took (FrameStats)
 };
 
 Frame renderFrame(const clr::Mesh& mesh, clr::FrameSettings settings, int32_t microMax)
@@ -33,7 +34,9 @@ Frame renderFrame(const clr::Mesh& mesh, clr::FrameSettings settings, int32_t mi
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(mesh);
   Frame f;
-  f.binEntries = pipeline.render(settings, f.rgba).binEntries;
+  const clr::FrameStats stats = pipeline.render(settings, f.rgba);
+  f.binEntries = stats.binEntries;
+  f.microMax = stats.microMax;
   for (uint32_t k = 0; k < settings.samples; ++k) f.vis.push_back(pipeline.readVis(k));
   return f;
 }
@@ -61,6 +64,8 @@ void compareMicro(const clr::Mesh& mesh, const glm::mat4& mvp, uint32_t width, u
           const Frame off = renderFrame(mesh, s, 0);
           const Frame on = renderFrame(mesh, s, CLR_TILE_SIZE * CLR_TILE_SIZE);
           CHECK(on.binEntries < off.binEntries);  // the path took triangles
+          CHECK(off.microMax == 0);
+          CHECK(on.microMax == CLR_TILE_SIZE * CLR_TILE_SIZE);
           REQUIRE(on.rgba == off.rgba);
           size_t covered = 0, differing = 0;
           for (uint32_t k = 0; k < samples; ++k) {

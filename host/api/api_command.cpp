@@ -82,13 +82,13 @@ std::string statsLine(const RenderArgs& args, const ClContext& cl, const Pipelin
   const clr::FrameStats& s = frames.back();
   out += format(
       "},\"device_idle_ms\":%.3f,\"triangles_in\":%llu,\"triangles_clipped\":%llu,\"triangles_culled\":%llu,"
-      "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"device_bytes\":%zu,\"prepare_ms\":%.3f,"
+      "\"setup_triangles\":%llu,\"bin_entries\":%llu,\"micro_max\":%u,\"device_bytes\":%zu,\"prepare_ms\":%.3f,"
       "\"aa\":\"%s\",\"samples\":%u,\"bytes_per_pixel\":%.1f,\"edges\":\"%s\",\"interp\":\"%s\","
       "\"traversal\":\"%s\",\"depth\":\"%s\",\"depth_reason\":\"%s\",\"visibility\":\"%s\",\"read_ms\":%.3f,"
       "\"parse_ms\":%.3f,\"build_ms\":%.3f,\"encode_ms\":%.3f,\"total_ms\":%.3f%s%s}\n",
       median(idleMs), (unsigned long long)s.trianglesIn, (unsigned long long)s.trianglesClipped,
       (unsigned long long)s.trianglesCulled, (unsigned long long)s.setupTriangles, (unsigned long long)s.binEntries,
-      pipeline.deviceBytes(), times.layoutMs + pipeline.prepareMs(),
+      s.microMax, pipeline.deviceBytes(), times.layoutMs + pipeline.prepareMs(),
       aaModeName(settings.samples, settings.shadeEverySample).c_str(), settings.samples, pipeline.bytesPerPixel(),
       settings.edgeMode == CLR_EDGES_FLOAT ? "float" : "fixed",
       settings.interpMode == CLR_INTERP_AFFINE ? "affine" : "perspective", traversalName(settings.traversal),

@@ -406,6 +406,7 @@ FrameStats Pipeline::finishFrame()
   stats.imageKept = resolveSkipped_;
   stats.speculative = speculated_;
   stats.speculationMissed = missed_;
+  stats.microMax = microMax_;
   if (!events_.empty()) stats.deviceIdleMs = double(lastEnd - firstStart - std::min(busy, lastEnd - firstStart)) * 1e-6;
   stats.trianglesIn = params_.numTris;
   stats.trianglesClipped = counters[CLR_COUNTER_CLIPPED_TRIS];

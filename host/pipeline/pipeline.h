@@ -135,6 +135,7 @@ struct FrameStats {
   bool leanResolve = false;      // resolve ran its lean lambert kernel (resolve_lambert.cl)
   bool resolvePrefetch = false;  // resolve fetched rows ahead (PrefetchChooser)
   bool imageKept = false;        // nothing binned, and the image was already this frame's background: no resolve
+  uint32_t microMax = 0;         // the micro path's size limit this frame took (micro.cpp), 0 off
   // Sized from the last frame's totals, without a wait mid-frame (Pipeline::runFrame); and whether such a try did
   // not fit and the frame ran again, waiting.
   bool speculative = false, speculationMissed = false;
