@@ -187,8 +187,6 @@ TEST_CASE("The layout changes no output of real models for any method or camera"
   before.uploadScene(mesh);
   laid.uploadScene(mesh);
   const clr::Bounds bounds = clr::meshBounds(mesh);
-  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
-  const float radius = 0.5f * glm::length(bounds.max - bounds.min);
   // Step 2: every method and output that reads the records: the ids, the
   // AOVs and the image of each.
   const std::vector<std::vector<std::string>> methods = {{},
@@ -204,13 +202,9 @@ TEST_CASE("The layout changes no output of real models for any method or camera"
                                                          {"--depth", "unorm24"},
                                                          {"--shade", "normal", "--interp", "affine"}};
   size_t covered = 0;
-  for (int view = 0; view < 3; ++view) {
-    clr::CameraArgs cameraArgs;
-    if (view > 0) {
-      cameraArgs.target = centre;
-      cameraArgs.eye = centre + radius * (view == 1 ? glm::vec3(0.21f, 0.13f, 0.31f) : glm::vec3(1.3f, 0.05f, 0.02f));
-    }
-    const clr::Camera camera = clr::frameCamera(cameraArgs, bounds);
+  const std::vector<clr::Camera> views = test::modelViews(bounds);
+  for (size_t view = 0; view < views.size(); ++view) {
+    const clr::Camera& camera = views[view];
     for (std::vector<std::string> words : methods) {
       std::string method = "default";
       for (size_t w = 0; w < words.size(); ++w) method = (w ? method + " " : std::string()) + words[w];

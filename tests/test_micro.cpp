@@ -13,7 +13,6 @@
 #include "io/scene.h"
 #include "pipeline/layout.h"
 #include "pipeline/pipeline.h"
-#include "render/camera.h"
 #include "render/flags.h"
 #include "render/frame_request.h"
 
@@ -229,18 +228,12 @@ TEST_CASE("micro: corpus models in both orders match the binned path at every li
   clr::Pipeline pipeline(test::context());
   pipeline.uploadScene(mesh);
   const clr::Bounds bounds = clr::meshBounds(mesh);
-  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
-  const float radius = 0.5f * glm::length(bounds.max - bounds.min);
   const std::vector<std::vector<std::string>> methods = {
       {}, {"--shade", "id"}, {"--aa", "msaa4", "--shade", "phong"}, {"--aa", "ssaa16"}, {"--depth", "unorm24"}};
   size_t fewerBins = 0;  // frames in which the path took triangles out of the bins
-  for (int view = 0; view < 3; ++view) {
-    clr::CameraArgs cameraArgs;
-    if (view > 0) {
-      cameraArgs.target = centre;
-      cameraArgs.eye = centre + radius * (view == 1 ? glm::vec3(0.21f, 0.13f, 0.31f) : glm::vec3(1.3f, 0.05f, 0.02f));
-    }
-    const clr::Camera camera = clr::frameCamera(cameraArgs, bounds);
+  const std::vector<clr::Camera> views = test::modelViews(bounds);
+  for (size_t view = 0; view < views.size(); ++view) {
+    const clr::Camera& camera = views[view];
     for (std::vector<std::string> words : methods) {
       words.insert(words.end(), {"-o", "x.png"});
       const clr::FrameSettings base =

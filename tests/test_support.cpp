@@ -137,4 +137,20 @@ std::string meshDifference(const clr::Mesh& a, const clr::Mesh& b)
   return "";
 }
 
+std::vector<clr::Camera> modelViews(const clr::Bounds& bounds)
+{
+  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
+  const float radius = 0.5f * glm::length(bounds.max - bounds.min);
+  std::vector<clr::Camera> views;
+  for (int view = 0; view < 3; ++view) {
+    clr::CameraArgs args;
+    if (view > 0) {
+      args.target = centre;
+      args.eye = centre + radius * (view == 1 ? glm::vec3(0.21f, 0.13f, 0.31f) : glm::vec3(1.3f, 0.05f, 0.02f));
+    }
+    views.push_back(clr::frameCamera(args, bounds));
+  }
+  return views;
+}
+
 }  // namespace test

@@ -5,6 +5,7 @@
 
 #include "pipeline/pipeline.h"
 #include "reference_raster.h"
+#include "render/camera.h"
 
 #include <glm/glm.hpp>
 
@@ -20,6 +21,10 @@ std::string deviceSelector();
 
 // The context every test shares (on deviceSelector()'s device).
 clr::ClContext& context();
+
+// Three cameras on a model's bounds: the render command's framing, an eye
+// inside the model (near-plane clipping) and one grazing its side.
+std::vector<clr::Camera> modelViews(const clr::Bounds& bounds);
 
 // Whether that device is Oclgrind's simulator (tests/oclgrind_check.sh), which
 // interprets every work-item: the few large cases there take the smallest
