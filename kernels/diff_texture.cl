@@ -86,6 +86,13 @@ CLR_INLINE float tex_fetch(__global const float* tex, int t, uint channels, uint
   return t < 0 ? 0.0f : tex[(size_t)t * channels + c];
 }
 
+/* The bilinear value of quad t (fractions f) in channel c. */
+CLR_INLINE float tex_quad_value(__global const float* tex, int4 t, float2 f, uint nc, uint c)
+{
+  return mix(mix(tex_fetch(tex, t.x, nc, c), tex_fetch(tex, t.y, nc, c), f.x),
+             mix(tex_fetch(tex, t.z, nc, c), tex_fetch(tex, t.w, nc, c), f.x), f.y);
+}
+
 /* The pixel's level (before its floor) and d level / d uv_da, d level / d bias (0 where clamped). */
 CLR_INLINE float tex_level(const TexParams* p, __global const int* levelInfo, __global const float4* uvDa,
                            __global const float* bias, uint pixel, float4* dLevelDa, float* dLevelBias)
@@ -138,15 +145,8 @@ __kernel void texture_fwd(TexParams params, __global const float* tex, __global 
   const float2 f0 = tex_quad(&params, uv[p], image, levelInfo, l0, &t0);
   const float2 f1 = frac > 0.0f ? tex_quad(&params, uv[p], image, levelInfo, l1, &t1) : (float2)(0.0f);
   for (uint c = 0; c < nc; ++c) {
-    const float a0 = mix(tex_fetch(tex, t0.x, nc, c), tex_fetch(tex, t0.y, nc, c), f0.x);
-    const float a1 = mix(tex_fetch(tex, t0.z, nc, c), tex_fetch(tex, t0.w, nc, c), f0.x);
-    float a = mix(a0, a1, f0.y);
-    if (frac > 0.0f) {
-      const float b0 = mix(tex_fetch(tex, t1.x, nc, c), tex_fetch(tex, t1.y, nc, c), f1.x);
-      const float b1 = mix(tex_fetch(tex, t1.z, nc, c), tex_fetch(tex, t1.w, nc, c), f1.x);
-      a = mix(a, mix(b0, b1, f1.y), frac);
-    }
-    o[c] = a;
+    const float a = tex_quad_value(tex, t0, f0, nc, c);
+    o[c] = frac > 0.0f ? mix(a, tex_quad_value(tex, t1, f1, nc, c), frac) : a;
   }
 }
 
@@ -154,6 +154,21 @@ __kernel void texture_fwd(TexParams params, __global const float* tex, __global 
 CLR_INLINE void tex_add(__global float* grad, int t, uint channels, uint c, float v)
 {
   if (t >= 0) diff_atomic_add(grad + (size_t)t * channels + c, v);
+}
+
+/* One level's bilinear quad t (fractions f) in the backward pass for channel c with weight w (the channel's
+ * gradient times the level's share): its texels' gradients, and the uv gradient scaled by the level's size. */
+CLR_INLINE void tex_quad_grad(__global float* gradTex, __global const float* tex, __global const int* levelInfo,
+                              uint level, int4 t, float2 f, uint nc, uint c, float w, float2* guv)
+{
+  const float a00 = tex_fetch(tex, t.x, nc, c), a10 = tex_fetch(tex, t.y, nc, c);
+  const float a01 = tex_fetch(tex, t.z, nc, c), a11 = tex_fetch(tex, t.w, nc, c);
+  tex_add(gradTex, t.x, nc, c, w * (1.0f - f.x) * (1.0f - f.y));
+  tex_add(gradTex, t.y, nc, c, w * f.x * (1.0f - f.y));
+  tex_add(gradTex, t.z, nc, c, w * (1.0f - f.x) * f.y);
+  tex_add(gradTex, t.w, nc, c, w * f.x * f.y);
+  guv->x += w * ((a10 - a00) * (1.0f - f.y) + (a11 - a01) * f.y) * (float)levelInfo[3 * level + 1];
+  guv->y += w * ((a01 - a00) * (1.0f - f.x) + (a11 - a10) * f.x) * (float)levelInfo[3 * level + 2];
 }
 
 __kernel void texture_grad(TexParams params, __global const float* tex, __global const int* levelInfo,
@@ -187,35 +202,13 @@ __kernel void texture_grad(TexParams params, __global const float* tex, __global
   float2 guv = (float2)(0.0f);
   const float2 f0 = tex_quad(&params, uv[p], image, levelInfo, l0, &t0);
   // Level l0 with weight 1 − frac, level l1 with frac; the channels are strided by nc in the texture.
-  for (uint c = 0; c < nc; ++c) {
-    const float gc = g[c];
-    const float a00 = tex_fetch(tex, t0.x, nc, c), a10 = tex_fetch(tex, t0.y, nc, c);
-    const float a01 = tex_fetch(tex, t0.z, nc, c), a11 = tex_fetch(tex, t0.w, nc, c);
-    const float w0 = gc * (1.0f - frac);
-    tex_add(gradTex, t0.x, nc, c, w0 * (1.0f - f0.x) * (1.0f - f0.y));
-    tex_add(gradTex, t0.y, nc, c, w0 * f0.x * (1.0f - f0.y));
-    tex_add(gradTex, t0.z, nc, c, w0 * (1.0f - f0.x) * f0.y);
-    tex_add(gradTex, t0.w, nc, c, w0 * f0.x * f0.y);
-    guv.x += w0 * ((a10 - a00) * (1.0f - f0.y) + (a11 - a01) * f0.y) * (float)levelInfo[3 * l0 + 1];
-    guv.y += w0 * ((a01 - a00) * (1.0f - f0.x) + (a11 - a10) * f0.x) * (float)levelInfo[3 * l0 + 2];
-  }
+  for (uint c = 0; c < nc; ++c) tex_quad_grad(gradTex, tex, levelInfo, l0, t0, f0, nc, c, g[c] * (1.0f - frac), &guv);
   float gLevel = 0.0f;
   if (frac > 0.0f) {
     const float2 f1 = tex_quad(&params, uv[p], image, levelInfo, l1, &t1);
     for (uint c = 0; c < nc; ++c) {
-      const float gc = g[c];
-      const float b00 = tex_fetch(tex, t1.x, nc, c), b10 = tex_fetch(tex, t1.y, nc, c);
-      const float b01 = tex_fetch(tex, t1.z, nc, c), b11 = tex_fetch(tex, t1.w, nc, c);
-      const float w1 = gc * frac;
-      tex_add(gradTex, t1.x, nc, c, w1 * (1.0f - f1.x) * (1.0f - f1.y));
-      tex_add(gradTex, t1.y, nc, c, w1 * f1.x * (1.0f - f1.y));
-      tex_add(gradTex, t1.z, nc, c, w1 * (1.0f - f1.x) * f1.y);
-      tex_add(gradTex, t1.w, nc, c, w1 * f1.x * f1.y);
-      guv.x += w1 * ((b10 - b00) * (1.0f - f1.y) + (b11 - b01) * f1.y) * (float)levelInfo[3 * l1 + 1];
-      guv.y += w1 * ((b01 - b00) * (1.0f - f1.x) + (b11 - b10) * f1.x) * (float)levelInfo[3 * l1 + 2];
-      const float a = mix(mix(tex_fetch(tex, t0.x, nc, c), tex_fetch(tex, t0.y, nc, c), f0.x),
-                          mix(tex_fetch(tex, t0.z, nc, c), tex_fetch(tex, t0.w, nc, c), f0.x), f0.y);
-      gLevel += gc * (mix(mix(b00, b10, f1.x), mix(b01, b11, f1.x), f1.y) - a);
+      tex_quad_grad(gradTex, tex, levelInfo, l1, t1, f1, nc, c, g[c] * frac, &guv);
+      gLevel += g[c] * (tex_quad_value(tex, t1, f1, nc, c) - tex_quad_value(tex, t0, f0, nc, c));
     }
   }
   // Clamped boundaries give the clamped axis zero gradient (the quad collapsed onto one texel column or row).

@@ -34,6 +34,10 @@ struct DeviceMemory {
   bool hostBacked = false;               // device memory is host memory (a CPU device)
 };
 
+struct ClContext;
+// The account of a context's buffers: its device's limits, none of the caller's (device.cpp).
+DeviceMemory deviceMemoryOf(const ClContext& cl);
+
 template <typename T>
 class DeviceBuffer {
  public:

@@ -2,6 +2,7 @@
 // builds the embedded kernels (see device.h for the contract).
 #include "pipeline/device.h"
 
+#include "pipeline/buffer.h"
 #include "pipeline/embedded_kernels.h"
 #include "pipeline/program_cache.h"
 #include "kernels/shared.h"
@@ -273,6 +274,11 @@ const cl::Program& ClContext::extras()
 {
   if (!extras_()) extras_ = buildProgram(context, info.device, buildOptions_, true);
   return extras_;
+}
+
+DeviceMemory deviceMemoryOf(const ClContext& cl)
+{
+  return {cl.context, cl.queue, cl.maxAllocBytes, 0, cl.globalMemBytes, UINT64_MAX, cl.info.type == "CPU"};
 }
 
 }  // namespace clr

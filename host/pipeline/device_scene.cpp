@@ -11,7 +11,7 @@ namespace clr {
 
 DeviceScene::DeviceScene(ClContext& cl)
     : cl_(cl),
-      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0, cl.globalMemBytes, UINT64_MAX, cl.info.type == "CPU"},
+      memory_(deviceMemoryOf(cl)),
       positions_(memory_, "vertex positions"),
       normals_(memory_, "vertex normals"),
       uvs_(memory_, "vertex texture coordinates"),

@@ -19,7 +19,7 @@ void checkCount(uint64_t n, const char* what)
 
 DiffKernels::DiffKernels(ClContext& cl)
     : cl_(cl),
-      memory_{cl.context, cl.queue, cl.maxAllocBytes, 0, cl.globalMemBytes, UINT64_MAX, cl.info.type == "CPU"},
+      memory_(deviceMemoryOf(cl)),
       in0_(memory_, "gradient input 0"),
       in1_(memory_, "gradient input 1"),
       in2_(memory_, "gradient input 2"),
