@@ -37,6 +37,17 @@ static std::vector<T> gather(const std::vector<T>& from, const std::vector<uint3
   return out;
 }
 
+// The vertex attributes of `ids` (positions, normals, uvs, colours), no triangles.
+static Mesh gatherVertices(const Mesh& mesh, const std::vector<uint32_t>& ids)
+{
+  Mesh out;
+  out.positions = gather(mesh.positions, ids, 3);
+  out.normals = gather(mesh.normals, ids, 3);
+  out.uvs = gather(mesh.uvs, ids, 2);
+  out.colors = gather(mesh.colors, ids, 4);
+  return out;
+}
+
 // Runs work(lo, hi) over [0, n) in two halves on two threads, where n is large enough to pay.
 template <typename Work>
 static void inHalves(size_t n, const Work& work)
@@ -114,11 +125,7 @@ static bool weldByClasses(const Mesh& mesh, std::vector<uint32_t>& weld, size_t&
       if (!sameVertex(mesh, v, first[classes[v]])) hold = false;
   });
   if (!hold) return false;
-  Mesh sample;
-  sample.positions = gather(mesh.positions, firsts, 3);
-  sample.normals = gather(mesh.normals, firsts, 3);
-  sample.uvs = gather(mesh.uvs, firsts, 2);
-  sample.colors = gather(mesh.colors, firsts, 4);
+  Mesh sample = gatherVertices(mesh, firsts);
   std::vector<uint32_t> sampleWeld;
   unique = weldVertices(sample, sampleWeld);
   for (size_t i = 0; i < firsts.size(); ++i) first[classes[firsts[i]]] = sampleWeld[i];  // class -> welded
@@ -138,11 +145,7 @@ static bool weldPays(const Mesh& file, const std::vector<uint32_t>& sortedIndice
                             sortedIndices.begin() + std::min(sortedIndices.size(), 3 * kWeldSample));
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  Mesh sample;
-  sample.positions = gather(file.positions, ids, 3);
-  sample.normals = gather(file.normals, ids, 3);
-  sample.uvs = gather(file.uvs, ids, 2);
-  sample.colors = gather(file.colors, ids, 4);
+  Mesh sample = gatherVertices(file, ids);
   std::vector<uint32_t> weld;
   return weldVertices(sample, weld) < ids.size() - ids.size() / 64;
 }
