@@ -93,26 +93,11 @@ CLR_INLINE bool line_touches_tile(float4 e, float reach, int tx, int ty)
   return dist <= reach + extent * (fabs(dx) + fabs(dy)) / len + 0.5f;
 }
 
-__kernel void lines_bin_count(__constant FrameParams* params, __constant LineParams* lp,
-                              __global const LineSeg* segs,  // lp->numSegments
-                              __global uint* tileCount)      // tiles + 1
-{
-  const uint n = get_global_id(0);
-  if (n >= lp->numSegments) return;
-  const LineSeg s = segs[n];
-  if (s.flags & CLR_LINE_SKIP) return;
-  const float4 e = line_ends(&s, lp);
-  const int4 r = line_tile_range(e, lp->reach, params);
-  for (int ty = r.y; ty <= r.w; ++ty)
-    for (int tx = r.x; tx <= r.z; ++tx)
-      if (line_touches_tile(e, lp->reach, tx, ty)) atomic_inc(&tileCount[ty * params->tilesX + tx]);
-}
-
-__kernel void lines_bin_fill(__constant FrameParams* params, __constant LineParams* lp,
-                             __global const LineSeg* segs,     // lp->numSegments
-                             __global const uint* tileOffset,  // tiles + 1, scanned
-                             __global uint* tileCursor,        // tiles, zeroed
-                             __global uint* binEntries)        // tileOffset[tiles]
+/* Both binning passes for segment n: +1 to each tile it may touch (count), or n into that tile's bin at the
+ * scanned offset plus a per-tile cursor (fill: tileCount is then the cursor). */
+CLR_INLINE void lines_bin(__constant FrameParams* params, __constant LineParams* lp, __global const LineSeg* segs,
+                          __global uint* tileCount, bool fill, __global const uint* tileOffset,
+                          __global uint* binEntries)
 {
   const uint n = get_global_id(0);
   if (n >= lp->numSegments) return;
@@ -124,8 +109,25 @@ __kernel void lines_bin_fill(__constant FrameParams* params, __constant LinePara
     for (int tx = r.x; tx <= r.z; ++tx) {
       if (!line_touches_tile(e, lp->reach, tx, ty)) continue;
       const uint tile = ty * params->tilesX + tx;
-      binEntries[tileOffset[tile] + atomic_inc(&tileCursor[tile])] = n;
+      const uint at = atomic_inc(&tileCount[tile]);
+      if (fill) binEntries[tileOffset[tile] + at] = n;
     }
+}
+
+__kernel void lines_bin_count(__constant FrameParams* params, __constant LineParams* lp,
+                              __global const LineSeg* segs,  // lp->numSegments
+                              __global uint* tileCount)      // tiles + 1
+{
+  lines_bin(params, lp, segs, tileCount, false, tileCount, tileCount);
+}
+
+__kernel void lines_bin_fill(__constant FrameParams* params, __constant LineParams* lp,
+                             __global const LineSeg* segs,     // lp->numSegments
+                             __global const uint* tileOffset,  // tiles + 1, scanned
+                             __global uint* tileCursor,        // tiles, zeroed
+                             __global uint* binEntries)        // tileOffset[tiles]
+{
+  lines_bin(params, lp, segs, tileCursor, true, tileOffset, binEntries);
 }
 
 /* |dz/dx| + |dz/dy| of a setup triangle's window depth, per pixel. */
