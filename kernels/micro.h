@@ -37,6 +37,16 @@ CLR_INLINE bool micro_slotted(uint word)
   return word != 0 && word != CLR_MICRO_FULL;
 }
 
+/* Raster: tile's tileMicro word where the tile holds a micro slot, else 0; with a slot, *end (the end of its bin
+ * entries) drops the hole. */
+CLR_INLINE uint micro_tile_slot(__global const uint* tileMicro, uint tile, uint* end)
+{
+  const uint word = tileMicro[tile];
+  if (!micro_slotted(word)) return 0u;
+  --*end;
+  return word;
+}
+
 /* Count pass: a micro slot for tile, claimed once per tile (slots numbered by CLR_COUNTER_MICRO_TILES, below
  * microCap, the microKey slots of a speculative frame); the claim adds the tile's hole entry. Returns whether the
  * tile has a slot; without one its triangles are binned. *last and *lastSlotted cache the tile looked at last. */

@@ -575,9 +575,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
   const uint begin = tileOffset[tile];
   uint end = tileOffset[tile + 1];
   if (begin == end) return;  // the whole group
-  const uint microWord = tileMicro[tile];
-  const bool micro = micro_slotted(microWord);
-  if (micro) --end;  // the hole (micro.h)
+  const uint microWord = micro_tile_slot(tileMicro, tile, &end);
   const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
   const bool skipHidden = !painter && CLR_EXACT_COVERAGE(edgeMode, traversal);
@@ -603,7 +601,7 @@ CLR_INLINE void raster_pixel(CLR_RASTER_PARAMS, const uint edgeMode, const uint 
     }
   }
   const uint a = vis_address(tileSlot[tile], px, py);
-  if (micro)
+  if (microWord)
     raster_merge_micro(microKey, micro_address(microWord, params->samples, k, px, py), sx, sy, &best, &rule, setup,
                        microRecord);
   raster_write_row(params, visPlane, k, a, &best, visIndex, visAttr);
@@ -660,9 +658,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
   const uint begin = tileOffset[tile];
   uint end = tileOffset[tile + 1];
   if (begin == end) return;
-  const uint microWord = tileMicro[tile];
-  const bool micro = micro_slotted(microWord);
-  if (micro) --end;  // the hole (micro.h)
+  const uint microWord = micro_tile_slot(tileMicro, tile, &end);
   const int offsetX = params->sampleX[k], offsetY = params->sampleY[k];
   const DepthRule rule = raster_depth_rule(params, source, clipBary, paintRank);
   const bool painter = rule.visibility == CLR_VISIBILITY_PAINTER;
@@ -729,7 +725,7 @@ CLR_INLINE void raster_tile(CLR_RASTER_PARAMS, uint tileX, uint tileY, uint k, c
     }
   }
   const uint slot = tileSlot[tile];
-  if (micro)
+  if (microWord)
     for (int col = 0; col < CLR_TILE_SIZE / CLR_LANES; ++col)
       for (int row = 0; row < CLR_TILE_SIZE; ++row)
         raster_merge_micro(microKey, micro_address(microWord, params->samples, k, col * CLR_LANES, row), sx[col],

@@ -89,18 +89,11 @@ void compareMicro(const clr::Mesh& mesh, const glm::mat4& mvp, uint32_t width, u
 void addGrid(test::Geometry& g, uint32_t width, uint32_t height, int n, float z, uint32_t seed)
 {
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> sub(-40, 40), pick(0, 3);
   std::vector<glm::vec3> grid;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
-      float x = float(width) * i / n, y = float(height) * j / n;
-      x = std::round(x * 256.0f + sub(rng)) / 256.0f;
-      y = std::round(y * 256.0f + sub(rng)) / 256.0f;
-      const int mode = pick(rng);
-      if (mode == 1) x = std::floor(x) + 0.5f;
-      if (mode == 2) y = std::floor(y) + 0.5f;
-      if (mode == 3) x = std::floor(x) + 0.5f, y = std::floor(y) + 0.5f;
-      grid.push_back(test::screen(x, y, z, width, height));
+      const glm::vec2 p = test::jitterVertex(float(width) * i / n, float(height) * j / n, 40, rng);
+      grid.push_back(test::screen(p.x, p.y, z, width, height));
     }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {

@@ -1,6 +1,7 @@
 // test_support.cpp — see test_support.h.
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <random>
 
@@ -135,6 +136,17 @@ std::string meshDifference(const clr::Mesh& a, const clr::Mesh& b)
       a.facts.uvsInFile != b.facts.uvsInFile || a.facts.missingTextures != b.facts.missingTextures)
     return "facts";
   return "";
+}
+
+glm::vec2 jitterVertex(float x, float y, int jitter, std::mt19937& rng)
+{
+  std::uniform_int_distribution<int> sub(-jitter, jitter), pick(0, 3);
+  x = std::round(x * 256.0f + sub(rng)) / 256.0f;
+  y = std::round(y * 256.0f + sub(rng)) / 256.0f;
+  const int mode = pick(rng);
+  if (mode == 1 || mode == 3) x = std::floor(x) + 0.5f;
+  if (mode == 2 || mode == 3) y = std::floor(y) + 0.5f;
+  return {x, y};
 }
 
 std::vector<clr::Camera> modelViews(const clr::Bounds& bounds)

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,11 @@ std::vector<clr::Camera> modelViews(const clr::Bounds& bounds);
 // interprets every work-item: the few large cases there take the smallest
 // sizes that still reach the paths they exist for (docs/testing.md, "Oclgrind").
 bool underOclgrind();
+
+// A grid vertex (x, y) in pixels moved by up to `jitter` subpixels on each axis, then, in three cases of four, its
+// x, its y or both put on a pixel centre (where only the fill rule decides shared edges). Draws from rng: x's
+// jitter, y's, then the case.
+glm::vec2 jitterVertex(float x, float y, int jitter, std::mt19937& rng);
 
 // A mesh builder. With an identity MVP, a position (x, y, z) is already in
 // clip space with w = 1; screen() maps a screen-space point of a W×H

@@ -47,21 +47,13 @@ TEST_CASE("watertight: a jittered screen grid covers every pixel exactly once", 
   // centres and on pixel-centre rows/columns, where the fill rule decides.
   // The jitter (at most 300/256 + 1 px against 7.2 px cells) keeps every
   // quad convex, so the mesh never folds over itself.
-  std::uniform_int_distribution<int> sub(-300, 300), pick(0, 3);
   std::vector<glm::vec3> grid;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
-      float x = -8.0f + (W + 16.0f) * i / n, y = -8.0f + (H + 16.0f) * j / n;
+      glm::vec2 p(-8.0f + (W + 16.0f) * i / n, -8.0f + (H + 16.0f) * j / n);
       const bool border = i == 0 || j == 0 || i == n || j == n;
-      if (!border) {
-        x = std::round(x * 256.0f + sub(rng)) / 256.0f;
-        y = std::round(y * 256.0f + sub(rng)) / 256.0f;
-        const int mode = pick(rng);
-        if (mode == 1) x = std::floor(x) + 0.5f;
-        if (mode == 2) y = std::floor(y) + 0.5f;
-        if (mode == 3) x = std::floor(x) + 0.5f, y = std::floor(y) + 0.5f;
-      }
-      grid.push_back(test::screen(x, y, 0.0f, W, H));
+      if (!border) p = test::jitterVertex(p.x, p.y, 300, rng);
+      grid.push_back(test::screen(p.x, p.y, 0.0f, W, H));
     }
   // Premise: no triangle is inverted, so a double hit would be a raster bug.
   for (int j = 0; j < n; ++j)
