@@ -109,13 +109,20 @@ CLR_INLINE uintL setup_outcode(floatL x, floatL y, floatL z, floatL w, float gx,
          select(zero, (uintL)512u, beyondFar);
 }
 
+/* Where cluster bounds lie against setup_classify's planes (setup_cluster_place). */
+#define CLR_CLUSTER_MIXED 0u
+#define CLR_CLUSTER_OUTSIDE 1u /* wholly outside one plane it culls by: every triangle culled */
+#define CLR_CLUSTER_INSIDE 2u  /* wholly inside every plane it tests: every finite triangle CLR_SETUP_SIMPLE */
+
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
-/* Whether cluster bounds b (CLR_CLUSTER_TRIS) lie wholly outside one plane setup_classify culls by (near, a
- * viewport edge, far); then every triangle in it is culled and the count pass skips it unloaded. Clip coordinates
- * are affine, so the box's extremes are at its 8 corners (lanes 0-7, again 8-15). Margin: clusterMargin = 2^-16 M,
- * M the largest sum of term magnitudes of a vertex's clip coordinates; transform rounding is below 2^-21 M, so a
- * vertex classification keeps is never skipped. A NaN bound skips nothing. */
-CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global const float* b)
+/* Where cluster bounds b (CLR_CLUSTER_TRIS) lie: the count pass skips an outside cluster unloaded, and takes every
+ * triangle of an inside one as simple without classifying it (the host's bounds are NaN where a vertex is not
+ * finite, device_scene.cpp). Clip coordinates are affine, so the box's extremes are at its 8 corners (lanes 0-7,
+ * again 8-15). Margin m = clusterMargin = 2^-16 M, M the largest sum of term magnitudes of a vertex's clip
+ * coordinates: transform rounding is below 2^-21 M and a plane's sum adds less, so a corner outside (inside) by m
+ * puts every vertex's computed outcode bit at 1 (0); the guard planes scale w by g, so their margin is (1 + g)·m.
+ * A NaN bound is mixed. */
+CLR_INLINE uint setup_cluster_place(__constant FrameParams* params, __global const float* b)
 {
   // Step 1: the corners' clip coordinates.
   const intL lane = CLR_LANE_INDEX;
@@ -125,13 +132,18 @@ CLR_INLINE bool setup_cluster_outside(__constant FrameParams* params, __global c
   const floatL x = transform_lanes(params, 0, px, py, pz), y = transform_lanes(params, 1, px, py, pz);
   const floatL z = transform_lanes(params, 2, px, py, pz), w = transform_lanes(params, 3, px, py, pz);
   // Step 2: each corner's outside-by-margin planes as bits (NaN sets none); a bit in every lane culls.
-  const float margin = params->clusterMargin, nearSign = clip_near_sign(params->depthMode);
+  const float m = params->clusterMargin, nearSign = clip_near_sign(params->depthMode);
   const uintL zero = 0;
-  const intL beyondFar = nearSign < 0.0f ? (z < -margin) : (z - w > margin);
-  const uintL code = select(zero, (uintL)1u, nearSign * z + w < -margin) | select(zero, (uintL)2u, x + w < -margin) |
-                     select(zero, (uintL)4u, x - w > margin) | select(zero, (uintL)8u, y + w < -margin) |
-                     select(zero, (uintL)16u, y - w > margin) | select(zero, (uintL)32u, beyondFar);
-  return clr_and_lanes(code) != 0;
+  const floatL nearSum = nearSign * z + w, farSum = nearSign < 0.0f ? z : w - z;
+  const uintL code = select(zero, (uintL)1u, nearSum < -m) | select(zero, (uintL)2u, x + w < -m) |
+                     select(zero, (uintL)4u, x - w > m) | select(zero, (uintL)8u, y + w < -m) |
+                     select(zero, (uintL)16u, y - w > m) | select(zero, (uintL)32u, farSum < -m);
+  if (clr_and_lanes(code) != 0) return CLR_CLUSTER_OUTSIDE;
+  // Step 3: inside when every corner is inside every plane by its margin (NaN fails).
+  const float gx = params->guardX, gy = params->guardY, mx = (1.0f + gx) * m, my = (1.0f + gy) * m;
+  const intL in = (nearSum > m) & (farSum > m) & (x + w > m) & (w - x > m) & (y + w > m) & (w - y > m) &
+                  (x + gx * w > mx) & (gx * w - x > mx) & (y + gy * w > my) & (gy * w - y > my);
+  return CLR_ANY(in == 0) ? CLR_CLUSTER_MIXED : CLR_CLUSTER_INSIDE;
 }
 #endif
 
@@ -399,7 +411,7 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
                                           __global uint* counters, __global uint* clipList, uint clipListCapacity,
                                           __global uint* tileCount, __global TriSetup* setup, __global uint* tileCursor,
                                           __global uint* binEntries, __global uint* source, uint numSetup, uint pass,
-                                          SetupMicro* micro, uint item)
+                                          SetupMicro* micro, uint item, bool inside)
 {
   // Step 1: pass 1 input triangles from `first`; pass 2 the sources of records from `first` (lanes of clipped
   // records and past the end are not written).
@@ -421,8 +433,9 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
   }
   ClipBatch c;
   setup_load_batch(tri, params, positions, indices, &c);
-  // Pass 2 does not classify again: its sources are pass 1's simple survivors, or clipped records it skips.
-  const uintL kind = emit ? (uintL)CLR_SETUP_SIMPLE : setup_classify(&c, params);
+  // Pass 2 does not classify again: its sources are pass 1's simple survivors, or clipped records it skips. Nor
+  // does pass 1 in a cluster inside the view (setup_cluster_place).
+  const uintL kind = emit || inside ? (uintL)CLR_SETUP_SIMPLE : setup_classify(&c, params);
   // Pass 1 stops early, before setup_make, when every lane is culled (a batch beside the view).
   if (!emit && !CLR_ANY(kind != CLR_SETUP_CULLED)) {
     setup_count_none(params, first, triCount);
@@ -482,12 +495,14 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
 {
   SetupMicro micro = {microMax, microCap, tileMicro, microKey, microRecord, paintRank, CLR_NONE, false};
 #if CLR_LANES > 1 && !CLR_CLIP_INPUT
-  // Pass 1 in the CPU shape: a work-item per cluster, which it tests once; one beside the view is skipped unloaded,
+  // Pass 1 in the CPU shape: a work-item per cluster, which it places once; one beside the view is skipped unloaded,
   // its total 0 and its bytes unwritten. The cluster's total is its bytes' sum.
   if (pass == CLR_SETUP_PASS_COUNT) {
     const uint cluster = get_global_id(0), first = cluster * CLR_CLUSTER_TRIS;
     if (first >= params->numTris) return;
-    if (params->clusterMargin > 0.0f && setup_cluster_outside(params, clusterBounds + 6 * cluster)) {
+    const uint place =
+        params->clusterMargin > 0.0f ? setup_cluster_place(params, clusterBounds + 6 * cluster) : CLR_CLUSTER_MIXED;
+    if (place == CLR_CLUSTER_OUTSIDE) {
       clusterCount[cluster] = 0;
       return;
     }
@@ -495,7 +510,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
     for (uint k = 0; k < CLR_CLUSTER_TRIS / CLR_LANES; ++k)
       setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
                            tileCursor, binEntries, source, numSetup, pass, &micro,
-                           cluster * (CLR_CLUSTER_TRIS / CLR_LANES) + k);
+                           cluster * (CLR_CLUSTER_TRIS / CLR_LANES) + k, place == CLR_CLUSTER_INSIDE);
     const uint end = min(first + CLR_CLUSTER_TRIS, params->numTris);
     uint sum = 0;
     for (uint t = first; t < end; ++t) sum += triCount[t];
@@ -504,7 +519,7 @@ __kernel __attribute__((reqd_work_group_size(CLR_SETUP_GROUP(CLR_LANES), 1, 1)))
   }
 #endif
   setup_triangles_body(params, positions, indices, triCount, counters, clipList, clipListCapacity, tileCount, setup,
-                       tileCursor, binEntries, source, numSetup, pass, &micro, get_global_id(0));
+                       tileCursor, binEntries, source, numSetup, pass, &micro, get_global_id(0), false);
 }
 
 /* The lowest s with source[s] == CLR_SOURCE_CLIPPED | tri: binary search, the listing being sorted by triangle. */

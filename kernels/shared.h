@@ -153,9 +153,9 @@ typedef uint32_t uint;
  * in vectors. */
 #define CLR_SETUP_GROUP(lanes) ((lanes) == 1 ? CLR_LINEAR_GROUP : 1)
 
-/* Setup clusters (CPU shape): 6 floats of vertex bounds (min xyz, max xyz; NaN if none finite) per
+/* Setup clusters (CPU shape): 6 floats of vertex bounds (min xyz, max xyz; NaN if one is not finite) per
  * CLR_CLUSTER_TRIS input triangles. Host writes (Pipeline::uploadScene); the count pass reads
- * (setup_cluster_outside). Size 24 bytes per 256 triangles. */
+ * (setup_cluster_place). Size 24 bytes per 256 triangles. */
 #define CLR_CLUSTER_TRIS 256
 
 /* Work-group size of scan_chunks (scan.cl): as CLR_SETUP_GROUP. */
@@ -238,7 +238,7 @@ typedef struct FrameParams {
   uint visEntries;   /* S·V, the index entries of all sample planes (the 24-bit entries' high bytes follow) */
   /* 1: setup culls a small triangle covering no pixel centre (setup_covers_a_sample); 1 sample, fixed, no lines. */
   uint cullSampleFree;
-  /* > 0: clip-space margin of the cluster test (setup_cluster_outside); 0 skips it (Pipeline::clusterMargin). */
+  /* > 0: clip-space margin of the cluster test (setup_cluster_place); 0 skips it (DeviceScene::clusterMargin). */
   float clusterMargin;
   /* 1: the scene's triangles lie in the file's order (host layout.h), so
    * fileTri is the identity and not bound: readers take the index itself. */

@@ -163,6 +163,47 @@ TEST_CASE("differential: setup skips clusters beside the view and keeps those pa
   compare(g, traversal, true);
 }
 
+TEST_CASE("differential: setup's clusters inside the view, and beside its near and far planes", "[differential][setup]")
+{
+  const uint32_t traversal = exactTraversal();
+  // Patches of 16 x 8 quads, one of setup's clusters each: the count pass
+  // takes a cluster whose corners all lie inside every plane as simple
+  // without classifying its triangles (setup_cluster_place). Patches wholly
+  // in view; two of them with a vertex at -inf x or NaN y (their bounds are
+  // NaN, so classify culls the non-finite triangles: with the bounds over
+  // the finite vertices only, the -inf vertex snaps and draws across the
+  // view); one between the eye and the near plane, small enough to lie
+  // inside the side planes there; one through the far plane. (Without the
+  // near or the far plane in the inside test, this test fails.)
+  static_assert(16 * 8 * 2 == CLR_CLUSTER_TRIS, "one patch per cluster");
+  test::Geometry g;
+  const auto patch = [&g](glm::vec3 corner, glm::vec3 across, glm::vec3 up, float wobble = 0.03f) {
+    const uint32_t first = uint32_t(g.positions.size() / 3);
+    for (int j = 0; j <= 8; ++j)
+      for (int i = 0; i <= 16; ++i)
+        g.addVertex(corner + (float(i) / 16) * across + (float(j) / 8) * up + glm::vec3(0, 0, wobble * float(i % 3)));
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 16; ++i) {
+        const uint32_t v = first + j * 17 + i, r = v + 1, u = v + 17, ur = u + 1;
+        g.indices.insert(g.indices.end(), {v, r, ur, v, ur, u});
+      }
+    return first;
+  };
+  for (int k = 0; k < 6; ++k)
+    patch({-2.0f + 0.7f * float(k % 3), -1.5f + 1.2f * float(k / 3), -0.5f * float(k % 2)}, {1.1f, 0.2f, 0.3f},
+          {0.1f, 0.9f, 0.0f});
+  const uint32_t infinite = patch({-1.0f, 0.2f, 1.0f}, {1.2f, 0.0f, 0.0f}, {0.0f, 0.8f, 0.2f});
+  g.positions[3 * (infinite + 40)] = -INFINITY;
+  const uint32_t nan = patch({0.4f, -0.9f, 1.5f}, {1.0f, 0.1f, 0.0f}, {0.0f, 0.7f, 0.0f});
+  g.positions[3 * (nan + 77) + 1] = NAN;
+  // The eye is at (0.3, 0.8, 6) looking at the origin; the near plane 0.25 away.
+  const glm::vec3 eye(0.3f, 0.8f, 6.0f), ahead = glm::normalize(-eye);
+  patch(eye + 0.1f * ahead + glm::vec3(-0.002f, 0.0f, 0.0f), {0.004f, 0.0f, 0.0f}, 0.25f * ahead, 0.0f);
+  patch(eye + 37.0f * ahead + glm::vec3(-3.0f, -2.0f, 0.0f), {6.0f, 0.0f, 0.0f}, 6.0f * ahead + glm::vec3(0, 4, 0));
+  REQUIRE(g.numTris() == 10 * CLR_CLUSTER_TRIS);
+  compare(g, traversal);
+}
+
 TEST_CASE("differential: triangles at the bound of 32-bit edge functions", "[differential][raster]")
 {
   const uint32_t traversal = exactTraversal();

@@ -36,25 +36,27 @@ DeviceScene::DeviceScene(ClContext& cl)
 }
 
 // The bounds of each cluster of CLR_CLUSTER_TRIS consecutive triangles
-// (shared.h): over its finite vertices, NaN where it has none (the count
-// pass then never skips it; setup_classify culls non-finite triangles).
+// (shared.h), NaN where a vertex is not finite: the count pass then neither
+// skips the cluster nor takes it as inside the view, and setup_classify
+// culls the non-finite triangles.
 static std::vector<float> clusterBounds(const Mesh& mesh)
 {
   const size_t clusters = (mesh.numTris() + CLR_CLUSTER_TRIS - 1) / CLR_CLUSTER_TRIS;
   std::vector<float> bounds(6 * clusters);
   for (size_t c = 0; c < clusters; ++c) {
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    bool finite = true;
     const size_t end = std::min<size_t>(3 * (c + 1) * CLR_CLUSTER_TRIS, mesh.indices.size());
     for (size_t k = 3 * c * CLR_CLUSTER_TRIS; k < end; ++k) {
       if (mesh.indices[k] >= mesh.numVerts()) continue;  // (scene.cpp rejects such files)
       const float* p = &mesh.positions[3 * size_t(mesh.indices[k])];
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+      finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
       for (int a = 0; a < 3; ++a) {
         lo[a] = std::min(lo[a], p[a]);
         hi[a] = std::max(hi[a], p[a]);
       }
     }
-    const bool any = lo[0] <= hi[0];
+    const bool any = finite && lo[0] <= hi[0];
     for (int a = 0; a < 3; ++a) {
       bounds[6 * c + a] = any ? lo[a] : NAN;
       bounds[6 * c + 3 + a] = any ? hi[a] : NAN;
@@ -181,33 +183,21 @@ uint32_t DeviceScene::bindAttributes(const FrameSettings& settings)
 
 float DeviceScene::clusterMargin(const glm::mat4& mvp) const
 {
-  // Step 1: whether the test can pay. The kernel's test is conservative on
-  // its own, so this only chooses when to run it: when a corner of the
-  // scene's box lies behind the eye, or the box's projection covers more
-  // than twice the view (NDC area 8), much of the scene may lie beside the
-  // view. Where less can, the test costs more than it saves (bench/ab.sh).
+  // M (setup_cluster_place): the largest sum of term magnitudes of a corner
+  // of the scene's box, which bounds every vertex's and every cluster's.
   if (sceneMin_.x > sceneMax_.x) return 0.0f;
-  bool behind = false;
-  glm::vec2 lo(INFINITY), hi(-INFINITY);
-  float largest = 0.0f;  // M (setup_cluster_outside): bounds every vertex's, since each lies in the box
+  float largest = 0.0f;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 p(corner & 1 ? sceneMax_.x : sceneMin_.x, corner & 2 ? sceneMax_.y : sceneMin_.y,
                       corner & 4 ? sceneMax_.z : sceneMin_.z);
-    const glm::vec4 c = mvp * glm::vec4(p, 1.0f);
-    behind = behind || !(c.w > 0.0f);
-    if (c.w > 0.0f) {
-      lo = glm::min(lo, glm::vec2(c) / c.w);
-      hi = glm::max(hi, glm::vec2(c) / c.w);
-    }
     float sum = 0.0f;
     for (int row = 0; row < 4; ++row)
       sum += std::abs(mvp[0][row] * p.x) + std::abs(mvp[1][row] * p.y) + std::abs(mvp[2][row] * p.z) +
              std::abs(mvp[3][row]);
     largest = std::max(largest, sum);
   }
-  const bool wide = !behind && (hi.x - lo.x) * (hi.y - lo.y) > 8.0f;
-  // Step 2: the margin, 2^-16 M.
-  return (behind || wide) && std::isfinite(largest) ? largest / 65536.0f : 0.0f;
+  // The margin, 2^-16 M.
+  return std::isfinite(largest) ? largest / 65536.0f : 0.0f;
 }
 
 }  // namespace clr

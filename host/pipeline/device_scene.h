@@ -62,7 +62,7 @@ class DeviceScene {
   // returns the FrameParams.sceneFlags it binds.
   uint32_t bindAttributes(const FrameSettings& settings);
   // FrameParams.clusterMargin for the view of `mvp`: 0 (no cluster test)
-  // unless the scene's bounds reach behind the eye or well beyond the view.
+  // for an empty scene or one whose clip coordinates overflow.
   float clusterMargin(const glm::mat4& mvp) const;
 
   ClContext& cl_;
