@@ -68,6 +68,29 @@ CLR_INLINE uint clr_and_lanes(uint16 v)
   const uint2 c = b.lo & b.hi;
   return c.x & c.y;
 }
+/* The smallest and the largest lane, and a mask's lanes as bits: trees over halves, as clr_any16. */
+CLR_INLINE int clr_min_lanes_int(int16 v)
+{
+  const int8 a = min(v.lo, v.hi);
+  const int4 b = min(a.lo, a.hi);
+  const int2 c = min(b.lo, b.hi);
+  return min(c.x, c.y);
+}
+CLR_INLINE int clr_max_lanes_int(int16 v)
+{
+  const int8 a = max(v.lo, v.hi);
+  const int4 b = max(a.lo, a.hi);
+  const int2 c = max(b.lo, b.hi);
+  return max(c.x, c.y);
+}
+CLR_INLINE uint clr_lane_mask(int16 mask)
+{
+  const int16 bits = mask & (int16)(1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384, 32768);
+  const int8 a = bits.lo | bits.hi;
+  const int4 b = a.lo | a.hi;
+  const int2 c = b.lo | b.hi;
+  return (uint)(c.x | c.y);
+}
 CLR_INLINE float clr_max_lanes(float16 v)
 {
   const float8 a = max(v.lo, v.hi);

@@ -450,6 +450,21 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     setup_count_none(params, first, triCount);
     return;
   }
+#if CLR_LANES > 1
+  // Step 2 (pass 1) for a whole batch, none clipped, whose survivors all lie in one tile, as a dense mesh's small
+  // triangles often do: their counts and one add to the tile's count, without walking the lanes.
+  if (!emit && micro->microMax == 0 && first + CLR_LANES <= params->numTris && !CLR_ANY(kind == CLR_SETUP_CLIP)) {
+    const intL tile = b.tileY0 * (int)params->tilesX + b.tileX0;
+    const intL one = (b.tileX0 == b.tileX1) & (b.tileY0 == b.tileY1);
+    const int lo = clr_min_lanes_int(select((intL)INT_MAX, tile, simple));
+    const int hi = clr_max_lanes_int(select((intL)INT_MIN, tile, simple));
+    if (lo == hi && !CLR_ANY(simple & (one == 0))) {
+      vstore16(convert_uchar16(simple & 1), 0, triCount + first);
+      atomic_add(&tileCount[lo], popcount(clr_lane_mask(simple)));
+      return;
+    }
+  }
+#endif
   SetupLanes l;
   setup_unpack(&b, &l);
   // Step 2 (pass 2): emit; the same arithmetic as pass 1, so every valid lane is a simple survivor.
