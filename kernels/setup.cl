@@ -451,16 +451,23 @@ CLR_KERNEL_BODY void setup_triangles_body(__constant FrameParams* params, __glob
     return;
   }
 #if CLR_LANES > 1
-  // Step 2 (pass 1) for a whole batch, none clipped, whose survivors all lie in one tile, as a dense mesh's small
-  // triangles often do: their counts and one add to the tile's count, without walking the lanes.
+  // Step 2 (pass 1) for a whole batch, none clipped, whose survivors lie in one or two tiles each and two in all, as
+  // a dense mesh's small triangles often do: their counts and an add to each tile's count, without walking the lanes
+  // (as setup_count_lanes: a survivor counts in its one tile, or in both of bin_two_tiles's).
   if (!emit && micro->microMax == 0 && first + CLR_LANES <= params->numTris && !CLR_ANY(kind == CLR_SETUP_CLIP)) {
-    const intL tile = b.tileY0 * (int)params->tilesX + b.tileX0;
-    const intL one = (b.tileX0 == b.tileX1) & (b.tileY0 == b.tileY1);
-    const int lo = clr_min_lanes_int(select((intL)INT_MAX, tile, simple));
-    const int hi = clr_max_lanes_int(select((intL)INT_MIN, tile, simple));
-    if (lo == hi && !CLR_ANY(simple & (one == 0))) {
+    const intL tileA = b.tileY0 * (int)params->tilesX + b.tileX0, tileB = b.tileY1 * (int)params->tilesX + b.tileX1;
+    const intL one = tileA == tileB;
+    const intL two = ((b.tileX1 - b.tileX0) + (b.tileY1 - b.tileY0) == 1) &
+                     (intL)(params->traversal != CLR_TRAVERSAL_HIERARCHICAL ? -1 : 0);
+    // (tileA <= tileB: the range's first and last tile)
+    const int lo = clr_min_lanes_int(select((intL)INT_MAX, tileA, simple));
+    const int hi = clr_max_lanes_int(select((intL)INT_MIN, tileB, simple));
+    const intL inPair = ((tileA == lo) | (tileA == hi)) & ((tileB == lo) | (tileB == hi));
+    if (!CLR_ANY(simple & ((one | two) == 0)) && !CLR_ANY(simple & (inPair == 0))) {
       vstore16(convert_uchar16(simple & 1), 0, triCount + first);
-      atomic_add(&tileCount[lo], popcount(clr_lane_mask(simple)));
+      // (a two-tile survivor's tiles are then lo and hi)
+      atomic_add(&tileCount[lo], popcount(clr_lane_mask(simple & (tileA == lo))));
+      if (hi != lo) atomic_add(&tileCount[hi], popcount(clr_lane_mask(simple & (tileB == hi))));
       return;
     }
   }
