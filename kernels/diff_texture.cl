@@ -157,9 +157,10 @@ CLR_INLINE void tex_add(__global float* grad, int t, uint channels, uint c, floa
 }
 
 /* One level's bilinear quad t (fractions f) in the backward pass for channel c with weight w (the channel's
- * gradient times the level's share): its texels' gradients, and the uv gradient scaled by the level's size. */
-CLR_INLINE void tex_quad_grad(__global float* gradTex, __global const float* tex, __global const int* levelInfo,
-                              uint level, int4 t, float2 f, uint nc, uint c, float w, float2* guv)
+ * gradient times the level's share): its texels' gradients, and the uv gradient scaled by the level's size.
+ * Returns the quad's value (tex_quad_value, from the texels fetched here). */
+CLR_INLINE float tex_quad_grad(__global float* gradTex, __global const float* tex, __global const int* levelInfo,
+                               uint level, int4 t, float2 f, uint nc, uint c, float w, float2* guv)
 {
   const float a00 = tex_fetch(tex, t.x, nc, c), a10 = tex_fetch(tex, t.y, nc, c);
   const float a01 = tex_fetch(tex, t.z, nc, c), a11 = tex_fetch(tex, t.w, nc, c);
@@ -169,6 +170,7 @@ CLR_INLINE void tex_quad_grad(__global float* gradTex, __global const float* tex
   tex_add(gradTex, t.w, nc, c, w * f.x * f.y);
   guv->x += w * ((a10 - a00) * (1.0f - f.y) + (a11 - a01) * f.y) * (float)levelInfo[3 * level + 1];
   guv->y += w * ((a01 - a00) * (1.0f - f.x) + (a11 - a10) * f.x) * (float)levelInfo[3 * level + 2];
+  return mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
 }
 
 __kernel void texture_grad(TexParams params, __global const float* tex, __global const int* levelInfo,
@@ -207,8 +209,8 @@ __kernel void texture_grad(TexParams params, __global const float* tex, __global
   if (frac > 0.0f) {
     const float2 f1 = tex_quad(&params, uv[p], image, levelInfo, l1, &t1);
     for (uint c = 0; c < nc; ++c) {
-      tex_quad_grad(gradTex, tex, levelInfo, l1, t1, f1, nc, c, g[c] * frac, &guv);
-      gLevel += g[c] * (tex_quad_value(tex, t1, f1, nc, c) - tex_quad_value(tex, t0, f0, nc, c));
+      const float b = tex_quad_grad(gradTex, tex, levelInfo, l1, t1, f1, nc, c, g[c] * frac, &guv);
+      gLevel += g[c] * (b - tex_quad_value(tex, t0, f0, nc, c));
     }
   }
   // Clamped boundaries give the clamped axis zero gradient (the quad collapsed onto one texel column or row).
